@@ -1,0 +1,139 @@
+//! `ClipData`: a dataset loaded onto the training device as one tensor, split 80/20 into
+//! training and validation clips, with dt, the model and the ground truth resolved.
+
+use crate::config::{EstimateConfig, ModelKind};
+use crate::error::{input_error, EstimateError};
+use physvid_shared::{read_dataset, DatasetMeta};
+use std::collections::BTreeMap;
+use tch::{Device, Kind, Tensor};
+
+/// Clips ready for training.
+#[derive(Debug)]
+pub struct ClipData {
+    /// Training clips [N_train, T, D] (D = C·H·W), on the device.
+    pub train: Tensor,
+    /// Validation clips [N_val, T, D]: the last 20 % of the file, no shuffling.
+    pub val: Tensor,
+    pub frames_per_clip: i64,
+    pub inputs: i64,
+    pub shape: [usize; 5],
+    pub dt: f64,
+    pub model: ModelKind,
+    /// True parameter values by name, when the metadata gives them.
+    pub truth: BTreeMap<String, f64>,
+    pub meta: Option<DatasetMeta>,
+}
+
+impl ClipData {
+    pub fn n_train(&self) -> i64 {
+        self.train.size()[0]
+    }
+
+    pub fn n_val(&self) -> i64 {
+        self.val.size()[0]
+    }
+}
+
+/// Subtracts the mean training frame and divides by the training pixels' overall standard
+/// deviation (a fixed affine map of the input, computed on the training clips only): the static
+/// background drops out and the encoder's first layer starts well conditioned.
+fn standardise(all: &Tensor, n_train: i64) -> Tensor {
+    let d = all.size()[2];
+    let train = all.narrow(0, 0, n_train).reshape([-1, d]);
+    let mean = train.mean_dim(0, false, Kind::Float);
+    let centred = train - &mean;
+    let std = centred.square().mean(Kind::Float).sqrt().clamp_min(1e-6);
+    (all - mean) / std
+}
+
+/// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
+/// and moves the frames to `device`.
+pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, EstimateError> {
+    let ds = read_dataset(&cfg.input)?;
+    let source = ds.frames_path.display().to_string();
+    let [n, t, c, h, w] = ds.shape;
+    if t < 3 {
+        return Err(input_error(format!(
+            "{source}: clips have {t} frames; the second-order model needs at least 3 (two to start the rollout, one to predict)"
+        )));
+    }
+    if n < 2 {
+        return Err(input_error(format!(
+            "{source}: {n} clip; at least 2 are needed for the 80/20 train/validation split"
+        )));
+    }
+    if c * h * w == 0 {
+        return Err(input_error(format!("{source}: frames have no pixels (shape {:?})", ds.shape)));
+    }
+    let (dt, model) = match &ds.meta {
+        Some(meta) => {
+            let meta_model = ModelKind::from_name(&meta.model.name).ok_or_else(|| {
+                input_error(format!(
+                    "meta.json names model '{}', which estimate does not know (known: damped-oscillator)",
+                    meta.model.name
+                ))
+            })?;
+            if let Some(dt) = cfg.dt {
+                if (dt - meta.dt).abs() > 1e-12 * meta.dt.max(1.0) {
+                    return Err(input_error(format!(
+                        "--dt {dt} contradicts meta.json's dt {}; drop --dt to use the metadata",
+                        meta.dt
+                    )));
+                }
+            }
+            if let Some(m) = cfg.model {
+                if m != meta_model {
+                    return Err(input_error(format!(
+                        "--model {} contradicts meta.json's model {}; drop --model to use the metadata",
+                        m.name(),
+                        meta_model.name()
+                    )));
+                }
+            }
+            (meta.dt, meta_model)
+        }
+        None => {
+            let dt = cfg.dt.ok_or_else(|| {
+                input_error(format!(
+                    "{source} has no meta.json beside it: pass --dt (seconds between frames)"
+                ))
+            })?;
+            let model = cfg.model.ok_or_else(|| {
+                input_error(format!(
+                    "{source} has no meta.json beside it: pass --model (e.g. --model damped-oscillator)"
+                ))
+            })?;
+            (dt, model)
+        }
+    };
+    let truth: BTreeMap<String, f64> = ds
+        .meta
+        .as_ref()
+        .map(|m| {
+            model
+                .parameter_names()
+                .iter()
+                .filter_map(|&p| m.model.parameters.get(p).map(|&v| (p.to_string(), v)))
+                .collect()
+        })
+        .unwrap_or_default();
+    let d = (c * h * w) as i64;
+    let all = Tensor::from_slice(&ds.frames)
+        .view([n as i64, t as i64, d])
+        .to_kind(Kind::Float)
+        .to_device(device);
+    let n_val = ((n as f64 * 0.2).round() as i64).max(1);
+    let n_train = n as i64 - n_val;
+    let all = standardise(&all, n_train);
+    Ok(ClipData {
+        train: all.narrow(0, 0, n_train),
+        val: all.narrow(0, n_train, n_val),
+        frames_per_clip: t as i64,
+        inputs: d,
+        shape: ds.shape,
+        dt,
+        model,
+        truth,
+        meta: ds.meta,
+    })
+}

@@ -1,0 +1,41 @@
+//! `EstimateError`: what can go wrong in `estimate`, split into bad input (exit 2) and failures.
+
+use physvid_shared::DatasetError;
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum EstimateError {
+    /// The input dataset or file is unusable.
+    #[error(transparent)]
+    Dataset(#[from] DatasetError),
+    /// A flag or the input contradicts itself; the text names the flag or file and the fix.
+    #[error("{0}")]
+    Input(String),
+    #[error("--device cuda: libtorch sees no CUDA GPU on this machine; use --device cpu (or auto)")]
+    NoCuda,
+    #[error("libtorch: {0}")]
+    Torch(#[from] tch::TchError),
+    #[error("cannot write {path}: {source}")]
+    Write {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("cannot draw {path}: {reason}")]
+    Plot { path: PathBuf, reason: String },
+}
+
+impl EstimateError {
+    /// Whether the error is the user's input (exit code 2) rather than a failure (exit code 1).
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            EstimateError::Dataset(DatasetError::Write { .. }) => false,
+            EstimateError::Dataset(_) | EstimateError::Input(_) | EstimateError::NoCuda => true,
+            _ => false,
+        }
+    }
+}
+
+/// Shorthand for an [`EstimateError::Input`].
+pub fn input_error(msg: impl Into<String>) -> EstimateError {
+    EstimateError::Input(msg.into())
+}

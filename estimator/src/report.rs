@@ -1,0 +1,220 @@
+//! The run's report: `report.json`, `metrics.csv`, the plots, and the table printed at the end.
+
+use crate::config::EstimateConfig;
+use crate::data::ClipData;
+use crate::error::EstimateError;
+use crate::plots::{plot_latents, plot_parameters};
+use crate::train::{StopReason, TrainOutcome};
+use serde::Serialize;
+use std::path::Path;
+use std::time::Duration;
+use tch::Device;
+
+/// libtorch's version, read from the linked installation at build time.
+pub const LIBTORCH_VERSION: &str = env!("PHYSVID_LIBTORCH_VERSION");
+
+/// A latent whose spread falls below this has collapsed to a constant.
+pub const COLLAPSE_STD: f64 = 1e-3;
+
+/// One estimated parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct ParameterResult {
+    pub name: String,
+    pub estimate: f64,
+    pub initial: f64,
+    pub truth: Option<f64>,
+    /// (estimate − truth) / truth.
+    pub relative_error: Option<f64>,
+}
+
+/// Everything `report.json` holds.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub tool: String,
+    pub version: String,
+    pub input: String,
+    pub model: String,
+    pub dt: f64,
+    pub shape: [usize; 5],
+    pub train_clips: i64,
+    pub validation_clips: i64,
+    pub config: EstimateConfig,
+    pub device: String,
+    pub threads: usize,
+    pub libtorch_version: String,
+    pub parameters: Vec<ParameterResult>,
+    pub epochs_run: usize,
+    pub best_epoch: usize,
+    pub best_val_loss: f64,
+    pub stop: StopReason,
+    pub latent_std: f64,
+    pub latent_collapsed: bool,
+    pub wall_time_s: f64,
+    pub warnings: Vec<String>,
+    pub history: Vec<crate::train::EpochRecord>,
+    #[serde(skip)]
+    pub outcome: TrainOutcome,
+}
+
+impl Report {
+    pub fn new(
+        cfg: &EstimateConfig,
+        data: &ClipData,
+        device: Device,
+        threads: usize,
+        init: &[f64],
+        outcome: TrainOutcome,
+        wall: Duration,
+    ) -> Report {
+        let parameters: Vec<ParameterResult> = data
+            .model
+            .parameter_names()
+            .iter()
+            .zip(outcome.parameters.iter().zip(init))
+            .map(|(&name, (&estimate, &initial))| {
+                let truth = data.truth.get(name).copied();
+                ParameterResult {
+                    name: name.to_string(),
+                    estimate,
+                    initial,
+                    truth,
+                    relative_error: truth.filter(|t| *t != 0.0).map(|t| (estimate - t) / t),
+                }
+            })
+            .collect();
+        let mut warnings = Vec::new();
+        let collapsed = outcome.latent_std < COLLAPSE_STD;
+        if collapsed {
+            warnings.push(format!(
+                "the latent collapsed to a constant (std {:.2e} over the validation clips): a constant \
+                 latent makes the rollout error vanish whatever the parameters, so these estimates \
+                 are not determined by the video; train with --loss mse+kl",
+                outcome.latent_std
+            ));
+        }
+        match outcome.stop {
+            StopReason::NonFiniteLoss { epoch } => warnings.push(format!(
+                "the loss became NaN or infinite in epoch {epoch}; training stopped and the \
+                 parameters are those of epoch {} (lower --lr or --lr-phys)",
+                outcome.best_epoch
+            )),
+            StopReason::MaxEpochs => warnings.push(format!(
+                "the validation loss was still improving after --epochs {}; the estimate may not \
+                 have converged (raise --epochs)",
+                cfg.epochs
+            )),
+            StopReason::EarlyStop { .. } => {}
+        }
+        Report {
+            tool: "estimate".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            input: cfg.input.display().to_string(),
+            model: data.model.name().into(),
+            dt: data.dt,
+            shape: data.shape,
+            train_clips: data.n_train(),
+            validation_clips: data.n_val(),
+            config: cfg.clone(),
+            device: format!("{device:?}"),
+            threads,
+            libtorch_version: LIBTORCH_VERSION.into(),
+            parameters,
+            epochs_run: outcome.epochs_run,
+            best_epoch: outcome.best_epoch,
+            best_val_loss: outcome.best_val_loss,
+            stop: outcome.stop.clone(),
+            latent_std: outcome.latent_std,
+            latent_collapsed: collapsed,
+            wall_time_s: wall.as_secs_f64(),
+            warnings,
+            history: outcome.history.clone(),
+            outcome,
+        }
+    }
+
+    /// The closing table: parameter, estimate, ground truth, relative error.
+    pub fn table(&self) -> String {
+        let mut s = format!(
+            "{} on {} ({}, {} integrator, {} epochs, best {}, {:.1} s on {})\n",
+            self.model,
+            self.input,
+            match self.config.loss {
+                crate::loss::LossKind::MseKl => "mse+kl",
+                crate::loss::LossKind::Mse => "mse",
+            },
+            match self.config.integrator {
+                crate::physics::Integrator::Exact => "exact",
+                crate::physics::Integrator::Euler => "euler",
+            },
+            self.epochs_run,
+            self.best_epoch,
+            self.wall_time_s,
+            self.device
+        );
+        s += &format!(
+            "{:<10} {:>12} {:>12} {:>12}\n",
+            "parameter", "estimate", "truth", "rel. error"
+        );
+        for p in &self.parameters {
+            let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
+            let err = p
+                .relative_error
+                .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
+            s += &format!("{:<10} {:>12.6} {:>12} {:>12}\n", p.name, p.estimate, truth, err);
+        }
+        s.trim_end().to_string()
+    }
+
+    /// `metrics.csv`: one row per epoch.
+    pub fn metrics_csv(&self) -> String {
+        let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_str()).collect();
+        let mut s = format!(
+            "epoch,train_loss,val_loss,val_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
+            names.join(",")
+        );
+        for r in &self.history {
+            let params: Vec<String> = r.parameters.iter().map(|v| format!("{v}")).collect();
+            s += &format!(
+                "{},{},{},{},{},{},{},{},{:.4}\n",
+                r.epoch,
+                r.train_loss,
+                r.val_loss,
+                r.val_mse,
+                r.latent_std,
+                params.join(","),
+                r.lr,
+                r.lr_phys,
+                r.elapsed_s
+            );
+        }
+        s
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), EstimateError> {
+    let tmp = path.with_extension("partial");
+    let err = |source| EstimateError::Write {
+        path: path.to_path_buf(),
+        source,
+    };
+    std::fs::write(&tmp, bytes).map_err(err)?;
+    std::fs::rename(&tmp, path).map_err(err)
+}
+
+/// Writes report.json, metrics.csv, parameters.png and latents.png into `cfg.out`.
+pub fn write_outputs(
+    cfg: &EstimateConfig,
+    data: &ClipData,
+    report: &Report,
+) -> Result<(), EstimateError> {
+    std::fs::create_dir_all(&cfg.out).map_err(|source| EstimateError::Write {
+        path: cfg.out.clone(),
+        source,
+    })?;
+    write_atomic(&cfg.out.join("metrics.csv"), report.metrics_csv().as_bytes())?;
+    plot_parameters(&cfg.out.join("parameters.png"), report)?;
+    plot_latents(&cfg.out.join("latents.png"), report, data)?;
+    let json = serde_json::to_vec_pretty(report).expect("report serialises");
+    write_atomic(&cfg.out.join("report.json"), &json)
+}

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Project set-up, idempotent (a few seconds when already done):
+#  1. a project-local Python virtual environment .venv with torch==2.13.0 from PyPI, whose
+#     bundled libtorch is the one tch 0.26 links against (CUDA build: the same binary uses a
+#     GPU when one is present);
+#  2. .cargo/config.toml pointing LIBTORCH at it, so plain `cargo build` / `cargo test` work.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+TORCH_VERSION="2.13.0"
+PYTHON="${PYTHON:-python3}"
+
+torch_dir() {
+    .venv/bin/python -c 'import os, torch; print(os.path.dirname(torch.__file__))' 2>/dev/null
+}
+
+have_torch() {
+    [ -x .venv/bin/python ] &&
+        [ "$(.venv/bin/python -c 'import torch; print(torch.__version__.split("+")[0])' 2>/dev/null)" = "$TORCH_VERSION" ]
+}
+
+if ! have_torch; then
+    echo "setup: installing torch==$TORCH_VERSION into .venv (about 4.7 GB, a minute or two)" >&2
+    [ -x .venv/bin/python ] || "$PYTHON" -m venv .venv
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check "torch==$TORCH_VERSION"
+    have_torch || { echo "setup: torch $TORCH_VERSION did not install into .venv" >&2; exit 1; }
+fi
+
+libtorch="$(torch_dir)"
+[ -f "$libtorch/lib/libtorch.so" ] || [ -f "$libtorch/lib/libtorch_cpu.so" ] || {
+    echo "setup: no libtorch shared libraries under $libtorch/lib" >&2
+    exit 1
+}
+mkdir -p .cargo
+config=$(cat <<TOML
+# Written by scripts/setup.sh; do not edit (it is regenerated).
+[env]
+LIBTORCH = "$libtorch"
+TOML
+)
+if [ "$(cat .cargo/config.toml 2>/dev/null)" != "$config" ]; then
+    printf '%s\n' "$config" > .cargo/config.toml
+    echo "setup: wrote .cargo/config.toml (LIBTORCH=$libtorch)" >&2
+fi

@@ -1,0 +1,18 @@
+//! Code shared by `gen` and `estimate`: the closed-form dynamics, the on-disk dataset format
+//! (`frames.npy` + `meta.json` + `preview.png`) with its validating reader, and label-free checks.
+//!
+//! This crate never depends on libtorch: rendering and reading datasets build without it.
+
+pub mod cli;
+pub mod contact_sheet;
+pub mod dataset;
+pub mod dynamics;
+pub mod error;
+pub mod meta;
+pub mod npy;
+pub mod recurrence;
+
+pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles};
+pub use dynamics::DampedOscillator;
+pub use error::DatasetError;
+pub use meta::{DatasetMeta, ModelSpec, SampleTruth};
