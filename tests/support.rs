@@ -51,3 +51,35 @@ pub fn run(bin: &Path, args: &[&str]) -> Output {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// The `estimate` binary.
+pub fn estimate_bin() -> PathBuf {
+    binary("physvid-estimator", "estimate")
+}
+
+/// Generates a dataset with the real `gen` into `dir` and returns its path as text.
+pub fn gen_dataset(dir: &Path, scenario: &str, extra: &[&str]) -> String {
+    let out = dir.to_str().expect("UTF-8 temp path").to_string();
+    let mut args = vec!["--scenario", scenario, "--out", &out, "--force"];
+    args.extend_from_slice(extra);
+    let o = run(&gen_bin(), &args);
+    assert!(o.status.success(), "gen failed: {}", stderr(&o));
+    out
+}
+
+/// Reads `report.json` from an estimate output directory.
+pub fn read_report(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("report.json")).expect("report.json written");
+    serde_json::from_str(&text).expect("report.json is JSON")
+}
+
+/// The estimate of parameter `name` in a report.
+pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
+    report["parameters"]
+        .as_array()
+        .expect("parameters array")
+        .iter()
+        .find(|p| p["name"] == name)
+        .and_then(|p| p["estimate"].as_f64())
+        .unwrap_or_else(|| panic!("no estimate for {name}"))
+}

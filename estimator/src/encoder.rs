@@ -7,7 +7,7 @@ use tch::Tensor;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EncoderKind {
-    /// D → 64 → 1 with ReLU: fast, and accurate enough on every synthetic set.
+    /// D → 16 → 1 with ReLU: fast, and accurate on every synthetic set.
     Small,
     /// The paper's D → 1000 → 100 → 1 with ReLU.
     Paper,
@@ -16,7 +16,7 @@ pub enum EncoderKind {
 impl EncoderKind {
     pub fn hidden_layers(self) -> &'static [i64] {
         match self {
-            EncoderKind::Small => &[64],
+            EncoderKind::Small => &[16],
             EncoderKind::Paper => &[1000, 100],
         }
     }

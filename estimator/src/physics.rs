@@ -84,19 +84,45 @@ impl DampedOscillatorBlock {
     /// z_hat[t] = p[t]·z[0] + q[t]·z[1], where p and q are the block's impulse responses.
     pub fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
         let (a, b) = self.coefficients();
-        let opts = (Kind::Float, z.device());
-        let (one, zero) = (Tensor::ones([], opts), Tensor::zeros([], opts));
-        let mut p = vec![one.shallow_clone(), zero.shallow_clone()];
-        let mut q = vec![zero, one];
-        for t in 2..steps as usize {
-            p.push(&a * &p[t - 1] + &b * &p[t - 2]);
-            q.push(&a * &q[t - 1] + &b * &q[t - 2]);
-        }
-        p.truncate(steps as usize);
-        q.truncate(steps as usize);
-        let (p, q) = (Tensor::stack(&p, 0), Tensor::stack(&q, 0));
+        let (p, q) = impulse_responses(&a, &b, steps, z.device());
         z.select(1, 0).unsqueeze(1) * p.unsqueeze(0) + z.select(1, 1).unsqueeze(1) * q.unsqueeze(0)
     }
+}
+
+/// The responses p, q [steps] of z[t+1] = a·z[t] + b·z[t−1] to (z0, z1) = (1, 0) and (0, 1).
+/// With ρ = √(−b) and cos θ = a/(2ρ) they have the closed forms
+/// q[t] = ρ^(t−1)·sin(tθ)/sin θ and p[t] = −ρ^t·sin((t−1)θ)/sin θ when the roots are complex
+/// (the oscillating case): a few tensor operations instead of a loop. For real or nearly double
+/// roots (sin θ → 0) the recurrence is unrolled instead.
+fn impulse_responses(a: &Tensor, b: &Tensor, steps: i64, device: tch::Device) -> (Tensor, Tensor) {
+    let opts = (Kind::Float, device);
+    let (av, bv) = (a.double_value(&[]), b.double_value(&[]));
+    let cos_theta = if bv < 0.0 { av / (2.0 * (-bv).sqrt()) } else { f64::NAN };
+    if cos_theta.abs() < 1.0 - 1e-3 {
+        let t = Tensor::arange(steps, opts);
+        let rho = (-b).sqrt();
+        let c = a / (&rho * 2.0);
+        let log_rho = rho.log();
+        let theta = c.acos();
+        let (s_t, s_tm1, s_1) = (
+            (&t * &theta).sin(),
+            ((&t - 1.0) * &theta).sin(),
+            theta.sin(),
+        );
+        let q = ((&t - 1.0) * &log_rho).exp() * s_t / &s_1;
+        let p = -(&t * &log_rho).exp() * s_tm1 / &s_1;
+        return (p, q);
+    }
+    let (one, zero) = (Tensor::ones([], opts), Tensor::zeros([], opts));
+    let mut p = vec![one.shallow_clone(), zero.shallow_clone()];
+    let mut q = vec![zero, one];
+    for t in 2..steps as usize {
+        p.push(a * &p[t - 1] + b * &p[t - 2]);
+        q.push(a * &q[t - 1] + b * &q[t - 2]);
+    }
+    p.truncate(steps as usize);
+    q.truncate(steps as usize);
+    (Tensor::stack(&p, 0), Tensor::stack(&q, 0))
 }
 
 #[cfg(test)]
@@ -120,6 +146,29 @@ mod tests {
         let r = b.rollout(&z, 20);
         let err = (r - z).abs().max().double_value(&[]);
         assert!(err < 1e-5, "{err}");
+    }
+
+    #[test]
+    fn closed_form_impulse_responses_match_the_recurrence() {
+        // Complex roots, real positive roots, real negative roots.
+        for (a, b) in [(1.8f64, -0.95f64), (1.5, -0.5), (-1.5, -0.5), (0.3, -0.9)] {
+            let (p, q) = impulse_responses(
+                &Tensor::from(a as f32),
+                &Tensor::from(b as f32),
+                12,
+                tch::Device::Cpu,
+            );
+            let (mut pr, mut qr) = (vec![1.0, 0.0], vec![0.0, 1.0]);
+            for t in 2..12 {
+                pr.push(a * pr[t - 1] + b * pr[t - 2]);
+                qr.push(a * qr[t - 1] + b * qr[t - 2]);
+            }
+            for t in 0..12 {
+                let (pv, qv) = (p.double_value(&[t as i64]), q.double_value(&[t as i64]));
+                assert!((pv - pr[t]).abs() < 1e-4 * (1.0 + pr[t].abs()), "a {a} b {b} t {t}: p {pv} vs {}", pr[t]);
+                assert!((qv - qr[t]).abs() < 1e-4 * (1.0 + qr[t].abs()), "a {a} b {b} t {t}: q {qv} vs {}", qr[t]);
+            }
+        }
     }
 
     #[test]

@@ -45,7 +45,7 @@ pub struct Report {
     pub parameters: Vec<ParameterResult>,
     pub epochs_run: usize,
     pub best_epoch: usize,
-    pub best_val_loss: f64,
+    pub best_val_rel_mse: f64,
     pub stop: StopReason,
     pub latent_std: f64,
     pub latent_collapsed: bool,
@@ -99,8 +99,8 @@ impl Report {
                 outcome.best_epoch
             )),
             StopReason::MaxEpochs => warnings.push(format!(
-                "the validation loss was still improving after --epochs {}; the estimate may not \
-                 have converged (raise --epochs)",
+                "the validation rollout error was still improving after --epochs {}; the estimate \
+                 may not have converged (raise --epochs)",
                 cfg.epochs
             )),
             StopReason::EarlyStop { .. } => {}
@@ -121,7 +121,7 @@ impl Report {
             parameters,
             epochs_run: outcome.epochs_run,
             best_epoch: outcome.best_epoch,
-            best_val_loss: outcome.best_val_loss,
+            best_val_rel_mse: outcome.best_val_rel_mse,
             stop: outcome.stop.clone(),
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
@@ -169,17 +169,18 @@ impl Report {
     pub fn metrics_csv(&self) -> String {
         let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_str()).collect();
         let mut s = format!(
-            "epoch,train_loss,val_loss,val_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
+            "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
             names.join(",")
         );
         for r in &self.history {
             let params: Vec<String> = r.parameters.iter().map(|v| format!("{v}")).collect();
             s += &format!(
-                "{},{},{},{},{},{},{},{},{:.4}\n",
+                "{},{},{},{},{},{},{},{},{},{:.4}\n",
                 r.epoch,
                 r.train_loss,
                 r.val_loss,
                 r.val_mse,
+                r.val_rel_mse,
                 r.latent_std,
                 params.join(","),
                 r.lr,

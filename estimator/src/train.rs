@@ -20,6 +20,10 @@ pub struct EpochRecord {
     pub train_loss: f64,
     pub val_loss: f64,
     pub val_mse: f64,
+    /// Validation rollout MSE divided by the latent's variance: the fraction of the latent's
+    /// variance the physics does not explain. Scale-free, so the KL term's pull on the latent's
+    /// spread does not move it; the checkpoint and the early stop watch it.
+    pub val_rel_mse: f64,
     /// Standard deviation of the encoded validation latents (→ 0 when the latent collapses).
     pub latent_std: f64,
     /// Parameter values after the epoch, in the model's order.
@@ -34,7 +38,7 @@ pub struct EpochRecord {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum StopReason {
-    /// The validation loss stopped improving for `patience` epochs.
+    /// The validation metric stopped improving for `patience` epochs.
     EarlyStop { patience: usize },
     MaxEpochs,
     /// The loss became NaN or infinite; the parameters are those of the best epoch before it.
@@ -46,7 +50,7 @@ pub enum StopReason {
 pub struct TrainOutcome {
     pub parameters: Vec<f64>,
     pub best_epoch: usize,
-    pub best_val_loss: f64,
+    pub best_val_rel_mse: f64,
     pub epochs_run: usize,
     pub stop: StopReason,
     pub latent_std: f64,
@@ -107,7 +111,7 @@ fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
         .collect()
 }
 
-/// Relative improvement a validation loss must make to count as better.
+/// Relative improvement the validation metric must make to count as better.
 const MIN_IMPROVEMENT: f64 = 1e-3;
 
 /// Trains from `init` and returns the best-validation parameters and the history.
@@ -185,11 +189,13 @@ pub fn train(
             stop = StopReason::NonFiniteLoss { epoch };
             break;
         }
+        let val_rel_mse = val_mse / (latent_std * latent_std).max(1e-30);
         let rec = EpochRecord {
             epoch,
             train_loss: total / batches.max(1) as f64,
             val_loss,
             val_mse,
+            val_rel_mse,
             latent_std,
             parameters,
             lr,
@@ -198,8 +204,8 @@ pub fn train(
         };
         on_epoch(&rec);
         history.push(rec);
-        if best.1 == 0 || val_loss < best.0 - MIN_IMPROVEMENT * best.0.abs() {
-            best = (val_loss, epoch, model.snapshot());
+        if best.1 == 0 || val_rel_mse < best.0 * (1.0 - MIN_IMPROVEMENT) {
+            best = (val_rel_mse, epoch, model.snapshot());
             since_best = 0;
         } else {
             since_best += 1;
@@ -229,7 +235,7 @@ pub fn train(
     Ok(TrainOutcome {
         parameters: model.block.values().to_vec(),
         best_epoch: best.1,
-        best_val_loss: best.0,
+        best_val_rel_mse: best.0,
         epochs_run,
         stop,
         latent_std,
