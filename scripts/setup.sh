@@ -2,7 +2,8 @@
 # Project set-up, idempotent (a few seconds when already done):
 #  1. a project-local Python virtual environment .venv with torch==2.13.0 from PyPI, whose
 #     bundled libtorch is the one tch 0.26 links against (CUDA build: the same binary uses a
-#     GPU when one is present);
+#     GPU when one is present), and numpy (for the tests that load our .npy files as a Python
+#     user would, and for the PyTorch reference benchmark);
 #  2. .cargo/config.toml pointing LIBTORCH at it, so plain `cargo build` / `cargo test` work.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -16,13 +17,13 @@ torch_dir() {
 
 have_torch() {
     [ -x .venv/bin/python ] &&
-        [ "$(.venv/bin/python -c 'import torch; print(torch.__version__.split("+")[0])' 2>/dev/null)" = "$TORCH_VERSION" ]
+        [ "$(.venv/bin/python -c 'import numpy, torch; print(torch.__version__.split("+")[0])' 2>/dev/null)" = "$TORCH_VERSION" ]
 }
 
 if ! have_torch; then
     echo "setup: installing torch==$TORCH_VERSION into .venv (about 4.7 GB, a minute or two)" >&2
     [ -x .venv/bin/python ] || "$PYTHON" -m venv .venv
-    .venv/bin/python -m pip install --quiet --disable-pip-version-check "torch==$TORCH_VERSION"
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check "torch==$TORCH_VERSION" numpy
     have_torch || { echo "setup: torch $TORCH_VERSION did not install into .venv" >&2; exit 1; }
 fi
 

@@ -7,7 +7,10 @@ use std::process::Command;
 
 fn files(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
-        .map(|rd| rd.map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect())
+        .map(|rd| {
+            rd.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect()
+        })
         .unwrap_or_default();
     v.sort();
     v
@@ -24,15 +27,31 @@ fn same_arguments_give_byte_identical_files_on_1_and_4_threads() {
             let o = run(
                 &gen,
                 &[
-                    "--scenario", scenario, "--out", out.to_str().unwrap(), "--samples", "37",
-                    "--frames", "9", "--size", "24", "--noise", "0.05", "--seed", "11",
-                    "--threads", threads,
+                    "--scenario",
+                    scenario,
+                    "--out",
+                    out.to_str().unwrap(),
+                    "--samples",
+                    "37",
+                    "--frames",
+                    "9",
+                    "--size",
+                    "24",
+                    "--noise",
+                    "0.05",
+                    "--seed",
+                    "11",
+                    "--threads",
+                    threads,
                 ],
             );
             assert!(o.status.success(), "{}", stderr(&o));
             outputs.push(out);
         }
-        assert_eq!(files(&outputs[0]), ["frames.npy", "meta.json", "preview.png"]);
+        assert_eq!(
+            files(&outputs[0]),
+            ["frames.npy", "meta.json", "preview.png"]
+        );
         for name in ["frames.npy", "meta.json", "preview.png"] {
             let a = std::fs::read(outputs[0].join(name)).unwrap();
             let b = std::fs::read(outputs[1].join(name)).unwrap();
@@ -40,8 +59,25 @@ fn same_arguments_give_byte_identical_files_on_1_and_4_threads() {
         }
         // A different seed gives different frames.
         let other = tmp.path().join(format!("{scenario}-seed12"));
-        let o = run(&gen, &["--scenario", scenario, "--out", other.to_str().unwrap(),
-            "--samples", "37", "--frames", "9", "--size", "24", "--noise", "0.05", "--seed", "12"]);
+        let o = run(
+            &gen,
+            &[
+                "--scenario",
+                scenario,
+                "--out",
+                other.to_str().unwrap(),
+                "--samples",
+                "37",
+                "--frames",
+                "9",
+                "--size",
+                "24",
+                "--noise",
+                "0.05",
+                "--seed",
+                "12",
+            ],
+        );
         assert!(o.status.success());
         assert_ne!(
             std::fs::read(other.join("frames.npy")).unwrap(),
@@ -55,8 +91,27 @@ fn written_dataset_reads_back_with_its_ground_truth() {
     let gen = gen_bin();
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("ds");
-    let o = run(&gen, &["--scenario", "position", "--out", out.to_str().unwrap(), "--samples", "5",
-        "--frames", "6", "--size", "16", "--dt", "0.1", "--omega", "3", "--zeta", "0.1"]);
+    let o = run(
+        &gen,
+        &[
+            "--scenario",
+            "position",
+            "--out",
+            out.to_str().unwrap(),
+            "--samples",
+            "5",
+            "--frames",
+            "6",
+            "--size",
+            "16",
+            "--dt",
+            "0.1",
+            "--omega",
+            "3",
+            "--zeta",
+            "0.1",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("preview.png"), "{stdout}");
@@ -71,7 +126,10 @@ fn written_dataset_reads_back_with_its_ground_truth() {
     // The npy header is what numpy writes for a C-order '<f4' array.
     let bytes = std::fs::read(out.join("frames.npy")).unwrap();
     let header = String::from_utf8_lossy(&bytes[10..128]);
-    assert!(header.contains("'descr': '<f4', 'fortran_order': False, 'shape': (5, 6, 1, 16, 16)"), "{header}");
+    assert!(
+        header.contains("'descr': '<f4', 'fortran_order': False, 'shape': (5, 6, 1, 16, 16)"),
+        "{header}"
+    );
 }
 
 #[test]
@@ -82,23 +140,57 @@ fn bad_input_gets_a_one_line_error_naming_the_flag_and_exit_code_2() {
     let o = out.to_str().unwrap();
     let cases: &[(&[&str], &str)] = &[
         (&["--scenario", "wobble", "--out", o], "--scenario"),
-        (&["--scenario", "scale", "--out", o, "--size", "4"], "--size"),
-        (&["--scenario", "scale", "--out", o, "--frames", "2"], "--frames"),
-        (&["--scenario", "scale", "--out", o, "--samples", "0"], "--samples"),
+        (
+            &["--scenario", "scale", "--out", o, "--size", "4"],
+            "--size",
+        ),
+        (
+            &["--scenario", "scale", "--out", o, "--frames", "2"],
+            "--frames",
+        ),
+        (
+            &["--scenario", "scale", "--out", o, "--samples", "0"],
+            "--samples",
+        ),
         (&["--scenario", "scale", "--out", o, "--dt", "0"], "--dt"),
         (&["--scenario", "scale", "--out", o, "--dt", "-0.1"], "--dt"),
         (&["--scenario", "scale", "--out", o, "--dt", "inf"], "--dt"),
         (&["--scenario", "scale", "--out", o, "--dt", "NaN"], "--dt"),
-        (&["--scenario", "position", "--out", o, "--zeta", "-0.5"], "--zeta"),
-        (&["--scenario", "position", "--out", o, "--omega", "30"], "--omega"),
-        (&["--scenario", "position", "--out", o, "--noise", "2"], "--noise"),
-        (&["--scenario", "scale", "--out", o, "--samples", "100000", "--size", "200"], "8 GiB"),
+        (
+            &["--scenario", "position", "--out", o, "--zeta", "-0.5"],
+            "--zeta",
+        ),
+        (
+            &["--scenario", "position", "--out", o, "--omega", "30"],
+            "--omega",
+        ),
+        (
+            &["--scenario", "position", "--out", o, "--noise", "2"],
+            "--noise",
+        ),
+        (
+            &[
+                "--scenario",
+                "scale",
+                "--out",
+                o,
+                "--samples",
+                "100000",
+                "--size",
+                "200",
+            ],
+            "8 GiB",
+        ),
     ];
     for (args, needle) in cases {
         let r = run(&gen, args);
         let err = stderr(&r);
         assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
-        assert_eq!(err.trim().lines().count(), 1, "{args:?}: not one line: {err}");
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{args:?}: not one line: {err}"
+        );
         assert!(err.contains(needle), "{args:?}: {err}");
     }
     assert!(!out.exists(), "nothing is written on bad input");
@@ -110,7 +202,16 @@ fn existing_non_empty_directory_needs_force() {
     let tmp = tempfile::tempdir().unwrap();
     std::fs::write(tmp.path().join("notes.txt"), "keep").unwrap();
     let dir = tmp.path().to_str().unwrap();
-    let args = ["--scenario", "intensity", "--out", dir, "--samples", "3", "--size", "8"];
+    let args = [
+        "--scenario",
+        "intensity",
+        "--out",
+        dir,
+        "--samples",
+        "3",
+        "--size",
+        "8",
+    ];
     let r = run(&gen, &args);
     assert_eq!(r.status.code(), Some(2));
     assert!(stderr(&r).contains("--force"), "{}", stderr(&r));
@@ -118,7 +219,10 @@ fn existing_non_empty_directory_needs_force() {
     forced.push("--force");
     let r = run(&gen, &forced);
     assert!(r.status.success(), "{}", stderr(&r));
-    assert_eq!(files(tmp.path()), ["frames.npy", "meta.json", "notes.txt", "preview.png"]);
+    assert_eq!(
+        files(tmp.path()),
+        ["frames.npy", "meta.json", "notes.txt", "preview.png"]
+    );
 }
 
 /// Runs gen under a file-size limit so the write of frames.npy fails part-way: killed by
@@ -145,17 +249,35 @@ fn an_interrupted_write_never_leaves_a_dataset_that_looks_complete() {
     for ignore_signal in [false, true] {
         let out = tmp.path().join(format!("ds-{ignore_signal}"));
         // A complete earlier dataset is being overwritten.
-        let r = run(&gen, &["--scenario", "scale", "--out", out.to_str().unwrap(), "--samples", "2", "--size", "8"]);
+        let r = run(
+            &gen,
+            &[
+                "--scenario",
+                "scale",
+                "--out",
+                out.to_str().unwrap(),
+                "--samples",
+                "2",
+                "--size",
+                "8",
+            ],
+        );
         assert!(r.status.success());
         let r = gen_with_file_limit(&out, ignore_signal);
-        assert!(!r.status.success(), "the 64 KiB limit must stop a 3 MB write");
+        assert!(
+            !r.status.success(),
+            "the 64 KiB limit must stop a 3 MB write"
+        );
         let names = files(&out);
         assert!(!names.contains(&"meta.json".to_string()), "{names:?}");
         assert!(physvid_shared::read_dataset(&out).is_err());
         if ignore_signal {
             assert_eq!(r.status.code(), Some(1));
             let err = stderr(&r);
-            assert!(err.contains("frames.npy") && err.trim().lines().count() == 1, "{err}");
+            assert!(
+                err.contains("frames.npy") && err.trim().lines().count() == 1,
+                "{err}"
+            );
             assert!(!names.iter().any(|n| n.ends_with(".partial")), "{names:?}");
         }
     }
@@ -166,8 +288,88 @@ fn help_explains_every_flag() {
     let r = run(&gen_bin(), &["--help"]);
     assert!(r.status.success());
     let help = String::from_utf8_lossy(&r.stdout);
-    for flag in ["--scenario", "--out", "--samples", "--frames", "--size", "--dt", "--omega",
-        "--zeta", "--seed", "--noise", "--force", "--threads"] {
+    for flag in [
+        "--scenario",
+        "--out",
+        "--samples",
+        "--frames",
+        "--size",
+        "--dt",
+        "--omega",
+        "--zeta",
+        "--seed",
+        "--noise",
+        "--force",
+        "--threads",
+    ] {
         assert!(help.contains(flag), "--help lacks {flag}");
     }
+}
+
+#[test]
+fn output_matches_the_committed_fixture_byte_for_byte() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/tiny-position");
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("ds");
+    let r = run(
+        &gen_bin(),
+        &[
+            "--scenario",
+            "position",
+            "--out",
+            out.to_str().unwrap(),
+            "--samples",
+            "4",
+            "--frames",
+            "6",
+            "--size",
+            "12",
+            "--seed",
+            "7",
+            "--noise",
+            "0.05",
+            "--threads",
+            "3",
+        ],
+    );
+    assert!(r.status.success(), "{}", stderr(&r));
+    for name in ["frames.npy", "meta.json", "preview.png"] {
+        let want = std::fs::read(fixture.join(name)).unwrap();
+        let got = std::fs::read(out.join(name)).unwrap();
+        assert!(
+            want == got,
+            "{name} differs from fixtures/tiny-position (see fixtures/README.md)"
+        );
+    }
+}
+
+#[test]
+fn numpy_loads_the_frames_unchanged() {
+    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join("../.venv/bin/python");
+    if !python.exists() {
+        eprintln!("skipped: no .venv/bin/python (run scripts/setup.sh)");
+        return;
+    }
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/tiny-position");
+    let script = "import json, sys, numpy as np\n\
+        a = np.load(sys.argv[1] + '/frames.npy')\n\
+        m = json.load(open(sys.argv[1] + '/meta.json'))\n\
+        assert a.dtype == np.dtype('<f4') and a.flags['C_CONTIGUOUS'], a.dtype\n\
+        assert list(a.shape) == m['shape'] == [4, 6, 1, 12, 12], a.shape\n\
+        assert np.array(m['latents']).shape == (4, 6)\n\
+        print(float(a.sum()))";
+    let o = Command::new(python)
+        .arg("-c")
+        .arg(script)
+        .arg(&fixture)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let ds = physvid_shared::read_dataset(&fixture).unwrap();
+    let sum: f64 = ds.frames.iter().map(|&v| v as f64).sum();
+    let numpy_sum: f64 = String::from_utf8_lossy(&o.stdout).trim().parse().unwrap();
+    assert!(
+        (sum - numpy_sum).abs() < 1e-3 * sum.abs(),
+        "{sum} vs {numpy_sum}"
+    );
 }

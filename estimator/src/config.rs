@@ -72,6 +72,9 @@ pub struct EstimateConfig {
     /// Starting values as NAME=VALUE pairs (model defaults where absent).
     pub init: Vec<(String, f64)>,
     pub integrator: Integrator,
+    /// Train only from the given (or default) start, without the spectral start (the paper's
+    /// behaviour).
+    pub single_start: bool,
     pub loss: LossKind,
     pub encoder: EncoderKind,
     pub seed: u64,
@@ -85,12 +88,18 @@ fn positive(flag: &str, v: f64) -> Result<(), EstimateError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(input_error(format!("{flag} {v}: must be a finite number > 0")))
+        Err(input_error(format!(
+            "{flag} {v}: must be a finite number > 0"
+        )))
     }
 }
 
+/// `--init` values: NAME=VALUE pairs in the order given.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitValues(pub Vec<(String, f64)>);
+
 /// Parses `--init` text such as `gamma0=10,gamma1=0.5`.
-pub fn parse_init(text: &str) -> Result<Vec<(String, f64)>, String> {
+pub fn parse_init(text: &str) -> Result<InitValues, String> {
     text.split(',')
         .filter(|s| !s.trim().is_empty())
         .map(|pair| {
@@ -103,7 +112,8 @@ pub fn parse_init(text: &str) -> Result<Vec<(String, f64)>, String> {
                 .map_err(|_| format!("'{v}' in '{pair}' is not a number"))?;
             Ok((k.trim().to_string(), v))
         })
-        .collect()
+        .collect::<Result<Vec<_>, String>>()
+        .map(InitValues)
 }
 
 impl EstimateConfig {
@@ -128,7 +138,9 @@ impl EstimateConfig {
         }
         for (name, v) in &self.init {
             if !v.is_finite() {
-                return Err(input_error(format!("--init {name}={v}: must be a finite number")));
+                return Err(input_error(format!(
+                    "--init {name}={v}: must be a finite number"
+                )));
             }
         }
         Ok(self)
@@ -164,7 +176,7 @@ mod tests {
     #[test]
     fn init_text_parses_and_rejects_garbage() {
         assert_eq!(
-            parse_init("gamma0=10, gamma1=0.5").unwrap(),
+            parse_init("gamma0=10, gamma1=0.5").unwrap().0,
             vec![("gamma0".to_string(), 10.0), ("gamma1".to_string(), 0.5)]
         );
         assert!(parse_init("gamma0").is_err());

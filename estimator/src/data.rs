@@ -63,7 +63,10 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
         )));
     }
     if c * h * w == 0 {
-        return Err(input_error(format!("{source}: frames have no pixels (shape {:?})", ds.shape)));
+        return Err(input_error(format!(
+            "{source}: frames have no pixels (shape {:?})",
+            ds.shape
+        )));
     }
     let (dt, model) = match &ds.meta {
         Some(meta) => {

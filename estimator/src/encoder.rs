@@ -34,7 +34,12 @@ impl Encoder {
         let mut width = inputs;
         for (i, &h) in kind.hidden_layers().iter().enumerate() {
             seq = seq
-                .add(nn::linear(path / format!("fc{i}"), width, h, Default::default()))
+                .add(nn::linear(
+                    path / format!("fc{i}"),
+                    width,
+                    h,
+                    Default::default(),
+                ))
                 .add_fn(|x| x.relu());
             width = h;
         }

@@ -11,7 +11,9 @@ pub enum EstimateError {
     /// A flag or the input contradicts itself; the text names the flag or file and the fix.
     #[error("{0}")]
     Input(String),
-    #[error("--device cuda: libtorch sees no CUDA GPU on this machine; use --device cpu (or auto)")]
+    #[error(
+        "--device cuda: libtorch sees no CUDA GPU on this machine; use --device cpu (or auto)"
+    )]
     NoCuda,
     #[error("libtorch: {0}")]
     Torch(#[from] tch::TchError),

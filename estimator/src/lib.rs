@@ -12,6 +12,7 @@ pub mod plots;
 pub mod progress;
 pub mod report;
 pub mod run;
+pub mod spectral;
 pub mod train;
 
 pub use config::{DeviceChoice, EstimateConfig, ModelKind};

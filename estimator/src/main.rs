@@ -1,7 +1,7 @@
 //! `estimate`: command-line entry point; parses flags into a validated `EstimateConfig` and calls `run`.
 
 use clap::Parser;
-use estimator::config::{parse_init, DeviceChoice, EstimateConfig, ModelKind};
+use estimator::config::{parse_init, DeviceChoice, EstimateConfig, InitValues, ModelKind};
 use estimator::encoder::EncoderKind;
 use estimator::loss::LossKind;
 use estimator::physics::Integrator;
@@ -36,7 +36,7 @@ struct Cli {
     #[arg(long, default_value_t = 10)]
     patience: usize,
     /// Clips per optimisation step.
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 32)]
     batch_size: usize,
     /// Adam learning rate of the encoder.
     #[arg(long, default_value_t = 1e-3)]
@@ -47,10 +47,14 @@ struct Cli {
     lr_phys: f64,
     /// Initial parameter values, NAME=VALUE[,NAME=VALUE] (default gamma0=1,gamma1=0.1).
     #[arg(long, value_parser = parse_init, value_name = "NAME=VALUE,...")]
-    init: Option<Vec<(String, f64)>>,
+    init: Option<InitValues>,
     /// Physics integrator: the exact propagator, or the paper's Euler step (biased at large dt).
     #[arg(long, value_enum, default_value_t = Integrator::Exact)]
     integrator: Integrator,
+    /// Train only from --init (the paper's behaviour). By default a second start, estimated
+    /// from the frames' principal components, is probed beside it and the better one kept.
+    #[arg(long)]
+    single_start: bool,
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.
     #[arg(long, value_enum, default_value_t = LossKind::MseKl)]
     loss: LossKind,
@@ -88,8 +92,9 @@ fn main() -> ExitCode {
         batch_size: cli.batch_size,
         lr: cli.lr,
         lr_phys: cli.lr_phys,
-        init: cli.init.unwrap_or_default(),
+        init: cli.init.map(|i| i.0).unwrap_or_default(),
         integrator: cli.integrator,
+        single_start: cli.single_start,
         loss: cli.loss,
         encoder: cli.encoder,
         seed: cli.seed,

@@ -97,7 +97,11 @@ impl DampedOscillatorBlock {
 fn impulse_responses(a: &Tensor, b: &Tensor, steps: i64, device: tch::Device) -> (Tensor, Tensor) {
     let opts = (Kind::Float, device);
     let (av, bv) = (a.double_value(&[]), b.double_value(&[]));
-    let cos_theta = if bv < 0.0 { av / (2.0 * (-bv).sqrt()) } else { f64::NAN };
+    let cos_theta = if bv < 0.0 {
+        av / (2.0 * (-bv).sqrt())
+    } else {
+        f64::NAN
+    };
     if cos_theta.abs() < 1.0 - 1e-3 {
         let t = Tensor::arange(steps, opts);
         let rho = (-b).sqrt();
@@ -130,7 +134,11 @@ mod tests {
     use super::*;
     use physvid_shared::DampedOscillator;
 
-    fn block(init: (f64, f64), integrator: Integrator, dt: f64) -> (nn::VarStore, DampedOscillatorBlock) {
+    fn block(
+        init: (f64, f64),
+        integrator: Integrator,
+        dt: f64,
+    ) -> (nn::VarStore, DampedOscillatorBlock) {
         let vs = nn::VarStore::new(tch::Device::Cpu);
         let b = DampedOscillatorBlock::new(&vs.root(), init, integrator, dt);
         (vs, b)
@@ -141,7 +149,9 @@ mod tests {
         let o = DampedOscillator::PAPER;
         let dt = 0.2;
         let (_vs, b) = block((o.gamma0(), o.gamma1()), Integrator::Exact, dt);
-        let truth: Vec<f32> = (0..20).map(|k| o.latent(0.8, 0.4, k as f64 * dt) as f32).collect();
+        let truth: Vec<f32> = (0..20)
+            .map(|k| o.latent(0.8, 0.4, k as f64 * dt) as f32)
+            .collect();
         let z = Tensor::from_slice(&truth).view([1, 20]);
         let r = b.rollout(&z, 20);
         let err = (r - z).abs().max().double_value(&[]);
@@ -165,8 +175,16 @@ mod tests {
             }
             for t in 0..12 {
                 let (pv, qv) = (p.double_value(&[t as i64]), q.double_value(&[t as i64]));
-                assert!((pv - pr[t]).abs() < 1e-4 * (1.0 + pr[t].abs()), "a {a} b {b} t {t}: p {pv} vs {}", pr[t]);
-                assert!((qv - qr[t]).abs() < 1e-4 * (1.0 + qr[t].abs()), "a {a} b {b} t {t}: q {qv} vs {}", qr[t]);
+                assert!(
+                    (pv - pr[t]).abs() < 1e-4 * (1.0 + pr[t].abs()),
+                    "a {a} b {b} t {t}: p {pv} vs {}",
+                    pr[t]
+                );
+                assert!(
+                    (qv - qr[t]).abs() < 1e-4 * (1.0 + qr[t].abs()),
+                    "a {a} b {b} t {t}: q {qv} vs {}",
+                    qr[t]
+                );
             }
         }
     }
@@ -191,7 +209,12 @@ mod tests {
         }
         // Over-damped propagator is exact: z = e^(−t) + e^(−3t) solves z'' + 4z' + 3z = 0.
         let (_vs, b) = block((3.0, 4.0), Integrator::Exact, 0.1);
-        let zt: Vec<f32> = (0..8).map(|k| { let t = k as f64 * 0.1; ((-t).exp() + (-3.0 * t).exp()) as f32 }).collect();
+        let zt: Vec<f32> = (0..8)
+            .map(|k| {
+                let t = k as f64 * 0.1;
+                ((-t).exp() + (-3.0 * t).exp()) as f32
+            })
+            .collect();
         let z = Tensor::from_slice(&zt).view([1, 8]);
         let err = (b.rollout(&z, 8) - &z).abs().max().double_value(&[]);
         assert!(err < 1e-5, "{err}");

@@ -55,11 +55,15 @@ fn render_png(
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
-    let pad = ((hi - lo) * 0.08).max(hi.abs().max(lo.abs()) * 0.01).max(1e-9);
+    let pad = ((hi - lo) * 0.08)
+        .max(hi.abs().max(lo.abs()) * 0.01)
+        .max(1e-9);
     (lo - pad, hi + pad)
 }
 
@@ -146,7 +150,9 @@ pub fn plot_latents(path: &Path, report: &Report, data: &ClipData) -> Result<(),
             let color = Palette99::pick(k).to_rgba();
             chart
                 .draw_series(LineSeries::new(
-                    rs.iter().enumerate().map(|(i, &v)| (i as f64 * dt, v as f64)),
+                    rs.iter()
+                        .enumerate()
+                        .map(|(i, &v)| (i as f64 * dt, v as f64)),
                     color.stroke_width(2),
                 ))
                 .map_err(|e| e.to_string())?

@@ -13,8 +13,9 @@ use tch::Device;
 /// libtorch's version, read from the linked installation at build time.
 pub const LIBTORCH_VERSION: &str = env!("PHYSVID_LIBTORCH_VERSION");
 
-/// A latent whose spread falls below this has collapsed to a constant.
-pub const COLLAPSE_STD: f64 = 1e-3;
+/// A latent whose spread falls below this fraction of its largest spread during training has
+/// collapsed towards a constant (the latent's scale is arbitrary, so the test is relative).
+pub const COLLAPSE_FRACTION: f64 = 0.1;
 
 /// One estimated parameter.
 #[derive(Debug, Clone, Serialize)]
@@ -43,6 +44,9 @@ pub struct Report {
     pub threads: usize,
     pub libtorch_version: String,
     pub parameters: Vec<ParameterResult>,
+    /// The starts tried (the given or default values, and the spectral estimate) and which
+    /// one was kept.
+    pub starts: Vec<crate::train::StartProbe>,
     pub epochs_run: usize,
     pub best_epoch: usize,
     pub best_val_rel_mse: f64,
@@ -83,20 +87,30 @@ impl Report {
             })
             .collect();
         let mut warnings = Vec::new();
-        let collapsed = outcome.latent_std < COLLAPSE_STD;
+        let peak_std = outcome
+            .history
+            .iter()
+            .map(|h| h.latent_std)
+            .fold(0.0, f64::max);
+        let collapsed = outcome.latent_std < COLLAPSE_FRACTION * peak_std;
         if collapsed {
             warnings.push(format!(
-                "the latent collapsed to a constant (std {:.2e} over the validation clips): a constant \
-                 latent makes the rollout error vanish whatever the parameters, so these estimates \
-                 are not determined by the video; train with --loss mse+kl",
+                "the latent collapsed towards a constant (std {:.2e} over the validation clips, \
+                 down from {peak_std:.2e}): a constant latent makes the rollout error vanish \
+                 whatever the parameters, so these estimates are not determined by the video; \
+                 train with --loss mse+kl",
                 outcome.latent_std
             ));
         }
         match outcome.stop {
             StopReason::NonFiniteLoss { epoch } => warnings.push(format!(
                 "the loss became NaN or infinite in epoch {epoch}; training stopped and the \
-                 parameters are those of epoch {} (lower --lr or --lr-phys)",
-                outcome.best_epoch
+                 parameters are {} (lower --lr or --lr-phys)",
+                if outcome.best_epoch == 0 {
+                    "the starting values: no epoch finished with a finite loss".to_string()
+                } else {
+                    format!("those of epoch {}, the best before it", outcome.best_epoch)
+                }
             )),
             StopReason::MaxEpochs => warnings.push(format!(
                 "the validation rollout error was still improving after --epochs {}; the estimate \
@@ -119,6 +133,7 @@ impl Report {
             threads,
             libtorch_version: LIBTORCH_VERSION.into(),
             parameters,
+            starts: Vec::new(),
             epochs_run: outcome.epochs_run,
             best_epoch: outcome.best_epoch,
             best_val_rel_mse: outcome.best_val_rel_mse,
@@ -130,6 +145,12 @@ impl Report {
             history: outcome.history.clone(),
             outcome,
         }
+    }
+
+    /// Records the starts of a multi-start fit.
+    pub fn with_starts(mut self, starts: Vec<crate::train::StartProbe>) -> Report {
+        self.starts = starts;
+        self
     }
 
     /// The closing table: parameter, estimate, ground truth, relative error.
@@ -160,7 +181,10 @@ impl Report {
             let err = p
                 .relative_error
                 .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
-            s += &format!("{:<10} {:>12.6} {:>12} {:>12}\n", p.name, p.estimate, truth, err);
+            s += &format!(
+                "{:<10} {:>12.6} {:>12} {:>12}\n",
+                p.name, p.estimate, truth, err
+            );
         }
         s.trim_end().to_string()
     }
@@ -213,7 +237,10 @@ pub fn write_outputs(
         path: cfg.out.clone(),
         source,
     })?;
-    write_atomic(&cfg.out.join("metrics.csv"), report.metrics_csv().as_bytes())?;
+    write_atomic(
+        &cfg.out.join("metrics.csv"),
+        report.metrics_csv().as_bytes(),
+    )?;
     plot_parameters(&cfg.out.join("parameters.png"), report)?;
     plot_latents(&cfg.out.join("latents.png"), report, data)?;
     let json = serde_json::to_vec_pretty(report).expect("report serialises");

@@ -5,7 +5,8 @@ use crate::data::load_clips;
 use crate::error::EstimateError;
 use crate::progress::Progress;
 use crate::report::{write_outputs, Report};
-use crate::train::train;
+use crate::spectral::spectral_start;
+use crate::train::fit;
 use std::time::Instant;
 use tch::Device;
 
@@ -30,10 +31,32 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     let data = load_clips(cfg, device)?;
     let init = cfg.initial_values(data.model)?;
     let names = data.model.parameter_names();
+    // Two starts: the given (or default) values and one read off the frames' principal
+    // components; the better after a short probe is trained to the end.
+    let mut starts = vec![init];
+    if !cfg.single_start {
+        starts.extend(spectral_start(&data.train, data.dt, cfg.integrator));
+    }
     let progress = Progress::new(cfg.epochs, cfg.quiet);
-    let outcome = train(cfg, &data, device, &init, &mut |rec| progress.epoch(rec, names))?;
+    let (outcome, probes) = fit(cfg, &data, device, &starts, &mut |rec| {
+        progress.epoch(rec, names)
+    })?;
     progress.finish();
-    let report = Report::new(cfg, &data, device, threads, &init, outcome, start.elapsed());
+    let chosen = probes
+        .iter()
+        .find(|p| p.chosen)
+        .map_or(&starts[0], |p| &p.initial)
+        .clone();
+    let report = Report::new(
+        cfg,
+        &data,
+        device,
+        threads,
+        &chosen,
+        outcome,
+        start.elapsed(),
+    )
+    .with_starts(probes);
     write_outputs(cfg, &data, &report)?;
     println!("{}", report.table());
     for w in &report.warnings {

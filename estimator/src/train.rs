@@ -30,7 +30,7 @@ pub struct EpochRecord {
     pub parameters: Vec<f64>,
     pub lr: f64,
     pub lr_phys: f64,
-    /// Seconds since training started.
+    /// Seconds since training started (the first start's probe included).
     pub elapsed_s: f64,
 }
 
@@ -39,10 +39,14 @@ pub struct EpochRecord {
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum StopReason {
     /// The validation metric stopped improving for `patience` epochs.
-    EarlyStop { patience: usize },
+    EarlyStop {
+        patience: usize,
+    },
     MaxEpochs,
     /// The loss became NaN or infinite; the parameters are those of the best epoch before it.
-    NonFiniteLoss { epoch: usize },
+    NonFiniteLoss {
+        epoch: usize,
+    },
 }
 
 /// The result of a training run (parameters from the best-validation epoch).
@@ -114,46 +118,77 @@ fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
 /// Relative improvement the validation metric must make to count as better.
 const MIN_IMPROVEMENT: f64 = 1e-3;
 
-/// Trains from `init` and returns the best-validation parameters and the history.
-/// `on_epoch` sees each epoch's record (for progress display).
-pub fn train(
-    cfg: &EstimateConfig,
-    data: &ClipData,
+/// A model in training with its optimisers, schedule and history: one start of [`fit`].
+struct Trainer<'a> {
+    cfg: &'a EstimateConfig,
+    data: &'a ClipData,
     device: Device,
-    init: &[f64],
-    on_epoch: &mut dyn FnMut(&EpochRecord),
-) -> Result<TrainOutcome, EstimateError> {
-    tch::manual_seed(cfg.seed as i64);
-    let enc_vs = nn::VarStore::new(device);
-    let phys_vs = nn::VarStore::new(device);
-    let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
-    let block = DampedOscillatorBlock::new(
-        &(phys_vs.root() / "physics"),
-        (init[0], init[1]),
-        cfg.integrator,
-        data.dt,
-    );
-    let model = Model {
-        enc_vs,
-        phys_vs,
-        encoder,
-        block,
-    };
-    let mut opt_enc = nn::Adam::default().build(&model.enc_vs, cfg.lr)?;
-    let mut opt_phys = nn::Adam::default().build(&model.phys_vs, cfg.lr_phys)?;
-    let (mut lr, mut lr_phys) = (cfg.lr, cfg.lr_phys);
-    let plateau = (cfg.patience / 3).max(2);
-    let steps = data.frames_per_clip;
-    let n_train = data.n_train();
-    let batch = (cfg.batch_size as i64).min(n_train);
-    let start = Instant::now();
+    model: Model,
+    opt_enc: nn::Optimizer,
+    opt_phys: nn::Optimizer,
+    lr: f64,
+    lr_phys: f64,
+    history: Vec<EpochRecord>,
+    /// (best validation metric, its epoch, the variables then).
+    best: (f64, usize, Vec<Tensor>),
+    since_best: usize,
+    stop: Option<StopReason>,
+    start: Instant,
+}
 
-    let mut history: Vec<EpochRecord> = Vec::new();
-    let mut best = (f64::INFINITY, 0usize, model.snapshot());
-    let mut since_best = 0usize;
-    let mut stop = StopReason::MaxEpochs;
-    for epoch in 1..=cfg.epochs {
-        let perm = Tensor::randperm(n_train, (Kind::Int64, Device::Cpu)).to_device(device);
+impl<'a> Trainer<'a> {
+    /// Builds the model with weights seeded by `--seed` and physics parameters at `init`.
+    fn new(
+        cfg: &'a EstimateConfig,
+        data: &'a ClipData,
+        device: Device,
+        init: &[f64],
+        start: Instant,
+    ) -> Result<Trainer<'a>, EstimateError> {
+        tch::manual_seed(cfg.seed as i64);
+        let enc_vs = nn::VarStore::new(device);
+        let phys_vs = nn::VarStore::new(device);
+        let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
+        let block = DampedOscillatorBlock::new(
+            &(phys_vs.root() / "physics"),
+            (init[0], init[1]),
+            cfg.integrator,
+            data.dt,
+        );
+        let model = Model {
+            enc_vs,
+            phys_vs,
+            encoder,
+            block,
+        };
+        let opt_enc = nn::Adam::default().build(&model.enc_vs, cfg.lr)?;
+        let opt_phys = nn::Adam::default().build(&model.phys_vs, cfg.lr_phys)?;
+        let snapshot = model.snapshot();
+        Ok(Trainer {
+            cfg,
+            data,
+            device,
+            model,
+            opt_enc,
+            opt_phys,
+            lr: cfg.lr,
+            lr_phys: cfg.lr_phys,
+            history: Vec::new(),
+            best: (f64::INFINITY, 0, snapshot),
+            since_best: 0,
+            stop: None,
+            start,
+        })
+    }
+
+    /// Runs one epoch (training, validation, checkpoint, schedule); sets `stop` when done.
+    fn epoch(&mut self, on_epoch: &mut dyn FnMut(&EpochRecord)) {
+        let (cfg, data, model) = (self.cfg, self.data, &self.model);
+        let epoch = self.history.len() + 1;
+        let steps = data.frames_per_clip;
+        let n_train = data.n_train();
+        let batch = (cfg.batch_size as i64).min(n_train);
+        let perm = Tensor::randperm(n_train, (Kind::Int64, Device::Cpu)).to_device(self.device);
         let mut total = 0.0;
         let mut batches = 0usize;
         let mut finite = true;
@@ -162,16 +197,16 @@ pub fn train(
             let x = data.train.index_select(0, &idx);
             let (z, z_hat) = model.forward(&x, steps);
             let (l, _) = loss(cfg.loss, &z, &z_hat);
-            opt_enc.zero_grad();
-            opt_phys.zero_grad();
+            self.opt_enc.zero_grad();
+            self.opt_phys.zero_grad();
             l.backward();
             let lv = l.double_value(&[]);
             if !lv.is_finite() {
                 finite = false;
                 break;
             }
-            opt_enc.step();
-            opt_phys.step();
+            self.opt_enc.step();
+            self.opt_phys.step();
             total += lv;
             batches += 1;
         }
@@ -186,8 +221,8 @@ pub fn train(
         });
         let parameters = model.block.values().to_vec();
         if !finite || !val_loss.is_finite() || parameters.iter().any(|p| !p.is_finite()) {
-            stop = StopReason::NonFiniteLoss { epoch };
-            break;
+            self.stop = Some(StopReason::NonFiniteLoss { epoch });
+            return;
         }
         let val_rel_mse = val_mse / (latent_std * latent_std).max(1e-30);
         let rec = EpochRecord {
@@ -198,49 +233,134 @@ pub fn train(
             val_rel_mse,
             latent_std,
             parameters,
-            lr,
-            lr_phys,
-            elapsed_s: start.elapsed().as_secs_f64(),
+            lr: self.lr,
+            lr_phys: self.lr_phys,
+            elapsed_s: self.start.elapsed().as_secs_f64(),
         };
         on_epoch(&rec);
-        history.push(rec);
-        if best.1 == 0 || val_rel_mse < best.0 * (1.0 - MIN_IMPROVEMENT) {
-            best = (val_rel_mse, epoch, model.snapshot());
-            since_best = 0;
+        self.history.push(rec);
+        if self.best.1 == 0 || val_rel_mse < self.best.0 * (1.0 - MIN_IMPROVEMENT) {
+            self.best = (val_rel_mse, epoch, model.snapshot());
+            self.since_best = 0;
         } else {
-            since_best += 1;
-            if since_best >= cfg.patience {
-                stop = StopReason::EarlyStop {
+            self.since_best += 1;
+            if self.since_best >= cfg.patience {
+                self.stop = Some(StopReason::EarlyStop {
                     patience: cfg.patience,
-                };
-                break;
+                });
+                return;
             }
-            if since_best % plateau == 0 {
-                lr *= 0.5;
-                lr_phys *= 0.5;
-                opt_enc.set_lr(lr);
-                opt_phys.set_lr(lr_phys);
+            if self.since_best % (cfg.patience / 3).max(2) == 0 {
+                self.lr *= 0.5;
+                self.lr_phys *= 0.5;
+                self.opt_enc.set_lr(self.lr);
+                self.opt_phys.set_lr(self.lr_phys);
             }
         }
+        if epoch >= cfg.epochs {
+            self.stop = Some(StopReason::MaxEpochs);
+        }
     }
-    let epochs_run = history.len();
-    // The best epoch's state, or the starting state if not one epoch was finite: never NaN.
-    model.restore(&best.2);
-    let (examples, rollouts, latent_std) = tch::no_grad(|| {
-        let k = data.n_val().min(4);
-        let (z, z_hat) = model.forward(&data.val.narrow(0, 0, k), steps);
-        let (zall, _) = model.forward(&data.val, steps);
-        (to_rows(&z), to_rows(&z_hat), zall.std(false).double_value(&[]))
-    });
-    Ok(TrainOutcome {
-        parameters: model.block.values().to_vec(),
-        best_epoch: best.1,
-        best_val_rel_mse: best.0,
-        epochs_run,
-        stop,
-        latent_std,
-        history,
-        example_latents: examples,
-        example_rollouts: rollouts,
-    })
+
+    /// Restores the best epoch's state (the starting state if no epoch was finite: never NaN).
+    fn finish(self) -> TrainOutcome {
+        let model = &self.model;
+        model.restore(&self.best.2);
+        let data = self.data;
+        let steps = data.frames_per_clip;
+        let (examples, rollouts, latent_std) = tch::no_grad(|| {
+            let k = data.n_val().min(4);
+            let (z, z_hat) = model.forward(&data.val.narrow(0, 0, k), steps);
+            let (zall, _) = model.forward(&data.val, steps);
+            (
+                to_rows(&z),
+                to_rows(&z_hat),
+                zall.std(false).double_value(&[]),
+            )
+        });
+        TrainOutcome {
+            parameters: model.block.values().to_vec(),
+            best_epoch: self.best.1,
+            best_val_rel_mse: self.best.0,
+            epochs_run: self.history.len(),
+            stop: self.stop.unwrap_or(StopReason::MaxEpochs),
+            latent_std,
+            history: self.history,
+            example_latents: examples,
+            example_rollouts: rollouts,
+        }
+    }
+}
+
+/// How one start fared in the probe phase of [`fit`].
+#[derive(Debug, Clone, Serialize)]
+pub struct StartProbe {
+    pub initial: Vec<f64>,
+    /// Best validation metric within the probe epochs.
+    pub probe_val_rel_mse: f64,
+    pub chosen: bool,
+}
+
+/// Epochs each start trains before the best one (by validation metric) is kept.
+pub const PROBE_EPOCHS: usize = 8;
+
+/// Trains from each of `starts` for [`PROBE_EPOCHS`] epochs, keeps the start with the lowest
+/// validation metric (a start that locked onto a harmonic of the motion fits far worse) and
+/// trains it to the end. With one start this is plain training. `on_epoch` sees the kept
+/// start's epochs.
+pub fn fit(
+    cfg: &EstimateConfig,
+    data: &ClipData,
+    device: Device,
+    starts: &[Vec<f64>],
+    on_epoch: &mut dyn FnMut(&EpochRecord),
+) -> Result<(TrainOutcome, Vec<StartProbe>), EstimateError> {
+    assert!(!starts.is_empty(), "at least one start");
+    let mut probes = Vec::new();
+    let mut chosen: Option<(usize, Trainer)> = None;
+    let start = Instant::now();
+    for (i, init) in starts.iter().enumerate() {
+        let mut t = Trainer::new(cfg, data, device, init, start)?;
+        if starts.len() > 1 {
+            while t.stop.is_none() && t.history.len() < PROBE_EPOCHS {
+                t.epoch(&mut |_| {});
+            }
+        }
+        let score = if t.best.1 == 0 {
+            f64::INFINITY
+        } else {
+            t.best.0
+        };
+        probes.push(StartProbe {
+            initial: init.clone(),
+            probe_val_rel_mse: score,
+            chosen: false,
+        });
+        if chosen
+            .as_ref()
+            .is_none_or(|(k, _)| score < probes[*k].probe_val_rel_mse)
+        {
+            chosen = Some((i, t));
+        }
+    }
+    let (k, mut t) = chosen.expect("one start");
+    probes[k].chosen = true;
+    for rec in &t.history {
+        on_epoch(rec);
+    }
+    while t.stop.is_none() {
+        t.epoch(on_epoch);
+    }
+    Ok((t.finish(), probes))
+}
+
+/// Trains from one start (see [`fit`]).
+pub fn train(
+    cfg: &EstimateConfig,
+    data: &ClipData,
+    device: Device,
+    init: &[f64],
+    on_epoch: &mut dyn FnMut(&EpochRecord),
+) -> Result<TrainOutcome, EstimateError> {
+    fit(cfg, data, device, &[init.to_vec()], on_epoch).map(|(o, _)| o)
 }

@@ -37,10 +37,19 @@ fn best_of(reps: usize, mut f: impl FnMut()) -> f64 {
 fn main() {
     let tmp = tempfile::tempdir().expect("temporary directory");
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let all = rayon::ThreadPoolBuilder::new().num_threads(cores).build().unwrap();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let all = rayon::ThreadPoolBuilder::new()
+        .num_threads(cores)
+        .build()
+        .unwrap();
     println!("gen benchmark: default 500×20×1×50×50 set (100 MB), best of 5, {cores} cores");
-    println!("{:<10} {:>12} {:>12} {:>12} {:>12}", "scenario", "render 1T", "render all", "render+write", "speed-up");
+    println!(
+        "{:<10} {:>12} {:>12} {:>12} {:>12}",
+        "scenario", "render 1T", "render all", "render+write", "speed-up"
+    );
     for sc in [Scenario::Intensity, Scenario::Position, Scenario::Scale] {
         let cfg = config(sc, tmp.path().join(sc.name()));
         let r1 = best_of(5, || {

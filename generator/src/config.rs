@@ -60,10 +60,18 @@ impl GenConfig {
             return Err(invalid("--size", self.size, "must be at least 8 pixels"));
         }
         if !(self.dt.is_finite() && self.dt > 0.0) {
-            return Err(invalid("--dt", self.dt, "must be a finite number > 0 (seconds)"));
+            return Err(invalid(
+                "--dt",
+                self.dt,
+                "must be a finite number > 0 (seconds)",
+            ));
         }
         if !(self.omega.is_finite() && self.omega > 0.0) {
-            return Err(invalid("--omega", self.omega, "must be a finite number > 0 (rad/s)"));
+            return Err(invalid(
+                "--omega",
+                self.omega,
+                "must be a finite number > 0 (rad/s)",
+            ));
         }
         if self.omega * self.dt >= std::f64::consts::PI {
             return Err(invalid(
@@ -78,7 +86,11 @@ impl GenConfig {
             ));
         }
         if !self.zeta.is_finite() {
-            return Err(invalid("--zeta", self.zeta, "must be a finite number (1/s)"));
+            return Err(invalid(
+                "--zeta",
+                self.zeta,
+                "must be a finite number (1/s)",
+            ));
         }
         let t_end = (self.frames - 1) as f64 * self.dt;
         let growth = (-self.zeta * t_end).exp().max(1.0);
@@ -93,7 +105,11 @@ impl GenConfig {
             ));
         }
         if !(self.noise.is_finite() && (0.0..=1.0).contains(&self.noise)) {
-            return Err(invalid("--noise", self.noise, "must be in [0, 1] (grey levels)"));
+            return Err(invalid(
+                "--noise",
+                self.noise,
+                "must be in [0, 1] (grey levels)",
+            ));
         }
         let bytes = (self.samples as u64)
             .saturating_mul(self.frames as u64)
@@ -145,15 +161,69 @@ mod tests {
     fn defaults_are_valid_and_each_bad_flag_is_named() {
         assert!(defaults().validate().is_ok());
         let cases: Vec<(GenConfig, &str)> = vec![
-            (GenConfig { samples: 0, ..defaults() }, "--samples"),
-            (GenConfig { frames: 2, ..defaults() }, "--frames"),
-            (GenConfig { size: 7, ..defaults() }, "--size"),
-            (GenConfig { dt: 0.0, ..defaults() }, "--dt"),
-            (GenConfig { dt: f64::NAN, ..defaults() }, "--dt"),
-            (GenConfig { omega: 20.0, ..defaults() }, "--omega"),
-            (GenConfig { zeta: -0.5, ..defaults() }, "--zeta"),
-            (GenConfig { noise: -0.1, ..defaults() }, "--noise"),
-            (GenConfig { samples: 1_000_000, ..defaults() }, "--samples"),
+            (
+                GenConfig {
+                    samples: 0,
+                    ..defaults()
+                },
+                "--samples",
+            ),
+            (
+                GenConfig {
+                    frames: 2,
+                    ..defaults()
+                },
+                "--frames",
+            ),
+            (
+                GenConfig {
+                    size: 7,
+                    ..defaults()
+                },
+                "--size",
+            ),
+            (
+                GenConfig {
+                    dt: 0.0,
+                    ..defaults()
+                },
+                "--dt",
+            ),
+            (
+                GenConfig {
+                    dt: f64::NAN,
+                    ..defaults()
+                },
+                "--dt",
+            ),
+            (
+                GenConfig {
+                    omega: 20.0,
+                    ..defaults()
+                },
+                "--omega",
+            ),
+            (
+                GenConfig {
+                    zeta: -0.5,
+                    ..defaults()
+                },
+                "--zeta",
+            ),
+            (
+                GenConfig {
+                    noise: -0.1,
+                    ..defaults()
+                },
+                "--noise",
+            ),
+            (
+                GenConfig {
+                    samples: 1_000_000,
+                    ..defaults()
+                },
+                "--samples",
+            ),
         ];
         for (cfg, flag) in cases {
             let e = cfg.validate().unwrap_err();

@@ -98,7 +98,10 @@ mod tests {
                 for z in [-1.0, -0.3, 0.0, 0.7, 1.0] {
                     let d = sc.disc(z, size);
                     let s = size as f32;
-                    assert!(d.cx - d.radius >= 0.0 && d.cx + d.radius <= s, "{sc} {size} {z}");
+                    assert!(
+                        d.cx - d.radius >= 0.0 && d.cx + d.radius <= s,
+                        "{sc} {size} {z}"
+                    );
                     assert!(d.cy - d.radius >= 0.0 && d.cy + d.radius <= s);
                     assert!(d.radius > 0.0 && (0.0..=1.0).contains(&d.grey));
                 }

@@ -300,7 +300,10 @@ mod tests {
         let e = write_dataset(&out, &frames, &meta(shape), b"png", false).unwrap_err();
         assert!(e.to_string().contains("--force"));
         write_dataset(&out, &frames, &meta(shape), b"png", true).unwrap();
-        let names: Vec<_> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names.len(), 3, "no partial files left: {names:?}");
     }
 
@@ -330,7 +333,7 @@ mod tests {
         write_npy(&mut bytes, &[2, 3], &[0.0; 6]).unwrap();
         std::fs::write(&p, &bytes).unwrap();
         assert!(read_dataset(&p).unwrap_err().to_string().contains("rank 2"));
-        let mut data = vec![0.0f32; 2 * 3 * 1 * 2 * 2];
+        let mut data = vec![0.0f32; 24];
         data[13] = f32::NAN;
         let mut bytes = Vec::new();
         write_npy(&mut bytes, &[2, 3, 1, 2, 2], &data).unwrap();

@@ -53,7 +53,7 @@ pub fn two_step_coefficients(gamma0: f64, gamma1: f64, dt: f64) -> (f64, f64) {
 /// Inverts [`two_step_coefficients`] for an under-damped pair (a, b): returns (γ0, γ1), or
 /// `None` when (a, b) is not the propagator of an under-damped, non-aliased oscillator.
 pub fn gammas_from_recurrence(a: f64, b: f64, dt: f64) -> Option<(f64, f64)> {
-    if !(b < 0.0) {
+    if b.is_nan() || b >= 0.0 {
         return None;
     }
     let decay = -b; // e^(−γ1·dt)

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Every check, as README.md's second command and CI run it: set-up (idempotent), formatting,
+# clippy with warnings as errors, then all unit and end-to-end tests (CPU only; the CUDA test
+# needs `--features physvid-estimator/cuda-tests` on a GPU machine).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+scripts/setup.sh
+cargo fmt --all -- --check
+# Release profile throughout, so the libtorch bindings are compiled once for clippy and tests.
+cargo clippy --release --workspace --all-targets -- -D warnings
+cargo test --release --workspace
