@@ -18,20 +18,25 @@ pub struct Generated {
 /// Renders the dataset described by `cfg`. The output depends only on `cfg`, never on the
 /// number of threads: sample i uses random stream i and writes only its own slice.
 pub fn generate(cfg: &GenConfig) -> Generated {
+    generate_samples(cfg, 0..cfg.samples)
+}
+
+/// Renders samples `range` of the dataset (identical to the same samples of [`generate`]).
+pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Generated {
     let model = DampedOscillator {
         omega: cfg.omega,
         zeta: cfg.zeta,
     };
     let pixels = cfg.size * cfg.size;
     let per_sample = cfg.frames * pixels;
-    let mut frames = vec![0f32; cfg.samples * per_sample];
+    let mut frames = vec![0f32; range.len() * per_sample];
     let truths: Vec<(SampleTruth, Vec<f64>)> = frames
         .par_chunks_mut(per_sample)
         .enumerate()
         .map_init(
             || Canvas::new(cfg.size),
             |canvas, (i, clip)| {
-                let mut rng = sample_rng(cfg.seed, i);
+                let mut rng = sample_rng(cfg.seed, range.start + i);
                 let (amplitude, phase) = draw_initial_condition(&mut rng);
                 let mut latents = Vec::with_capacity(cfg.frames);
                 for (k, frame) in clip.chunks_exact_mut(pixels).enumerate() {

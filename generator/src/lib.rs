@@ -8,13 +8,14 @@ pub mod sampling;
 pub mod scenario;
 
 pub use config::{ConfigError, GenConfig};
-pub use generate::{generate, Generated};
+pub use generate::{generate, generate_samples, Generated};
 pub use scenario::Scenario;
 
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
-use physvid_shared::dataset::check_output_dir;
 use physvid_shared::meta::{GeneratorInfo, FORMAT_NAME, FORMAT_VERSION};
-use physvid_shared::{write_dataset, DampedOscillator, DatasetFiles, DatasetMeta, ModelSpec};
+use physvid_shared::{
+    DampedOscillator, DatasetError, DatasetFiles, DatasetMeta, DatasetWriter, ModelSpec,
+};
 use std::time::Instant;
 
 /// Version written into `meta.json`.
@@ -57,19 +58,55 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
     }
 }
 
-/// The preview PNG: up to four clips × all frames, magnified 2×.
-pub fn preview_png(cfg: &GenConfig, frames: &[f32]) -> Vec<u8> {
+/// The preview PNG: up to four clips × all frames, magnified 2×, from the frames of the first
+/// clips (at least four, or all of them).
+pub fn preview_png(cfg: &GenConfig, first_frames: &[f32]) -> Vec<u8> {
     let rows: Vec<usize> = (0..cfg.samples.min(4)).collect();
-    encode_png(&contact_sheet(frames, cfg.shape(), &rows, 2))
+    encode_png(&contact_sheet(first_frames, cfg.shape(), &rows, 2))
 }
 
-/// Renders and writes the dataset; returns the written paths.
+/// Samples rendered per piece handed to the writer thread.
+const SAMPLES_PER_PIECE: usize = 64;
+
+/// Renders and writes the dataset, streaming: while the next piece of samples renders (rayon),
+/// a writer thread appends the previous one to `frames.npy` and flushes it to the device, so
+/// writing overlaps rendering and memory holds only a few pieces. Returns the written paths.
 pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
-    check_output_dir(&cfg.out, cfg.force)?;
-    let g = generate(cfg);
-    let meta = dataset_meta(cfg, &g);
-    let png = preview_png(cfg, &g.frames);
-    Ok(write_dataset(&cfg.out, &g.frames, &meta, &png, cfg.force)?)
+    let mut writer = DatasetWriter::create(&cfg.out, cfg.shape(), cfg.force)?;
+    let mut all = Generated {
+        frames: Vec::new(),
+        samples: Vec::with_capacity(cfg.samples),
+        latents: Vec::with_capacity(cfg.samples),
+    };
+    let preview_samples = cfg.samples.min(4);
+    let written: Result<DatasetWriter, DatasetError> = std::thread::scope(|s| {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f32>>(1);
+        let handle = s.spawn(move || {
+            for piece in rx {
+                writer.write_frames(&piece)?;
+            }
+            Ok(writer)
+        });
+        for start in (0..cfg.samples).step_by(SAMPLES_PER_PIECE) {
+            let end = (start + SAMPLES_PER_PIECE).min(cfg.samples);
+            let g = generate_samples(cfg, start..end);
+            if start == 0 {
+                let per_sample = cfg.frames * cfg.size * cfg.size;
+                all.frames = g.frames[..preview_samples * per_sample].to_vec();
+            }
+            all.samples.extend(g.samples);
+            all.latents.extend(g.latents);
+            if tx.send(g.frames).is_err() {
+                break; // The writer failed; its error comes back from join.
+            }
+        }
+        drop(tx);
+        handle.join().expect("writer thread does not panic")
+    });
+    let writer = written?;
+    let meta = dataset_meta(cfg, &all);
+    let png = preview_png(cfg, &all.frames);
+    Ok(writer.finish(&meta, &png)?)
 }
 
 /// Runs `gen`: generates, writes and reports where the files are.

@@ -50,7 +50,7 @@ mod tests {
             .flat_map(|i| std::iter::repeat_n(i as f32 / 10.0, 4))
             .collect();
         let img = contact_sheet(&data, [2, 3, 1, 2, 2], &[1], 2);
-        assert_eq!(img.dimensions(), (3 * 6 + 2, 6));
+        assert_eq!(img.dimensions(), (3 * 6 + 2, 6 + 2));
         // Clip 1, frame 2 → value 0.5 → 128.
         assert_eq!(img.get_pixel(2 + 2 * 6, 2)[0], 128);
         assert_eq!(img.get_pixel(0, 0)[0], 96);

@@ -4,9 +4,10 @@
 
 use crate::error::DatasetError;
 use crate::meta::{DatasetMeta, FORMAT_NAME, FORMAT_VERSION};
-use crate::npy::{read_npy, write_npy, NpyArray};
+use crate::npy::{header_bytes, read_npy, write_f32_le, NpyArray};
 use std::fs::File;
 use std::io::{BufWriter, Write};
+
 use std::path::{Path, PathBuf};
 
 pub const FRAMES_FILE: &str = "frames.npy";
@@ -58,27 +59,131 @@ fn partial(path: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
-fn write_partial(
-    path: &Path,
-    body: impl FnOnce(&mut BufWriter<&File>) -> std::io::Result<()>,
-) -> Result<PathBuf, DatasetError> {
-    let tmp = partial(path);
-    let err = |source| DatasetError::Write {
-        path: tmp.clone(),
+fn write_err(path: &Path) -> impl Fn(std::io::Error) -> DatasetError {
+    let path = path.to_path_buf();
+    move |source| DatasetError::Write {
+        path: path.clone(),
         source,
-    };
-    let file = File::create(&tmp).map_err(err)?;
-    let mut w = BufWriter::with_capacity(1 << 20, &file);
-    body(&mut w).map_err(err)?;
-    w.flush().map_err(err)?;
-    drop(w);
-    file.sync_all().map_err(err)?;
+    }
+}
+
+fn write_partial(path: &Path, bytes: &[u8]) -> Result<PathBuf, DatasetError> {
+    let tmp = partial(path);
+    let err = write_err(&tmp);
+    let file = File::create(&tmp).map_err(&err)?;
+    (&file).write_all(bytes).map_err(&err)?;
+    file.sync_all().map_err(&err)?;
     Ok(tmp)
 }
 
-/// Writes a dataset into `dir` atomically per file, `meta.json` renamed into place last.
-/// Any stale `meta.json` is removed first, so a crash part-way through an overwrite leaves a
-/// directory without `meta.json`, which the reader refuses.
+/// Streams a dataset to disk: `frames.npy` is written under a temporary name as frames arrive
+/// (each piece flushed to the device as it goes, so the final sync is short), and
+/// [`DatasetWriter::finish`] renames everything into place, `meta.json` last. Any stale
+/// `meta.json` is removed first, so a crash part-way through an overwrite leaves a directory
+/// without `meta.json`, which the reader refuses; dropping an unfinished writer removes its
+/// temporary files.
+pub struct DatasetWriter {
+    files: DatasetFiles,
+    frames_tmp: PathBuf,
+    out: BufWriter<File>,
+    expected: usize,
+    written: usize,
+    finished: bool,
+}
+
+impl DatasetWriter {
+    /// Prepares `dir` (refusing a non-empty one unless `force`) and writes the `.npy` header.
+    pub fn create(
+        dir: &Path,
+        shape: [usize; 5],
+        force: bool,
+    ) -> Result<DatasetWriter, DatasetError> {
+        check_output_dir(dir, force)?;
+        std::fs::create_dir_all(dir).map_err(write_err(dir))?;
+        let files = DatasetFiles {
+            frames: dir.join(FRAMES_FILE),
+            meta: dir.join(META_FILE),
+            preview: dir.join(PREVIEW_FILE),
+        };
+        match std::fs::remove_file(&files.meta) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(write_err(&files.meta)(e))
+            }
+            _ => {}
+        }
+        let frames_tmp = partial(&files.frames);
+        let file = File::create(&frames_tmp).map_err(write_err(&frames_tmp))?;
+        let mut writer = DatasetWriter {
+            files,
+            out: BufWriter::with_capacity(1 << 20, file),
+            expected: shape.iter().product(),
+            written: 0,
+            finished: false,
+            frames_tmp,
+        };
+        let header = header_bytes(&shape);
+        writer
+            .out
+            .write_all(&header)
+            .map_err(write_err(&writer.frames_tmp))?;
+        Ok(writer)
+    }
+
+    /// Appends frames (C order) and flushes them to the device.
+    pub fn write_frames(&mut self, frames: &[f32]) -> Result<(), DatasetError> {
+        assert!(
+            self.written + frames.len() <= self.expected,
+            "more frames than the shape holds"
+        );
+        let err = write_err(&self.frames_tmp);
+        write_f32_le(&mut self.out, frames).map_err(&err)?;
+        self.out.flush().map_err(&err)?;
+        self.out.get_ref().sync_data().map_err(&err)?;
+        self.written += frames.len();
+        Ok(())
+    }
+
+    /// Writes the preview and the metadata and renames all three files into place.
+    pub fn finish(
+        mut self,
+        meta: &DatasetMeta,
+        preview_png: &[u8],
+    ) -> Result<DatasetFiles, DatasetError> {
+        assert_eq!(self.written, self.expected, "frames.npy is incomplete");
+        let err = write_err(&self.frames_tmp);
+        self.out.flush().map_err(&err)?;
+        self.out.get_ref().sync_all().map_err(&err)?;
+        let preview_tmp = write_partial(&self.files.preview, preview_png)?;
+        let meta_json = serde_json::to_vec_pretty(meta).expect("metadata serialises");
+        let meta_tmp = write_partial(&self.files.meta, &meta_json)?;
+        for (tmp, fin) in [
+            (&self.frames_tmp, &self.files.frames),
+            (&preview_tmp, &self.files.preview),
+            (&meta_tmp, &self.files.meta),
+        ] {
+            std::fs::rename(tmp, fin).map_err(write_err(fin))?;
+        }
+        if let Some(dir) = self.files.meta.parent() {
+            if let Ok(d) = File::open(dir) {
+                let _ = d.sync_all();
+            }
+        }
+        self.finished = true;
+        Ok(self.files.clone())
+    }
+}
+
+impl Drop for DatasetWriter {
+    fn drop(&mut self) {
+        if !self.finished {
+            for f in [&self.files.frames, &self.files.preview, &self.files.meta] {
+                let _ = std::fs::remove_file(partial(f));
+            }
+        }
+    }
+}
+
+/// Writes a whole dataset held in memory (see [`DatasetWriter`]).
 pub fn write_dataset(
     dir: &Path,
     frames: &[f32],
@@ -86,44 +191,9 @@ pub fn write_dataset(
     preview_png: &[u8],
     force: bool,
 ) -> Result<DatasetFiles, DatasetError> {
-    check_output_dir(dir, force)?;
-    let werr = |path: &Path| {
-        let path = path.to_path_buf();
-        move |source| DatasetError::Write { path, source }
-    };
-    std::fs::create_dir_all(dir).map_err(werr(dir))?;
-    let files = DatasetFiles {
-        frames: dir.join(FRAMES_FILE),
-        meta: dir.join(META_FILE),
-        preview: dir.join(PREVIEW_FILE),
-    };
-    match std::fs::remove_file(&files.meta) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(werr(&files.meta)(e)),
-        _ => {}
-    }
-    let result = (|| {
-        let frames_tmp = write_partial(&files.frames, |w| write_npy(w, &meta.shape, frames))?;
-        let preview_tmp = write_partial(&files.preview, |w| w.write_all(preview_png))?;
-        let meta_json = serde_json::to_vec_pretty(meta).expect("metadata serialises");
-        let meta_tmp = write_partial(&files.meta, |w| w.write_all(&meta_json))?;
-        for (tmp, fin) in [
-            (&frames_tmp, &files.frames),
-            (&preview_tmp, &files.preview),
-            (&meta_tmp, &files.meta),
-        ] {
-            std::fs::rename(tmp, fin).map_err(werr(fin))?;
-        }
-        if let Ok(d) = File::open(dir) {
-            let _ = d.sync_all();
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        for f in [&files.frames, &files.preview, &files.meta] {
-            let _ = std::fs::remove_file(partial(f));
-        }
-    }
-    result.map(|()| files)
+    let mut w = DatasetWriter::create(dir, meta.shape, force)?;
+    w.write_frames(frames)?;
+    w.finish(meta, preview_png)
 }
 
 fn bad_meta(path: &Path, reason: impl Into<String>) -> DatasetError {
@@ -255,6 +325,7 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
 mod tests {
     use super::*;
     use crate::meta::{GeneratorInfo, ModelSpec, SampleTruth};
+    use crate::npy::write_npy;
 
     fn meta(shape: [usize; 5]) -> DatasetMeta {
         DatasetMeta {

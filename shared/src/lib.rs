@@ -12,7 +12,7 @@ pub mod meta;
 pub mod npy;
 pub mod recurrence;
 
-pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles};
+pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
 pub use dynamics::DampedOscillator;
 pub use error::DatasetError;
 pub use meta::{DatasetMeta, ModelSpec, SampleTruth};

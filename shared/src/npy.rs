@@ -44,6 +44,12 @@ pub fn write_npy<W: Write>(mut w: W, shape: &[usize], data: &[f32]) -> std::io::
         "shape and data length disagree"
     );
     w.write_all(&header_bytes(shape))?;
+    write_f32_le(&mut w, data)?;
+    w.flush()
+}
+
+/// Writes float32 values little-endian (the `.npy` body after the header).
+pub fn write_f32_le<W: Write>(w: &mut W, data: &[f32]) -> std::io::Result<()> {
     if cfg!(target_endian = "little") {
         // Write in 8 MiB pieces so a failing sink fails early.
         for chunk in data.chunks(2 << 20) {
@@ -54,7 +60,7 @@ pub fn write_npy<W: Write>(mut w: W, shape: &[usize], data: &[f32]) -> std::io::
             w.write_all(&v.to_le_bytes())?;
         }
     }
-    w.flush()
+    Ok(())
 }
 
 /// Parsed header fields.
