@@ -31,6 +31,7 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
             seed: 5,
             noise: 0.0,
             force: true,
+            params: Default::default(),
         }
         .validate()
         .unwrap(),

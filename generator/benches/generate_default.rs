@@ -18,6 +18,7 @@ fn config(scenario: Scenario, out: std::path::PathBuf) -> GenConfig {
         seed: 0,
         noise: 0.0,
         force: true,
+        params: Default::default(),
     }
     .validate()
     .expect("defaults are valid")

@@ -1,5 +1,6 @@
 //! `GenConfig`: the validated settings of one `gen` run, and `ConfigError` for bad flags.
 
+use crate::delfys::Params;
 use crate::scenario::Scenario;
 use std::path::PathBuf;
 
@@ -20,6 +21,8 @@ pub struct GenConfig {
     pub seed: u64,
     pub noise: f64,
     pub force: bool,
+    /// Parameters of a Delfys75 scene (SI), empty for the oscillator scenes.
+    pub params: Params,
 }
 
 /// A flag outside its valid range; the message names the flag, the value and the range.
@@ -66,6 +69,10 @@ impl GenConfig {
                 "must be a finite number > 0 (seconds)",
             ));
         }
+        if let Some(system) = self.scenario.system() {
+            system.validate(&self.params, self.frames, self.dt)?;
+            return self.check_size();
+        }
         if !(self.omega.is_finite() && self.omega > 0.0) {
             return Err(invalid(
                 "--omega",
@@ -104,6 +111,11 @@ impl GenConfig {
                 ),
             ));
         }
+        self.check_size()
+    }
+
+    /// Checks --noise and the memory the dataset needs.
+    fn check_size(self) -> Result<GenConfig, ConfigError> {
         if !(self.noise.is_finite() && (0.0..=1.0).contains(&self.noise)) {
             return Err(invalid(
                 "--noise",
@@ -154,6 +166,7 @@ mod tests {
             seed: 0,
             noise: 0.0,
             force: false,
+            params: Default::default(),
         }
     }
 

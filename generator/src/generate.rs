@@ -37,13 +37,28 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
             || Canvas::new(cfg.size),
             |canvas, (i, clip)| {
                 let mut rng = sample_rng(cfg.seed, range.start + i);
-                let (amplitude, phase) = draw_initial_condition(&mut rng);
-                let mut latents = Vec::with_capacity(cfg.frames);
-                for (k, frame) in clip.chunks_exact_mut(pixels).enumerate() {
-                    let z = model.latent(amplitude, phase, k as f64 * cfg.dt);
-                    latents.push(z);
-                    canvas.render_frame(&cfg.scenario.disc(z, cfg.size), frame);
-                }
+                let (truth, latents) = match cfg.scenario.system() {
+                    Some(system) => {
+                        let (truth, latents) =
+                            system.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt);
+                        for (z, frame) in latents.iter().zip(clip.chunks_exact_mut(pixels)) {
+                            system.render(&cfg.params, *z, cfg.size, canvas, frame);
+                        }
+                        (truth, latents)
+                    }
+                    None => {
+                        let (amplitude, phase) = draw_initial_condition(&mut rng);
+                        let mut latents = Vec::with_capacity(cfg.frames);
+                        for (k, frame) in clip.chunks_exact_mut(pixels).enumerate() {
+                            let z = model.latent(amplitude, phase, k as f64 * cfg.dt);
+                            latents.push(z);
+                            canvas.render_frame(&cfg.scenario.disc(z, cfg.size), frame);
+                        }
+                        let truth =
+                            SampleTruth::from_pairs([("amplitude", amplitude), ("phase", phase)]);
+                        (truth, latents)
+                    }
+                };
                 if cfg.noise > 0.0 {
                     let sigma = cfg.noise as f32;
                     for v in clip.iter_mut() {
@@ -51,7 +66,7 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
                         *v = (*v + sigma * n).clamp(0.0, 1.0);
                     }
                 }
-                (SampleTruth { amplitude, phase }, latents)
+                (truth, latents)
             },
         )
         .collect();

@@ -2,6 +2,7 @@
 //! or scale of a disc) with tiny-skia and writes them in the shared dataset format.
 
 pub mod config;
+pub mod delfys;
 pub mod generate;
 pub mod render;
 pub mod sampling;
@@ -23,9 +24,37 @@ pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// The metadata of a generated dataset.
 pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
-    let model = DampedOscillator {
-        omega: cfg.omega,
-        zeta: cfg.zeta,
+    let (model, calibration, fps) = match cfg.scenario.system() {
+        Some(system) => (
+            ModelSpec {
+                name: system.model_name().into(),
+                parameters: system.estimated_parameters(&cfg.params),
+            },
+            delfys_calibration(cfg, system, g),
+            Some(1.0 / cfg.dt),
+        ),
+        None => {
+            let model = DampedOscillator {
+                omega: cfg.omega,
+                zeta: cfg.zeta,
+            };
+            (
+                ModelSpec {
+                    name: "damped-oscillator".into(),
+                    parameters: [
+                        ("omega", cfg.omega),
+                        ("zeta", cfg.zeta),
+                        ("gamma0", model.gamma0()),
+                        ("gamma1", model.gamma1()),
+                    ]
+                    .into_iter()
+                    .map(|(k, v)| (k.to_string(), v))
+                    .collect(),
+                },
+                Default::default(),
+                None,
+            )
+        }
     };
     DatasetMeta {
         format: FORMAT_NAME.into(),
@@ -35,27 +64,86 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
             version: GENERATOR_VERSION.into(),
         },
         scenario: cfg.scenario.name().into(),
-        model: ModelSpec {
-            name: "damped-oscillator".into(),
-            parameters: [
-                ("omega", cfg.omega),
-                ("zeta", cfg.zeta),
-                ("gamma0", model.gamma0()),
-                ("gamma1", model.gamma1()),
-            ]
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .collect(),
-        },
+        model,
         dt: cfg.dt,
         shape: cfg.shape(),
         seed: cfg.seed,
         noise: cfg.noise,
         latent_mapping: cfg.scenario.mapping_text().into(),
-        sampling: sampling::SAMPLING_TEXT.into(),
+        calibration,
+        fps,
+        sampling: if cfg.scenario.system().is_some() {
+            sampling::DELFYS_SAMPLING_TEXT.into()
+        } else {
+            sampling::SAMPLING_TEXT.into()
+        },
         samples: g.samples.clone(),
         latents: g.latents.clone(),
     }
+}
+
+/// The calibration a user would measure for a Delfys75 scene: the scene's scale, and the
+/// physical quantity at two reference frames (where it is smallest and largest), which is what
+/// turns latent units into SI units (appendix A.6 measures h0 = 7 cm and ht = 1 cm likewise).
+fn delfys_calibration(
+    cfg: &GenConfig,
+    system: delfys::System,
+    g: &Generated,
+) -> std::collections::BTreeMap<String, serde_json::Value> {
+    use serde_json::json;
+    let mut c = std::collections::BTreeMap::new();
+    let ppm = system.pixels_per_metre(&cfg.params, cfg.size);
+    let (mut lo, mut hi) = (
+        (0usize, 0usize, f64::INFINITY),
+        (0usize, 0usize, f64::NEG_INFINITY),
+    );
+    for (i, clip) in g.latents.iter().enumerate() {
+        for (k, &z) in clip.iter().enumerate() {
+            if z < lo.2 {
+                lo = (i, k, z);
+            }
+            if z > hi.2 {
+                hi = (i, k, z);
+            }
+        }
+    }
+    let quantity = match system {
+        delfys::System::Pendulum => "angle theta (rad)",
+        delfys::System::Torricelli => "water level h (m)",
+        delfys::System::SlidingBlock => "distance along the incline s (m)",
+        delfys::System::Led => "brightness I/I(0)",
+        delfys::System::FreeFall => "distance from the camera h (m)",
+    };
+    c.insert(
+        "reference_points".into(),
+        json!([
+            {"clip": lo.0, "frame": lo.1, "value": lo.2},
+            {"clip": hi.0, "frame": hi.1, "value": hi.2},
+        ]),
+    );
+    c.insert("quantity".into(), json!(quantity));
+    match system {
+        delfys::System::FreeFall => {
+            c.insert("focal_px_per_m".into(), json!(ppm));
+            c.insert("radius".into(), json!(cfg.params["radius"]));
+            c.insert("h0".into(), json!(cfg.params["h0"]));
+            c.insert("g".into(), json!(cfg.params["g"]));
+        }
+        delfys::System::SlidingBlock => {
+            c.insert("pixels_per_metre".into(), json!(ppm));
+            c.insert("incline_deg".into(), json!(cfg.params["incline_deg"]));
+            c.insert("g".into(), json!(cfg.params["g"]));
+        }
+        delfys::System::Pendulum => {
+            c.insert("pixels_per_metre".into(), json!(ppm));
+            c.insert("g".into(), json!(cfg.params["g"]));
+        }
+        delfys::System::Torricelli => {
+            c.insert("pixels_per_metre".into(), json!(ppm));
+        }
+        delfys::System::Led => {}
+    }
+    c
 }
 
 /// The preview PNG: up to four clips × all frames, magnified 2×, from the frames of the first

@@ -1,18 +1,23 @@
 //! `gen`: command-line entry point; parses flags into a validated `GenConfig` and calls `run`.
 
 use clap::Parser;
-use generator::{GenConfig, Scenario};
+use generator::{ConfigError, GenConfig, Scenario};
 use physvid_shared::DatasetError;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Render a seeded synthetic video dataset of a damped oscillator,
-/// z(t) = A·exp(−ζt)·cos(ωt + φ), with γ0 = ω² + ζ² and γ1 = 2ζ.
+/// Render a seeded synthetic video dataset of a known dynamical system.
+///
+/// intensity, position, scale: a damped oscillator z(t) = A·exp(−ζt)·cos(ωt + φ), γ0 = ω² + ζ²,
+/// γ1 = 2ζ; A ~ Uniform[0.5, 1), φ ~ Uniform[0, 2π). pendulum, torricelli, sliding-block, led,
+/// free-fall: the Delfys75 systems with the parameters of appendix Table 4 (--setting 1|2|3,
+/// any value changed with --set), clips starting at random points of the motion.
 ///
 /// Writes DIR/frames.npy (float32 [N, T, 1, H, W], values in [0, 1]), DIR/meta.json (ground
-/// truth: parameters, dt, per-sample A and φ, the latent z of every frame) and DIR/preview.png.
-/// A ~ Uniform[0.5, 1), φ ~ Uniform[0, 2π), drawn per sample from seeded ChaCha8 streams, so
-/// the same flags give byte-identical files on any number of threads.
+/// truth: the model and its parameters in SI units, dt, per-sample draws, the latent of every
+/// frame, the calibration a user would measure) and DIR/preview.png. Draws come from seeded
+/// per-sample ChaCha8 streams, so the same flags give byte-identical files on any number of
+/// threads.
 #[derive(Debug, Parser)]
 #[command(name = "gen", version, allow_negative_numbers = true)]
 struct Cli {
@@ -25,21 +30,34 @@ struct Cli {
     /// Number of clips N (≥ 1).
     #[arg(long, default_value_t = 500)]
     samples: usize,
-    /// Frames per clip T (≥ 3).
-    #[arg(long, default_value_t = 20)]
-    frames: usize,
+    /// Frames per clip T (≥ 3) [default: 20; Delfys75 scenes: Table 5's, e.g. pendulum 20,
+    /// sliding-block 10, free-fall 4].
+    #[arg(long)]
+    frames: Option<usize>,
     /// Frame width and height in pixels (≥ 8).
     #[arg(long, default_value_t = 50)]
     size: usize,
-    /// Time between frames in seconds (> 0); ω·dt must stay below π.
-    #[arg(long, default_value_t = 0.2)]
-    dt: f64,
-    /// Angular frequency ω in rad/s (> 0).
-    #[arg(long, default_value_t = 2.0)]
-    omega: f64,
-    /// Decay rate ζ in 1/s (≥ 0, or slightly negative if the object stays in frame).
-    #[arg(long, default_value_t = 0.04)]
-    zeta: f64,
+    /// Time between frames in seconds (> 0) [default: 0.2; Delfys75 scenes: Table 5's, e.g.
+    /// pendulum 0.1, torricelli 1, sliding-block 1/30, led 1/60, free-fall 1/30].
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Angular frequency ω in rad/s (> 0; ω·dt < π) of the oscillator scenes [default: 2].
+    #[arg(long)]
+    omega: Option<f64>,
+    /// Decay rate ζ in 1/s of the oscillator scenes (≥ 0, or slightly negative if the object
+    /// stays in frame) [default: 0.04].
+    #[arg(long)]
+    zeta: Option<f64>,
+    /// Delfys75 scenes: the column of appendix Table 4 (pendulum L = 0.45/0.90/1.50 m,
+    /// torricelli k = 0.0095/0.0128/0.0162, sliding-block incline 20/25/30°, led γ = 2.3/0.92/0.46,
+    /// free-fall radius 3.35/6/10 cm).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3))]
+    setting: u8,
+    /// Delfys75 scenes: override parameters, NAME=VALUE[,NAME=VALUE]. pendulum: length, damping,
+    /// g, amplitude_min_deg, amplitude_max_deg; torricelli: k, h_start, h_end; sliding-block:
+    /// incline_deg, mu, g, travel; led: gamma; free-fall: radius, h0, g (SI units).
+    #[arg(long, value_name = "NAME=VALUE,...")]
+    set: Option<String>,
     /// Seed of the random draws (amplitude, phase, noise).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -52,6 +70,79 @@ struct Cli {
     /// Worker threads (default: all cores). Output does not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+}
+
+/// Resolves scenario-dependent defaults, `--setting` and `--set` into a `GenConfig`.
+fn config_from(cli: Cli) -> Result<GenConfig, ConfigError> {
+    let system = cli.scenario.system();
+    let (frames, dt) = system.map_or((20, 0.2), |s| s.default_frames_and_dt());
+    let mut params = system.map(|s| s.setting(cli.setting)).unwrap_or_default();
+    if let Some(system) = system {
+        for (flag, given) in [
+            ("--omega", cli.omega.is_some()),
+            ("--zeta", cli.zeta.is_some()),
+        ] {
+            if given {
+                return Err(ConfigError {
+                    flag,
+                    value: cli.scenario.to_string(),
+                    expected: format!(
+                        "applies to the intensity, position and scale scenes only; set the {} parameters with --set",
+                        system.model_name()
+                    ),
+                });
+            }
+        }
+        for pair in cli
+            .set
+            .iter()
+            .flat_map(|s| s.split(','))
+            .filter(|p| !p.trim().is_empty())
+        {
+            let bad = |expected: String| ConfigError {
+                flag: "--set",
+                value: pair.to_string(),
+                expected,
+            };
+            let (k, v) = pair
+                .split_once('=')
+                .ok_or_else(|| bad("is not NAME=VALUE".into()))?;
+            let k = k.trim();
+            if !params.contains_key(k) {
+                let names: Vec<&str> = params.keys().map(String::as_str).collect();
+                return Err(bad(format!(
+                    "{} has no parameter '{k}'; its parameters are {}",
+                    system.model_name(),
+                    names.join(", ")
+                )));
+            }
+            let v: f64 = v
+                .trim()
+                .parse()
+                .map_err(|_| bad(format!("'{}' is not a number", v.trim())))?;
+            params.insert(k.to_string(), v);
+        }
+    } else if cli.set.is_some() {
+        return Err(ConfigError {
+            flag: "--set",
+            value: cli.set.unwrap_or_default(),
+            expected: "applies to the Delfys75 scenes only; use --omega and --zeta".into(),
+        });
+    }
+    Ok(GenConfig {
+        scenario: cli.scenario,
+        out: cli.out,
+        samples: cli.samples,
+        frames: cli.frames.unwrap_or(frames),
+        size: cli.size,
+        dt: cli.dt.unwrap_or(dt),
+        omega: cli.omega.unwrap_or(2.0),
+        zeta: cli.zeta.unwrap_or(0.04),
+        seed: cli.seed,
+        noise: cli.noise,
+        force: cli.force,
+        params,
+    })
 }
 
 fn main() -> ExitCode {
@@ -69,20 +160,7 @@ fn main() -> ExitCode {
             .build_global()
             .expect("the global thread pool is configured once");
     }
-    let cfg = GenConfig {
-        scenario: cli.scenario,
-        out: cli.out,
-        samples: cli.samples,
-        frames: cli.frames,
-        size: cli.size,
-        dt: cli.dt,
-        omega: cli.omega,
-        zeta: cli.zeta,
-        seed: cli.seed,
-        noise: cli.noise,
-        force: cli.force,
-    };
-    let cfg = match cfg.validate() {
+    let cfg = match config_from(cli).and_then(GenConfig::validate) {
         Ok(cfg) => cfg,
         Err(e) => {
             eprintln!("gen: error: {e}");

@@ -55,7 +55,7 @@ impl Canvas {
     pub fn render_frame(&mut self, disc: &Disc, out: &mut [f32]) {
         let geometry = (disc.cx, disc.cy, disc.radius);
         if self.last_geometry != Some(geometry) {
-            self.rasterise(disc);
+            self.rasterise_disc(disc);
             self.last_geometry = Some(geometry);
         }
         for (o, c) in out.iter_mut().zip(&self.coverage) {
@@ -63,38 +63,63 @@ impl Canvas {
         }
     }
 
-    /// A closed regular polygon of [`CIRCLE_VERTICES`] vertices inscribed in the circle.
-    fn circle_polygon(&self, cx: f32, cy: f32, r: f32) -> Option<tiny_skia::Path> {
-        let mut pb = PathBuilder::new();
-        pb.move_to(cx + r, cy);
-        for &(c, s) in &self.unit_circle[1..] {
-            pb.line_to(cx + r * c, cy + r * s);
-        }
-        pb.close();
-        pb.finish()
+    /// Vertices of the regular [`CIRCLE_VERTICES`]-gon inscribed in a circle.
+    pub fn circle_points(&self, cx: f32, cy: f32, r: f32) -> Vec<(f32, f32)> {
+        self.unit_circle
+            .iter()
+            .map(|&(c, s)| (cx + r * c, cy + r * s))
+            .collect()
     }
 
-    fn rasterise(&mut self, disc: &Disc) {
+    /// Draws a filled polygon (pixel coordinates) of grey level `grey` into `out`, keeping the
+    /// brighter value where shapes overlap.
+    pub fn draw_polygon(&mut self, points: &[(f32, f32)], grey: f32, out: &mut [f32]) {
+        self.rasterise(points);
+        self.last_geometry = None;
+        for (o, c) in out.iter_mut().zip(&self.coverage) {
+            *o = o.max(c * grey);
+        }
+    }
+
+    fn rasterise_disc(&mut self, disc: &Disc) {
+        let pts = self.circle_points(disc.cx, disc.cy, disc.radius);
+        self.rasterise(&pts);
+    }
+
+    /// Coverage of the polygon at output resolution into `self.coverage`: tiny-skia draws it at
+    /// SUPERSAMPLE× over its bounding box only, then each output pixel averages its sub-pixels.
+    fn rasterise(&mut self, points: &[(f32, f32)]) {
         self.coverage.fill(0.0);
-        // Only the disc's bounding box (in output pixels) can be non-zero.
-        let lo = |c: f32| ((c - disc.radius).floor().max(0.0) as usize).min(self.size);
-        let hi = |c: f32| ((c + disc.radius).ceil().max(0.0) as usize + 1).min(self.size);
-        let (x0, x1, y0, y1) = (lo(disc.cx), hi(disc.cx), lo(disc.cy), hi(disc.cy));
+        if points.len() < 3 {
+            return;
+        }
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+        for &(x, y) in points {
+            (xmin, xmax, ymin, ymax) = (xmin.min(x), xmax.max(x), ymin.min(y), ymax.max(y));
+        }
+        let lo = |c: f32| ((c.floor().max(0.0)) as usize).min(self.size);
+        let hi = |c: f32| ((c.ceil().max(0.0)) as usize + 1).min(self.size);
+        let (x0, x1, y0, y1) = (lo(xmin), hi(xmax), lo(ymin), hi(ymax));
         if x1 <= x0 || y1 <= y0 {
             return;
         }
         let (bw, bh) = ((x1 - x0) * SUPERSAMPLE, (y1 - y0) * SUPERSAMPLE);
         let ss = SUPERSAMPLE as f32;
-        let path = self.circle_polygon(
-            (disc.cx - x0 as f32) * ss,
-            (disc.cy - y0 as f32) * ss,
-            disc.radius * ss,
-        );
+        let mut pb = PathBuilder::new();
+        for (k, &(x, y)) in points.iter().enumerate() {
+            let (px, py) = ((x - x0 as f32) * ss, (y - y0 as f32) * ss);
+            if k == 0 {
+                pb.move_to(px, py);
+            } else {
+                pb.line_to(px, py);
+            }
+        }
+        pb.close();
         let bytes = &mut self.scratch[..bw * bh * 4];
         bytes.fill(0);
         let mut pixmap =
             PixmapMut::from_bytes(bytes, bw as u32, bh as u32).expect("non-empty bounding box");
-        if let Some(path) = path {
+        if let Some(path) = pb.finish() {
             pixmap.fill_path(
                 &path,
                 &self.paint,

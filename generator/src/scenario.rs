@@ -1,5 +1,6 @@
 //! `Scenario`: how the latent z becomes a picture (intensity, position or scale of a disc).
 
+use crate::delfys::System;
 use std::fmt;
 
 /// The three synthetic scenes of the paper (appendix A.1). In each, |z| ≤ 1 keeps the object
@@ -12,6 +13,16 @@ pub enum Scenario {
     Position,
     /// A white disc at the centre whose radius is size·(0.25 + 0.15·z).
     Scale,
+    /// Delfys75: a bob on a string, θ'' = −(g/L)·sin θ − ζ·θ' (finite angles).
+    Pendulum,
+    /// Delfys75: a draining tank, h' = −k·√h.
+    Torricelli,
+    /// Delfys75: a block sliding down an incline, s'' = g·(sin α − μ·cos α).
+    SlidingBlock,
+    /// Delfys75: a dimming LED, I' = −γ·I.
+    Led,
+    /// Delfys75: a ball falling away from the camera, h'' = g, seen at radius f·r0/h.
+    FreeFall,
 }
 
 /// A disc to draw: centre, radius (pixels) and grey level.
@@ -29,11 +40,31 @@ impl Scenario {
             Scenario::Intensity => "intensity",
             Scenario::Position => "position",
             Scenario::Scale => "scale",
+            Scenario::Pendulum => "pendulum",
+            Scenario::Torricelli => "torricelli",
+            Scenario::SlidingBlock => "sliding-block",
+            Scenario::Led => "led",
+            Scenario::FreeFall => "free-fall",
+        }
+    }
+
+    /// The Delfys75 system of the scene, or `None` for the damped-oscillator scenes.
+    pub fn system(self) -> Option<System> {
+        match self {
+            Scenario::Intensity | Scenario::Position | Scenario::Scale => None,
+            Scenario::Pendulum => Some(System::Pendulum),
+            Scenario::Torricelli => Some(System::Torricelli),
+            Scenario::SlidingBlock => Some(System::SlidingBlock),
+            Scenario::Led => Some(System::Led),
+            Scenario::FreeFall => Some(System::FreeFall),
         }
     }
 
     /// The mapping from z to the picture, in words, for `meta.json`.
     pub fn mapping_text(self) -> &'static str {
+        if let Some(system) = self.system() {
+            return system.mapping_text();
+        }
         match self {
             Scenario::Intensity => {
                 "fixed anti-aliased disc of radius 0.3*size at the centre on black; grey level 0.5 + 0.5*z"
@@ -41,13 +72,11 @@ impl Scenario {
             Scenario::Position => {
                 "white anti-aliased disc of radius max(0.1*size, 1) on black; centre x = size/2 + z*(size/2 - radius - 1) pixels, y = size/2"
             }
-            Scenario::Scale => {
-                "white anti-aliased disc at the centre on black; radius = size*(0.25 + 0.15*z) pixels"
-            }
+            _ => "white anti-aliased disc at the centre on black; radius = size*(0.25 + 0.15*z) pixels",
         }
     }
 
-    /// The disc that shows latent value `z` in a `size`×`size` frame.
+    /// The disc that shows latent value `z` in a `size`×`size` frame (oscillator scenes).
     pub fn disc(self, z: f64, size: usize) -> Disc {
         let s = size as f32;
         let z = z as f32;
@@ -67,7 +96,7 @@ impl Scenario {
                     grey: 1.0,
                 }
             }
-            Scenario::Scale => Disc {
+            _ => Disc {
                 cx: s / 2.0,
                 cy: s / 2.0,
                 radius: s * (0.25 + 0.15 * z),

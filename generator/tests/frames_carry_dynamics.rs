@@ -17,6 +17,7 @@ fn config(scenario: Scenario, size: usize, dt: f64, omega: f64, zeta: f64) -> Ge
         seed: 3,
         noise: 0.0,
         force: false,
+        params: Default::default(),
     }
     .validate()
     .unwrap()

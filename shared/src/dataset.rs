@@ -345,14 +345,10 @@ mod tests {
             seed: 0,
             noise: 0.0,
             latent_mapping: String::new(),
+            calibration: Default::default(),
+            fps: None,
             sampling: String::new(),
-            samples: vec![
-                SampleTruth {
-                    amplitude: 1.0,
-                    phase: 0.0
-                };
-                shape[0]
-            ],
+            samples: vec![SampleTruth::from_pairs([("amplitude", 1.0), ("phase", 0.0)]); shape[0]],
             latents: vec![vec![0.0; shape[1]]; shape[0]],
         }
     }

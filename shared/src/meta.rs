@@ -16,11 +16,16 @@ pub struct ModelSpec {
     pub parameters: BTreeMap<String, f64>,
 }
 
-/// Per-sample draws of the initial condition.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SampleTruth {
-    pub amplitude: f64,
-    pub phase: f64,
+/// Per-sample draws of the initial condition, by name (the oscillator's `amplitude` and
+/// `phase`; a Delfys system's start time, initial angle, ...), written as a flat JSON object.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct SampleTruth(pub BTreeMap<String, f64>);
+
+impl SampleTruth {
+    /// A truth from name/value pairs.
+    pub fn from_pairs<'a>(pairs: impl IntoIterator<Item = (&'a str, f64)>) -> SampleTruth {
+        SampleTruth(pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect())
+    }
 }
 
 /// Which program and version wrote the dataset.
@@ -47,6 +52,14 @@ pub struct DatasetMeta {
     pub noise: f64,
     /// How the latent z maps to the picture, in words.
     pub latent_mapping: String,
+    /// What a user would measure to turn latent-unit answers into SI units (pixels per metre,
+    /// focal length, incline angle, reference values of the physical quantity at given frames),
+    /// by name; empty for the oscillator scenes.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub calibration: BTreeMap<String, serde_json::Value>,
+    /// Frames per second of the (virtual) camera: 1/dt.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fps: Option<f64>,
     /// Distributions the per-sample amplitude and phase are drawn from, in words.
     pub sampling: String,
     pub samples: Vec<SampleTruth>,
