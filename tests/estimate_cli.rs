@@ -420,3 +420,78 @@ fn a_nan_loss_stops_with_the_last_good_parameters_and_says_so() {
     assert_eq!(r["stop"]["kind"], "non-finite-loss");
     assert!(estimate_of(&r, "gamma0").is_finite() && estimate_of(&r, "gamma1").is_finite());
 }
+
+#[test]
+fn a_missing_calibration_gives_latent_units_and_says_why() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = gen_dataset(
+        &tmp.path().join("data"),
+        "torricelli",
+        &["--samples", "30", "--size", "16"],
+    );
+    let npy = format!("{data}/frames.npy");
+    let out = tmp.path().join("run");
+    let o = run(
+        &estimate_bin(),
+        &[
+            &npy,
+            "--model",
+            "torricelli",
+            "--dt",
+            "1",
+            "--epochs",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--reference"), "{}", stderr(&o));
+    let r = read_report(&out);
+    let units: Vec<&str> = r["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["units"].as_str().unwrap())
+        .collect();
+    assert!(units.iter().all(|u| *u == "latent"), "{units:?}");
+    // With reference frames the same run answers k in SI units.
+    let o = run(
+        &estimate_bin(),
+        &[
+            &npy,
+            "--model",
+            "torricelli",
+            "--dt",
+            "1",
+            "--epochs",
+            "3",
+            "--reference",
+            "0:0=0.05,1:19=0.02",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = read_report(&out);
+    assert_eq!(r["parameters"][0]["name"], "k");
+    assert_eq!(r["parameters"][0]["units"], "SI");
+    let o = run(
+        &estimate_bin(),
+        &[
+            &npy,
+            "--model",
+            "torricelli",
+            "--dt",
+            "1",
+            "--reference",
+            "99:0=0.05,1:19=0.02",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--reference 99:0"), "{}", stderr(&o));
+}

@@ -373,3 +373,128 @@ fn numpy_loads_the_frames_unchanged() {
         "{sum} vs {numpy_sum}"
     );
 }
+
+#[test]
+fn delfys_scenes_write_their_model_truth_and_calibration_reproducibly() {
+    let gen = gen_bin();
+    let tmp = tempfile::tempdir().unwrap();
+    let cases = [
+        ("pendulum", "length", 0.90),
+        ("torricelli", "k", 0.0128),
+        ("sliding-block", "incline_deg", 25.0),
+        ("led", "gamma", 0.92),
+        ("free-fall", "g", 9.81),
+    ];
+    for (scenario, key, truth) in cases {
+        let mut outs = Vec::new();
+        for threads in ["1", "3"] {
+            let out = tmp.path().join(format!("{scenario}-{threads}"));
+            let o = run(
+                &gen,
+                &[
+                    "--scenario",
+                    scenario,
+                    "--setting",
+                    "2",
+                    "--out",
+                    out.to_str().unwrap(),
+                    "--samples",
+                    "9",
+                    "--size",
+                    "20",
+                    "--threads",
+                    threads,
+                ],
+            );
+            assert!(o.status.success(), "{scenario}: {}", stderr(&o));
+            outs.push(out);
+        }
+        for name in ["frames.npy", "meta.json"] {
+            assert!(
+                std::fs::read(outs[0].join(name)).unwrap()
+                    == std::fs::read(outs[1].join(name)).unwrap(),
+                "{scenario}/{name} differs between thread counts"
+            );
+        }
+        let ds = physvid_shared::read_dataset(&outs[0]).unwrap();
+        let meta = ds.meta.unwrap();
+        assert_eq!(meta.model.name, scenario);
+        assert!(
+            (meta.model.parameters[key] - truth).abs() < 1e-12,
+            "{scenario}: {key}"
+        );
+        assert!(meta.fps.unwrap() > 0.0 && (meta.fps.unwrap() * meta.dt - 1.0).abs() < 1e-9);
+        if scenario != "led" {
+            let refs = meta.calibration["reference_points"].as_array().unwrap();
+            assert_eq!(refs.len(), 2, "{scenario}");
+        }
+        assert!(ds.frames.iter().all(|v| (0.0..=1.0).contains(v)));
+        // Frames change over a clip: the scene moves.
+        let per_frame = 20 * 20;
+        let first: f32 = ds.frames[..per_frame].iter().sum();
+        let last: f32 = ds.frames[(ds.shape[1] - 1) * per_frame..ds.shape[1] * per_frame]
+            .iter()
+            .sum();
+        assert!(
+            (first - last).abs() > 1e-3 || scenario == "pendulum",
+            "{scenario} does not change"
+        );
+    }
+}
+
+#[test]
+fn impossible_delfys_parameters_are_refused() {
+    let gen = gen_bin();
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("never");
+    let o = out.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--scenario", "sliding-block", "--out", o, "--set", "mu=0.9"],
+            "tan",
+        ),
+        (
+            &["--scenario", "pendulum", "--out", o, "--set", "length=-1"],
+            "length",
+        ),
+        (
+            &["--scenario", "free-fall", "--out", o, "--set", "h0=0"],
+            "h0",
+        ),
+        (
+            &[
+                "--scenario",
+                "torricelli",
+                "--out",
+                o,
+                "--set",
+                "h_start=0.005",
+            ],
+            "h_start",
+        ),
+        (
+            &["--scenario", "led", "--out", o, "--set", "tau=3"],
+            "no parameter 'tau'",
+        ),
+        (
+            &["--scenario", "led", "--out", o, "--omega", "3"],
+            "--omega",
+        ),
+        (
+            &["--scenario", "intensity", "--out", o, "--set", "k=1"],
+            "--set",
+        ),
+        (
+            &["--scenario", "led", "--out", o, "--setting", "4"],
+            "--setting",
+        ),
+    ];
+    for (args, needle) in cases {
+        let r = run(&gen, args);
+        let err = stderr(&r);
+        assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    assert!(!out.exists());
+}

@@ -13,24 +13,51 @@ use std::path::PathBuf;
 pub enum ModelKind {
     /// z'' + γ1·z' + γ0·z = 0 (parameters gamma0, gamma1).
     DampedOscillator,
+    /// θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset).
+    Pendulum,
+    /// h' = −k·√h (k_latent, base).
+    Torricelli,
+    /// s'' = g·(sin α − μ·cos α), constant (acceleration_latent).
+    SlidingBlock,
+    /// I' = −γ·I (gamma, offset).
+    Led,
+    /// h'' = g (acceleration_latent).
+    FreeFall,
 }
 
 impl ModelKind {
+    pub const ALL: [ModelKind; 6] = [
+        ModelKind::DampedOscillator,
+        ModelKind::Pendulum,
+        ModelKind::Torricelli,
+        ModelKind::SlidingBlock,
+        ModelKind::Led,
+        ModelKind::FreeFall,
+    ];
+
     pub fn name(self) -> &'static str {
         match self {
             ModelKind::DampedOscillator => "damped-oscillator",
+            ModelKind::Pendulum => "pendulum",
+            ModelKind::Torricelli => "torricelli",
+            ModelKind::SlidingBlock => "sliding-block",
+            ModelKind::Led => "led",
+            ModelKind::FreeFall => "free-fall",
         }
     }
 
     pub fn from_name(name: &str) -> Option<ModelKind> {
-        [ModelKind::DampedOscillator]
-            .into_iter()
-            .find(|m| m.name() == name)
+        ModelKind::ALL.into_iter().find(|m| m.name() == name)
     }
 
+    /// Names of the physics block's learnable parameters, in its order.
     pub fn parameter_names(self) -> &'static [&'static str] {
         match self {
             ModelKind::DampedOscillator => &OSCILLATOR_PARAMETERS,
+            ModelKind::Pendulum => &["g_over_l", "damping", "angle_scale", "angle_offset"],
+            ModelKind::Torricelli => &["k_latent", "base"],
+            ModelKind::SlidingBlock | ModelKind::FreeFall => &["acceleration_latent"],
+            ModelKind::Led => &["gamma", "offset"],
         }
     }
 
@@ -38,6 +65,21 @@ impl ModelKind {
     pub fn default_init(self) -> Vec<f64> {
         match self {
             ModelKind::DampedOscillator => vec![1.0, 0.1],
+            ModelKind::Pendulum => vec![10.0, 0.1, 2.0, 0.0],
+            ModelKind::Torricelli => vec![0.1, -3.0],
+            ModelKind::SlidingBlock | ModelKind::FreeFall => vec![0.0],
+            ModelKind::Led => vec![1.0, -2.0],
+        }
+    }
+
+    /// Parameters learned as logarithms (must start > 0).
+    pub fn positive_parameters(self) -> &'static [&'static str] {
+        match self {
+            ModelKind::DampedOscillator => &["gamma0"],
+            ModelKind::Pendulum => &["g_over_l", "angle_scale"],
+            ModelKind::Torricelli => &["k_latent"],
+            ModelKind::Led => &["gamma"],
+            ModelKind::SlidingBlock | ModelKind::FreeFall => &[],
         }
     }
 }
@@ -71,6 +113,13 @@ pub struct EstimateConfig {
     pub lr_phys: f64,
     /// Starting values as NAME=VALUE pairs (model defaults where absent).
     pub init: Vec<(String, f64)>,
+    /// Calibration for SI answers: the physical quantity at reference frames, as
+    /// (clip, frame, value); read from meta.json when empty.
+    pub reference: Vec<(usize, usize, f64)>,
+    /// Incline of the sliding block in degrees (meta.json when absent).
+    pub incline_deg: Option<f64>,
+    /// Gravitational acceleration for the pendulum's L and the block's μ (default 9.81).
+    pub g: Option<f64>,
     pub integrator: Integrator,
     /// Train only from the given (or default) start, without the spectral start (the paper's
     /// behaviour).
@@ -92,6 +141,28 @@ fn positive(flag: &str, v: f64) -> Result<(), EstimateError> {
             "{flag} {v}: must be a finite number > 0"
         )))
     }
+}
+
+/// `--reference` values: CLIP:FRAME=VALUE triples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReferencePoints(pub Vec<(usize, usize, f64)>);
+
+/// Parses `--reference 0:0=0.07,12:19=0.01` (clip:frame=physical value).
+pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
+    text.split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|item| {
+            let bad = || format!("'{item}' is not CLIP:FRAME=VALUE (e.g. 0:0=0.07,3:19=0.01)");
+            let (at, v) = item.split_once('=').ok_or_else(bad)?;
+            let (c, f) = at.split_once(':').ok_or_else(bad)?;
+            Ok((
+                c.trim().parse().map_err(|_| bad())?,
+                f.trim().parse().map_err(|_| bad())?,
+                v.trim().parse().map_err(|_| bad())?,
+            ))
+        })
+        .collect::<Result<Vec<_>, String>>()
+        .map(ReferencePoints)
 }
 
 /// `--init` values: NAME=VALUE pairs in the order given.
@@ -158,10 +229,8 @@ impl EstimateConfig {
                     names.join(", ")
                 ))
             })?;
-            if name == "gamma0" && *v <= 0.0 {
-                return Err(input_error(format!(
-                    "--init gamma0={v}: must be > 0 (γ0 = ω² + ζ² of an oscillator)"
-                )));
+            if model.positive_parameters().contains(&name.as_str()) && *v <= 0.0 {
+                return Err(input_error(format!("--init {name}={v}: must be > 0")));
             }
             values[i] = *v;
         }

@@ -72,8 +72,9 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
         Some(meta) => {
             let meta_model = ModelKind::from_name(&meta.model.name).ok_or_else(|| {
                 input_error(format!(
-                    "meta.json names model '{}', which estimate does not know (known: damped-oscillator)",
-                    meta.model.name
+                    "meta.json names model '{}', which estimate does not know (known: {})",
+                    meta.model.name,
+                    ModelKind::ALL.map(ModelKind::name).join(", ")
                 ))
             })?;
             if let Some(dt) = cfg.dt {
@@ -112,13 +113,7 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
     let truth: BTreeMap<String, f64> = ds
         .meta
         .as_ref()
-        .map(|m| {
-            model
-                .parameter_names()
-                .iter()
-                .filter_map(|&p| m.model.parameters.get(p).map(|&v| (p.to_string(), v)))
-                .collect()
-        })
+        .map(|m| m.model.parameters.clone())
         .unwrap_or_default();
     let d = (c * h * w) as i64;
     let all = Tensor::from_slice(&ds.frames)

@@ -2,11 +2,14 @@
 //! arXiv 2410.01376) on libtorch: an MLP encoder maps frames to a latent, a physics block with
 //! learnable parameters rolls it forward, and the loss compares the two.
 
+pub mod blocks;
+pub mod calibration;
 pub mod config;
 pub mod data;
 pub mod encoder;
 pub mod error;
 pub mod loss;
+pub mod pendulum;
 pub mod physics;
 pub mod plots;
 pub mod progress;

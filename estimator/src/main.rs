@@ -1,7 +1,10 @@
 //! `estimate`: command-line entry point; parses flags into a validated `EstimateConfig` and calls `run`.
 
 use clap::Parser;
-use estimator::config::{parse_init, DeviceChoice, EstimateConfig, InitValues, ModelKind};
+use estimator::config::{
+    parse_init, parse_reference, DeviceChoice, EstimateConfig, InitValues, ModelKind,
+    ReferencePoints,
+};
 use estimator::encoder::EncoderKind;
 use estimator::loss::LossKind;
 use estimator::physics::Integrator;
@@ -45,10 +48,24 @@ struct Cli {
     /// is a relative step).
     #[arg(long, default_value_t = 1e-2)]
     lr_phys: f64,
-    /// Initial parameter values, NAME=VALUE[,NAME=VALUE] (default gamma0=1,gamma1=0.1).
+    /// Initial values of the block's parameters, NAME=VALUE[,NAME=VALUE] (damped-oscillator:
+    /// gamma0=1,gamma1=0.1; pendulum: g_over_l=10,damping=0.1,angle_scale=2,angle_offset=0;
+    /// torricelli: k_latent=0.1,base=-3; led: gamma=1,offset=-2; sliding-block, free-fall:
+    /// acceleration_latent=0).
     #[arg(long, value_parser = parse_init, value_name = "NAME=VALUE,...")]
     init: Option<InitValues>,
-    /// Physics integrator: the exact propagator, or the paper's Euler step (biased at large dt).
+    /// Calibration for answers in SI units: the physical quantity (level, distance, …) at two
+    /// or more frames, CLIP:FRAME=VALUE[,...] (taken from meta.json for gen data).
+    #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE,...")]
+    reference: Option<ReferencePoints>,
+    /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
+    #[arg(long)]
+    incline_deg: Option<f64>,
+    /// Gravitational acceleration in m/s² for the pendulum's L and the block's μ [default: 9.81].
+    #[arg(long)]
+    g: Option<f64>,
+    /// Physics integrator: exact (closed form, or RK4 with sub-steps for the pendulum), or the
+    /// paper's Euler step (biased at large dt).
     #[arg(long, value_enum, default_value_t = Integrator::Exact)]
     integrator: Integrator,
     /// Train only from --init (the paper's behaviour). By default a second start, estimated
@@ -93,6 +110,9 @@ fn main() -> ExitCode {
         lr: cli.lr,
         lr_phys: cli.lr_phys,
         init: cli.init.map(|i| i.0).unwrap_or_default(),
+        reference: cli.reference.map(|r| r.0).unwrap_or_default(),
+        incline_deg: cli.incline_deg,
+        g: cli.g,
         integrator: cli.integrator,
         single_start: cli.single_start,
         loss: cli.loss,

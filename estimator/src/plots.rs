@@ -67,13 +67,27 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// `parameters.png`: each parameter against the epoch, its ground truth dashed.
+struct BlockSeries<'a> {
+    name: &'a str,
+    truth: Option<f64>,
+}
+
+/// `parameters.png`: each of the block's parameters against the epoch, its ground truth dashed.
 pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError> {
-    let n = report.parameters.len().max(1);
+    let n = report.block_parameters.len().max(1);
     render_png(path, PANEL_HEIGHT * n as u32, |root| {
         let panels = root.split_evenly((n, 1));
         let epochs = report.history.len().max(2) as f64;
-        for (i, (panel, p)) in panels.iter().zip(&report.parameters).enumerate() {
+        for (i, (panel, name)) in panels.iter().zip(&report.block_parameters).enumerate() {
+            // Ground truth where the block's parameter is itself an SI answer.
+            let p = BlockSeries {
+                name: name.as_str(),
+                truth: report
+                    .parameters
+                    .iter()
+                    .find(|r| &r.name == name && r.units == "SI")
+                    .and_then(|r| r.truth),
+            };
             let series: Vec<(f64, f64)> = report
                 .history
                 .iter()
@@ -90,7 +104,7 @@ pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError
             chart
                 .configure_mesh()
                 .x_desc("epoch")
-                .y_desc(p.name.as_str())
+                .y_desc(p.name)
                 .draw()
                 .map_err(|e| e.to_string())?;
             chart

@@ -1,5 +1,6 @@
 //! The run's report: `report.json`, `metrics.csv`, the plots, and the table printed at the end.
 
+use crate::calibration::{derive, Calibration};
 use crate::config::EstimateConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
@@ -22,10 +23,19 @@ pub const COLLAPSE_FRACTION: f64 = 0.1;
 pub struct ParameterResult {
     pub name: String,
     pub estimate: f64,
-    pub initial: f64,
+    /// "SI" or "latent" (latent units: not determined by the video without a calibration).
+    pub units: String,
     pub truth: Option<f64>,
     /// (estimate − truth) / truth.
     pub relative_error: Option<f64>,
+}
+
+/// Where and how long the run went.
+#[derive(Debug, Clone, Copy)]
+pub struct RunInfo {
+    pub device: Device,
+    pub threads: usize,
+    pub wall: Duration,
 }
 
 /// Everything `report.json` holds.
@@ -44,6 +54,11 @@ pub struct Report {
     pub threads: usize,
     pub libtorch_version: String,
     pub parameters: Vec<ParameterResult>,
+    /// The block's own parameters at the start and at the end, in its order.
+    pub block_parameters: Vec<String>,
+    pub initial_values: Vec<f64>,
+    pub final_values: Vec<f64>,
+    pub calibration: Calibration,
     /// The starts tried (the given or default values, and the spectral estimate) and which
     /// one was kept.
     pub starts: Vec<crate::train::StartProbe>,
@@ -64,29 +79,36 @@ impl Report {
     pub fn new(
         cfg: &EstimateConfig,
         data: &ClipData,
-        device: Device,
-        threads: usize,
+        run: RunInfo,
         init: &[f64],
         outcome: TrainOutcome,
-        wall: Duration,
+        calibration: Calibration,
     ) -> Report {
-        let parameters: Vec<ParameterResult> = data
-            .model
-            .parameter_names()
-            .iter()
-            .zip(outcome.parameters.iter().zip(init))
-            .map(|(&name, (&estimate, &initial))| {
-                let truth = data.truth.get(name).copied();
+        let RunInfo {
+            device,
+            threads,
+            wall,
+        } = run;
+        let (rows, calibration_warnings) = derive(
+            data.model,
+            &outcome.parameters,
+            &calibration,
+            &outcome.reference_latents,
+        );
+        let parameters: Vec<ParameterResult> = rows
+            .into_iter()
+            .map(|r| {
+                let truth = r.truth_key.and_then(|k| data.truth.get(k).copied());
                 ParameterResult {
-                    name: name.to_string(),
-                    estimate,
-                    initial,
+                    relative_error: truth.filter(|t| *t != 0.0).map(|t| (r.estimate - t) / t),
+                    name: r.name,
+                    estimate: r.estimate,
+                    units: r.units.into(),
                     truth,
-                    relative_error: truth.filter(|t| *t != 0.0).map(|t| (estimate - t) / t),
                 }
             })
             .collect();
-        let mut warnings = Vec::new();
+        let mut warnings = calibration_warnings;
         let peak_std = outcome
             .history
             .iter()
@@ -133,6 +155,15 @@ impl Report {
             threads,
             libtorch_version: LIBTORCH_VERSION.into(),
             parameters,
+            block_parameters: data
+                .model
+                .parameter_names()
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            initial_values: init.to_vec(),
+            final_values: outcome.parameters.clone(),
+            calibration,
             starts: Vec::new(),
             epochs_run: outcome.epochs_run,
             best_epoch: outcome.best_epoch,
@@ -173,8 +204,8 @@ impl Report {
             self.device
         );
         s += &format!(
-            "{:<10} {:>12} {:>12} {:>12}\n",
-            "parameter", "estimate", "truth", "rel. error"
+            "{:<20} {:>12} {:>7} {:>12} {:>12}\n",
+            "parameter", "estimate", "units", "truth", "rel. error"
         );
         for p in &self.parameters {
             let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
@@ -182,8 +213,8 @@ impl Report {
                 .relative_error
                 .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
             s += &format!(
-                "{:<10} {:>12.6} {:>12} {:>12}\n",
-                p.name, p.estimate, truth, err
+                "{:<20} {:>12.6} {:>7} {:>12} {:>12}\n",
+                p.name, p.estimate, p.units, truth, err
             );
         }
         s.trim_end().to_string()
@@ -191,7 +222,7 @@ impl Report {
 
     /// `metrics.csv`: one row per epoch.
     pub fn metrics_csv(&self) -> String {
-        let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_str()).collect();
+        let names: Vec<&str> = self.block_parameters.iter().map(String::as_str).collect();
         let mut s = format!(
             "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
             names.join(",")

@@ -1,10 +1,12 @@
 //! `run`: loads the data, picks the device, trains, writes the report and plots, prints the table.
 
-use crate::config::{DeviceChoice, EstimateConfig};
+use crate::calibration::resolve;
+use crate::config::{DeviceChoice, EstimateConfig, ModelKind};
 use crate::data::load_clips;
+use crate::error::input_error;
 use crate::error::EstimateError;
 use crate::progress::Progress;
-use crate::report::{write_outputs, Report};
+use crate::report::{write_outputs, Report, RunInfo};
 use crate::spectral::spectral_start;
 use crate::train::fit;
 use std::time::Instant;
@@ -33,12 +35,29 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     let names = data.model.parameter_names();
     // Two starts: the given (or default) values and one read off the frames' principal
     // components; the better after a short probe is trained to the end.
-    let mut starts = vec![init];
+    let mut starts = vec![init.clone()];
     if !cfg.single_start {
-        starts.extend(spectral_start(&data.train, data.dt, cfg.integrator));
+        // The oscillator's two-step recurrence also gives the pendulum's small-angle g/L and
+        // damping; the other systems do not oscillate.
+        let spectral = match data.model {
+            ModelKind::DampedOscillator => spectral_start(&data.train, data.dt, cfg.integrator),
+            ModelKind::Pendulum => spectral_start(&data.train, data.dt, cfg.integrator)
+                .map(|g| vec![g[0], g[1].max(0.0), init[2], init[3]]),
+            _ => None,
+        };
+        starts.extend(spectral);
+    }
+    let calibration = resolve(cfg, data.meta.as_ref());
+    let reference: Vec<(usize, usize)> = calibration.reference.iter().map(|r| (r.0, r.1)).collect();
+    let [n, t, ..] = data.shape;
+    if let Some(&(c, f)) = reference.iter().find(|&&(c, f)| c >= n || f >= t) {
+        return Err(input_error(format!(
+            "--reference {c}:{f}: the data has clips 0..{n} and frames 0..{t}"
+        ))
+        .into());
     }
     let progress = Progress::new(cfg.epochs, cfg.quiet);
-    let (outcome, probes) = fit(cfg, &data, device, &starts, &mut |rec| {
+    let (outcome, probes) = fit(cfg, &data, device, &starts, &reference, &mut |rec| {
         progress.epoch(rec, names)
     })?;
     progress.finish();
@@ -47,16 +66,12 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
         .find(|p| p.chosen)
         .map_or(&starts[0], |p| &p.initial)
         .clone();
-    let report = Report::new(
-        cfg,
-        &data,
+    let info = RunInfo {
         device,
         threads,
-        &chosen,
-        outcome,
-        start.elapsed(),
-    )
-    .with_starts(probes);
+        wall: start.elapsed(),
+    };
+    let report = Report::new(cfg, &data, info, &chosen, outcome, calibration).with_starts(probes);
     write_outputs(cfg, &data, &report)?;
     println!("{}", report.table());
     for w in &report.warnings {

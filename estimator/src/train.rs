@@ -2,12 +2,12 @@
 //! validation every epoch, the best-validation checkpoint, learning-rate halving on plateaus and
 //! an early stop; a non-finite loss stops the run with the last good parameters.
 
+use crate::blocks::{build_block, PhysicsBlock};
 use crate::config::EstimateConfig;
 use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::error::EstimateError;
 use crate::loss::loss;
-use crate::physics::DampedOscillatorBlock;
 use serde::Serialize;
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
@@ -64,6 +64,8 @@ pub struct TrainOutcome {
     pub example_latents: Vec<Vec<f32>>,
     #[serde(skip)]
     pub example_rollouts: Vec<Vec<f32>>,
+    /// Encoded latents of the calibration's reference frames (clip, frame), in order.
+    pub reference_latents: Vec<f64>,
 }
 
 /// Encoder and physics block with their variable stores.
@@ -71,7 +73,7 @@ struct Model {
     enc_vs: nn::VarStore,
     phys_vs: nn::VarStore,
     encoder: Encoder,
-    block: DampedOscillatorBlock,
+    block: Box<dyn PhysicsBlock>,
 }
 
 impl Model {
@@ -149,9 +151,10 @@ impl<'a> Trainer<'a> {
         let enc_vs = nn::VarStore::new(device);
         let phys_vs = nn::VarStore::new(device);
         let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
-        let block = DampedOscillatorBlock::new(
+        let block = build_block(
+            data.model,
             &(phys_vs.root() / "physics"),
-            (init[0], init[1]),
+            init,
             cfg.integrator,
             data.dt,
         );
@@ -219,7 +222,7 @@ impl<'a> Trainer<'a> {
                 z.std(false).double_value(&[]),
             )
         });
-        let parameters = model.block.values().to_vec();
+        let parameters = model.block.values();
         if !finite || !val_loss.is_finite() || parameters.iter().any(|p| !p.is_finite()) {
             self.stop = Some(StopReason::NonFiniteLoss { epoch });
             return;
@@ -263,7 +266,7 @@ impl<'a> Trainer<'a> {
     }
 
     /// Restores the best epoch's state (the starting state if no epoch was finite: never NaN).
-    fn finish(self) -> TrainOutcome {
+    fn finish(self, reference: &[(usize, usize)]) -> TrainOutcome {
         let model = &self.model;
         model.restore(&self.best.2);
         let data = self.data;
@@ -278,8 +281,22 @@ impl<'a> Trainer<'a> {
                 zall.std(false).double_value(&[]),
             )
         });
+        let n_train = data.n_train() as usize;
+        let reference_latents = tch::no_grad(|| {
+            reference
+                .iter()
+                .map(|&(clip, frame)| {
+                    let one = if clip < n_train {
+                        data.train.narrow(0, clip as i64, 1)
+                    } else {
+                        data.val.narrow(0, (clip - n_train) as i64, 1)
+                    };
+                    model.encoder.encode(&one).double_value(&[0, frame as i64])
+                })
+                .collect()
+        });
         TrainOutcome {
-            parameters: model.block.values().to_vec(),
+            parameters: model.block.values(),
             best_epoch: self.best.1,
             best_val_rel_mse: self.best.0,
             epochs_run: self.history.len(),
@@ -288,6 +305,7 @@ impl<'a> Trainer<'a> {
             history: self.history,
             example_latents: examples,
             example_rollouts: rollouts,
+            reference_latents,
         }
     }
 }
@@ -313,6 +331,7 @@ pub fn fit(
     data: &ClipData,
     device: Device,
     starts: &[Vec<f64>],
+    reference: &[(usize, usize)],
     on_epoch: &mut dyn FnMut(&EpochRecord),
 ) -> Result<(TrainOutcome, Vec<StartProbe>), EstimateError> {
     assert!(!starts.is_empty(), "at least one start");
@@ -351,7 +370,7 @@ pub fn fit(
     while t.stop.is_none() {
         t.epoch(on_epoch);
     }
-    Ok((t.finish(), probes))
+    Ok((t.finish(reference), probes))
 }
 
 /// Trains from one start (see [`fit`]).
@@ -362,5 +381,5 @@ pub fn train(
     init: &[f64],
     on_epoch: &mut dyn FnMut(&EpochRecord),
 ) -> Result<TrainOutcome, EstimateError> {
-    fit(cfg, data, device, &[init.to_vec()], on_epoch).map(|(o, _)| o)
+    fit(cfg, data, device, &[init.to_vec()], &[], on_epoch).map(|(o, _)| o)
 }

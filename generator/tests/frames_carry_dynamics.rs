@@ -37,6 +37,7 @@ fn statistic(scenario: Scenario, frame: &[f32], size: usize) -> f64 {
                 / mass
         }
         Scenario::Scale => mass.sqrt(),
+        other => unreachable!("{other} is not an oscillator scene"),
     }
 }
 

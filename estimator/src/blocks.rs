@@ -1,0 +1,198 @@
+//! `PhysicsBlock`: the interface every physics block implements, the block for each model, and
+//! the first-order and constant-acceleration blocks of the Delfys75 systems (LED, Torricelli,
+//! sliding block, free fall). The damped oscillator lives in `physics.rs`, the pendulum in
+//! `pendulum.rs`.
+
+use crate::config::ModelKind;
+use crate::pendulum::PendulumBlock;
+use crate::physics::{DampedOscillatorBlock, Integrator};
+use tch::nn;
+use tch::{Kind, Tensor};
+
+/// A differentiable model of the latent's dynamics with learnable parameters.
+pub trait PhysicsBlock {
+    /// Frames the rollout starts from (1 for first-order models, 2 for second-order ones).
+    fn order(&self) -> i64;
+    /// Rolls the latent out over `steps` frames from the first `order()` columns of `z` [B, T].
+    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor;
+    /// Current parameter values, in the order of [`ModelKind::parameter_names`].
+    fn values(&self) -> Vec<f64>;
+}
+
+impl PhysicsBlock for DampedOscillatorBlock {
+    fn order(&self) -> i64 {
+        2
+    }
+    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+        DampedOscillatorBlock::rollout(self, z, steps)
+    }
+    fn values(&self) -> Vec<f64> {
+        DampedOscillatorBlock::values(self).to_vec()
+    }
+}
+
+/// Builds the block of `model` under `path`, starting from `init` (the model's parameter order).
+pub fn build_block(
+    model: ModelKind,
+    path: &nn::Path,
+    init: &[f64],
+    integrator: Integrator,
+    dt: f64,
+) -> Box<dyn PhysicsBlock> {
+    match model {
+        ModelKind::DampedOscillator => Box::new(DampedOscillatorBlock::new(
+            path,
+            (init[0], init[1]),
+            integrator,
+            dt,
+        )),
+        ModelKind::Led => Box::new(ExponentialDecayBlock::new(path, init, integrator, dt)),
+        ModelKind::Torricelli => Box::new(TorricelliBlock::new(path, init, integrator, dt)),
+        ModelKind::SlidingBlock | ModelKind::FreeFall => {
+            Box::new(ConstantAccelerationBlock::new(path, init, dt))
+        }
+        ModelKind::Pendulum => Box::new(PendulumBlock::new(path, init, integrator, dt)),
+    }
+}
+
+/// Frame index k = 0..steps as a float row vector [1, steps].
+fn frame_index(steps: i64, z: &Tensor) -> Tensor {
+    Tensor::arange(steps, (Kind::Float, z.device())).unsqueeze(0)
+}
+
+/// LED: z' = −γ·(z − c), with the latent's resting value c learned too (the latent's offset is
+/// arbitrary). Parameters: gamma (1/s, scale-free: SI), offset (latent units).
+pub struct ExponentialDecayBlock {
+    log_gamma: Tensor,
+    offset: Tensor,
+    integrator: Integrator,
+    dt: f64,
+}
+
+impl ExponentialDecayBlock {
+    pub fn new(path: &nn::Path, init: &[f64], integrator: Integrator, dt: f64) -> Self {
+        ExponentialDecayBlock {
+            log_gamma: path.var("log_gamma", &[], nn::Init::Const(init[0].ln())),
+            offset: path.var("offset", &[], nn::Init::Const(init[1])),
+            integrator,
+            dt,
+        }
+    }
+}
+
+impl PhysicsBlock for ExponentialDecayBlock {
+    fn order(&self) -> i64 {
+        1
+    }
+    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+        let k = frame_index(steps, z);
+        let gamma = self.log_gamma.exp();
+        // Exact: e^(−γ·k·dt); the paper's Euler step: (1 − γ·dt)^k.
+        let decay = match self.integrator {
+            Integrator::Exact => (k * (-&gamma * self.dt)).exp(),
+            Integrator::Euler => (-(&gamma * self.dt) + 1.0).pow(&k),
+        };
+        let z0 = z.narrow(1, 0, 1);
+        &self.offset + (z0 - &self.offset) * decay
+    }
+    fn values(&self) -> Vec<f64> {
+        vec![
+            self.log_gamma.double_value(&[]).exp(),
+            self.offset.double_value(&[]),
+        ]
+    }
+}
+
+/// Torricelli: h' = −k·√h. The latent is an affine image of h, z = α·h + c, so with
+/// u = σ·(z − base) (σ = ±1 read off the data: the level falls) the block is u' = −k_lat·√u,
+/// solved exactly as √u(t) = √u(0) − k_lat·t/2 (Euler: the paper's step). Parameters: k_latent
+/// (√latent/s; k = k_latent/√|α| in SI), base (the latent of an empty tank).
+pub struct TorricelliBlock {
+    log_k: Tensor,
+    base: Tensor,
+    integrator: Integrator,
+    dt: f64,
+}
+
+impl TorricelliBlock {
+    pub fn new(path: &nn::Path, init: &[f64], integrator: Integrator, dt: f64) -> Self {
+        TorricelliBlock {
+            log_k: path.var("log_k", &[], nn::Init::Const(init[0].ln())),
+            base: path.var("base", &[], nn::Init::Const(init[1])),
+            integrator,
+            dt,
+        }
+    }
+}
+
+impl PhysicsBlock for TorricelliBlock {
+    fn order(&self) -> i64 {
+        1
+    }
+    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+        // σ: the level falls, so u = σ(z − base) must fall over each clip.
+        let trend = (z.select(1, steps - 1) - z.select(1, 0)).mean(Kind::Float);
+        let sigma = if trend.double_value(&[]) <= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let k = self.log_k.exp();
+        let u0 = ((z.narrow(1, 0, 1) - &self.base) * sigma).clamp_min(0.0);
+        let u = match self.integrator {
+            Integrator::Exact => {
+                let t = frame_index(steps, z) * self.dt;
+                ((u0 + 1e-12).sqrt() - t * &k * 0.5).clamp_min(0.0).square()
+            }
+            Integrator::Euler => {
+                let mut cols = vec![u0];
+                for _ in 1..steps {
+                    let last = cols.last().expect("one column");
+                    let next = (last - (last + 1e-12).sqrt() * &k * self.dt).clamp_min(0.0);
+                    cols.push(next);
+                }
+                Tensor::cat(&cols, 1)
+            }
+        };
+        &self.base + u * sigma
+    }
+    fn values(&self) -> Vec<f64> {
+        vec![
+            self.log_k.double_value(&[]).exp(),
+            self.base.double_value(&[]),
+        ]
+    }
+}
+
+/// Sliding block and free fall: z'' = a (constant), exact from two frames:
+/// z[k] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler step gives the same sequence).
+/// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
+pub struct ConstantAccelerationBlock {
+    /// a·dt², the change of velocity per frame (so one learning rate suits any dt).
+    per_frame: Tensor,
+    dt: f64,
+}
+
+impl ConstantAccelerationBlock {
+    pub fn new(path: &nn::Path, init: &[f64], dt: f64) -> Self {
+        ConstantAccelerationBlock {
+            per_frame: path.var("accel_per_frame", &[], nn::Init::Const(init[0] * dt * dt)),
+            dt,
+        }
+    }
+}
+
+impl PhysicsBlock for ConstantAccelerationBlock {
+    fn order(&self) -> i64 {
+        2
+    }
+    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+        let k = frame_index(steps, z);
+        let z0 = z.narrow(1, 0, 1);
+        let z1 = z.narrow(1, 1, 1);
+        &z0 + (&z1 - &z0) * &k + &self.per_frame * (&k * (&k - 1.0) * 0.5)
+    }
+    fn values(&self) -> Vec<f64> {
+        vec![self.per_frame.double_value(&[]) / (self.dt * self.dt)]
+    }
+}
