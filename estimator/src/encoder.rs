@@ -11,6 +11,8 @@ pub enum EncoderKind {
     Small,
     /// The paper's D → 1000 → 100 → 1 with ReLU.
     Paper,
+    /// D → 1: an affine map of the pixels (enough when brightness or coverage is affine in z).
+    Linear,
 }
 
 impl EncoderKind {
@@ -18,6 +20,7 @@ impl EncoderKind {
         match self {
             EncoderKind::Small => &[16],
             EncoderKind::Paper => &[1000, 100],
+            EncoderKind::Linear => &[],
         }
     }
 }

@@ -75,7 +75,7 @@ struct Cli {
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.
     #[arg(long, value_enum, default_value_t = LossKind::MseKl)]
     loss: LossKind,
-    /// Encoder: small (D → 16 → 1) or the paper's (D → 1000 → 100 → 1).
+    /// Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), or linear (D → 1).
     #[arg(long, value_enum, default_value_t = EncoderKind::Small)]
     encoder: EncoderKind,
     /// Seed of the weight initialisation and batch order.

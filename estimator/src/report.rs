@@ -30,6 +30,44 @@ pub struct ParameterResult {
     pub relative_error: Option<f64>,
 }
 
+/// Least-squares fit encoded = slope·truth + intercept.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct AffineFit {
+    pub slope: f64,
+    pub intercept: f64,
+    pub r2: f64,
+}
+
+/// Fits the encoded validation latents against the ground truth of the same clips.
+fn latent_fit(data: &ClipData, encoded: &[Vec<f32>]) -> Option<AffineFit> {
+    let meta = data.meta.as_ref()?;
+    let n_train = data.n_train() as usize;
+    let pairs: Vec<(f64, f64)> = encoded
+        .iter()
+        .enumerate()
+        .flat_map(|(i, row)| {
+            let truth = &meta.latents[n_train + i];
+            row.iter().zip(truth).map(|(&z, &q)| (q, z as f64))
+        })
+        .collect();
+    let n = pairs.len() as f64;
+    let (mx, my) = pairs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxx, sxy, syy) = pairs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
+        (
+            a + (x - mx).powi(2),
+            b + (x - mx) * (y - my),
+            c + (y - my).powi(2),
+        )
+    });
+    (sxx > 0.0 && syy > 0.0).then(|| AffineFit {
+        slope: sxy / sxx,
+        intercept: my - sxy / sxx * mx,
+        r2: sxy * sxy / (sxx * syy),
+    })
+}
+
 /// Where and how long the run went.
 #[derive(Debug, Clone, Copy)]
 pub struct RunInfo {
@@ -68,6 +106,9 @@ pub struct Report {
     pub stop: StopReason,
     pub latent_std: f64,
     pub latent_collapsed: bool,
+    /// With ground truth: how well an affine map of the true latent explains the encoded one
+    /// over the validation clips (the method's premise; its sign and scale are arbitrary).
+    pub latent_vs_truth: Option<AffineFit>,
     pub wall_time_s: f64,
     pub warnings: Vec<String>,
     pub history: Vec<crate::train::EpochRecord>,
@@ -171,6 +212,7 @@ impl Report {
             stop: outcome.stop.clone(),
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
+            latent_vs_truth: latent_fit(data, &outcome.val_latents),
             wall_time_s: wall.as_secs_f64(),
             warnings,
             history: outcome.history.clone(),

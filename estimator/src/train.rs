@@ -64,6 +64,9 @@ pub struct TrainOutcome {
     pub example_latents: Vec<Vec<f32>>,
     #[serde(skip)]
     pub example_rollouts: Vec<Vec<f32>>,
+    /// Encoded latents of every validation clip, [clip][frame].
+    #[serde(skip)]
+    pub val_latents: Vec<Vec<f32>>,
     /// Encoded latents of the calibration's reference frames (clip, frame), in order.
     pub reference_latents: Vec<f64>,
 }
@@ -271,7 +274,7 @@ impl<'a> Trainer<'a> {
         model.restore(&self.best.2);
         let data = self.data;
         let steps = data.frames_per_clip;
-        let (examples, rollouts, latent_std) = tch::no_grad(|| {
+        let (examples, rollouts, latent_std, val_latents) = tch::no_grad(|| {
             let k = data.n_val().min(4);
             let (z, z_hat) = model.forward(&data.val.narrow(0, 0, k), steps);
             let (zall, _) = model.forward(&data.val, steps);
@@ -279,6 +282,7 @@ impl<'a> Trainer<'a> {
                 to_rows(&z),
                 to_rows(&z_hat),
                 zall.std(false).double_value(&[]),
+                to_rows(&zall),
             )
         });
         let n_train = data.n_train() as usize;
@@ -305,6 +309,7 @@ impl<'a> Trainer<'a> {
             history: self.history,
             example_latents: examples,
             example_rollouts: rollouts,
+            val_latents,
             reference_latents,
         }
     }

@@ -409,10 +409,11 @@ mod tests {
         let dt = 0.001;
         let period = |amp: f64| {
             let z = pendulum_trajectory(w2, 0.0, amp, 0.0, 6000, dt);
-            let k = (1..z.len())
-                .find(|&k| z[k - 1] < 0.0 && z[k] >= 0.0)
-                .unwrap();
-            4.0 * k as f64 * dt
+            // Released at rest at +amp: the first zero crossing is a quarter period later
+            // (interpolated between samples).
+            let k = (1..z.len()).find(|&k| z[k] <= 0.0).unwrap();
+            let frac = z[k - 1] / (z[k - 1] - z[k]);
+            4.0 * (k as f64 - 1.0 + frac) * dt
         };
         let t0 = 2.0 * PI / w2.sqrt();
         assert!((period(0.01) / t0 - 1.0).abs() < 2e-3);
