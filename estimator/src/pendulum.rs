@@ -113,22 +113,9 @@ mod tests {
         let vs = nn::VarStore::new(tch::Device::Cpu);
         let (w2, zeta, dt) = (9.81 / 0.45, 0.059, 0.1);
         let b = PendulumBlock::new(&vs.root(), &[w2, zeta, 2.0, 0.3], Integrator::Exact, dt);
-        // Reference: RK4 with 2000 steps per frame from a 60° release.
-        let (mut th, mut om) = (60f64.to_radians(), 0.0f64);
-        let mut truth = Vec::new();
-        for _ in 0..12 {
-            truth.push(th);
-            let h = dt / 2000.0;
-            for _ in 0..2000 {
-                let f = |t: f64, o: f64| (o, -w2 * t.sin() - zeta * o);
-                let k1 = f(th, om);
-                let k2 = f(th + h / 2.0 * k1.0, om + h / 2.0 * k1.1);
-                let k3 = f(th + h / 2.0 * k2.0, om + h / 2.0 * k2.1);
-                let k4 = f(th + h * k3.0, om + h * k3.1);
-                th += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-                om += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-            }
-        }
+        // Reference: gen's own trajectory (RK4, 64 sub-steps per frame) from a 60° release.
+        let truth =
+            generator::delfys::pendulum_trajectory(w2, zeta, 60f64.to_radians(), 0.0, 12, dt);
         let z: Vec<f32> = truth.iter().map(|t| (2.0 * t + 0.3) as f32).collect();
         let zt = Tensor::from_slice(&z).view([1, 12]);
         let r = b.rollout(&zt, 12);
