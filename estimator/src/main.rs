@@ -15,8 +15,9 @@ use std::process::ExitCode;
 /// Estimate the physical parameters of a known ODE from video, without labels.
 ///
 /// An MLP encoder maps each frame to a latent z, a physics block with learnable parameters rolls
-/// z forward from the first two frames of each clip, and the loss is MSE(encoded, rolled out) +
-/// KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025, arXiv 2410.01376). Ends with a table of estimates (and
+/// z forward from the first frame (first-order models) or two frames (second-order) of each
+/// clip, and the loss is MSE(encoded, rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025,
+/// arXiv 2410.01376). Values are labelled SI or latent units; latent-unit ones need --reference. Ends with a table of estimates (and
 /// ground truth with relative errors when meta.json gives them) and writes report.json,
 /// metrics.csv, parameters.png and latents.png into --out.
 #[derive(Debug, Parser)]

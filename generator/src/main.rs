@@ -21,7 +21,7 @@ use std::process::ExitCode;
 #[derive(Debug, Parser)]
 #[command(name = "gen", version, allow_negative_numbers = true)]
 struct Cli {
-    /// What z controls: the brightness of a fixed disc, the horizontal position of a disc, or its size.
+    /// The scene: one of the three damped-oscillator scenes (what z controls) or a Delfys75 system.
     #[arg(long, value_enum)]
     scenario: Scenario,
     /// Output directory (created; must be empty unless --force).
