@@ -171,20 +171,9 @@ pub struct InitValues(pub Vec<(String, f64)>);
 
 /// Parses `--init` text such as `gamma0=10,gamma1=0.5`.
 pub fn parse_init(text: &str) -> Result<InitValues, String> {
-    text.split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|pair| {
-            let (k, v) = pair
-                .split_once('=')
-                .ok_or_else(|| format!("'{pair}' is not NAME=VALUE (e.g. gamma0=10,gamma1=0.5)"))?;
-            let v: f64 = v
-                .trim()
-                .parse()
-                .map_err(|_| format!("'{v}' in '{pair}' is not a number"))?;
-            Ok((k.trim().to_string(), v))
-        })
-        .collect::<Result<Vec<_>, String>>()
+    physvid_shared::cli::parse_name_values(text)
         .map(InitValues)
+        .map_err(|e| format!("{e} (e.g. gamma0=10,gamma1=0.5)"))
 }
 
 impl EstimateConfig {

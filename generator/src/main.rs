@@ -2,6 +2,7 @@
 
 use clap::Parser;
 use generator::{ConfigError, GenConfig, Scenario};
+use physvid_shared::cli::parse_name_values;
 use physvid_shared::DatasetError;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -93,34 +94,26 @@ fn config_from(cli: Cli) -> Result<GenConfig, ConfigError> {
                 });
             }
         }
-        for pair in cli
-            .set
-            .iter()
-            .flat_map(|s| s.split(','))
-            .filter(|p| !p.trim().is_empty())
-        {
-            let bad = |expected: String| ConfigError {
-                flag: "--set",
-                value: pair.to_string(),
-                expected,
-            };
-            let (k, v) = pair
-                .split_once('=')
-                .ok_or_else(|| bad("is not NAME=VALUE".into()))?;
-            let k = k.trim();
-            if !params.contains_key(k) {
+        let text = cli.set.clone().unwrap_or_default();
+        let pairs = parse_name_values(&text).map_err(|expected| ConfigError {
+            flag: "--set",
+            value: text.clone(),
+            expected,
+        })?;
+        for (k, v) in pairs {
+            if !params.contains_key(&k) {
                 let names: Vec<&str> = params.keys().map(String::as_str).collect();
-                return Err(bad(format!(
-                    "{} has no parameter '{k}'; its parameters are {}",
-                    system.model_name(),
-                    names.join(", ")
-                )));
+                return Err(ConfigError {
+                    flag: "--set",
+                    value: format!("{k}={v}"),
+                    expected: format!(
+                        "{} has no parameter '{k}'; its parameters are {}",
+                        system.model_name(),
+                        names.join(", ")
+                    ),
+                });
             }
-            let v: f64 = v
-                .trim()
-                .parse()
-                .map_err(|_| bad(format!("'{}' is not a number", v.trim())))?;
-            params.insert(k.to_string(), v);
+            params.insert(k, v);
         }
     } else if cli.set.is_some() {
         return Err(ConfigError {
