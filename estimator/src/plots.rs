@@ -67,11 +67,6 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-struct BlockSeries<'a> {
-    name: &'a str,
-    truth: Option<f64>,
-}
-
 /// `parameters.png`: each of the block's parameters against the epoch, its ground truth dashed.
 pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError> {
     let n = report.block_parameters.len().max(1);
@@ -80,22 +75,19 @@ pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError
         let epochs = report.history.len().max(2) as f64;
         for (i, (panel, name)) in panels.iter().zip(&report.block_parameters).enumerate() {
             // Ground truth where the block's parameter is itself an SI answer.
-            let p = BlockSeries {
-                name: name.as_str(),
-                truth: report
-                    .parameters
-                    .iter()
-                    .find(|r| &r.name == name && r.units == "SI")
-                    .and_then(|r| r.truth),
-            };
+            let truth = report
+                .parameters
+                .iter()
+                .find(|r| &r.name == name && r.units == "SI")
+                .and_then(|r| r.truth);
             let series: Vec<(f64, f64)> = report
                 .history
                 .iter()
                 .map(|r| (r.epoch as f64, r.parameters[i]))
                 .collect();
-            let (lo, hi) = range(series.iter().map(|s| s.1).chain(p.truth));
+            let (lo, hi) = range(series.iter().map(|s| s.1).chain(truth));
             let mut chart = ChartBuilder::on(panel)
-                .caption(format!("{} over training", p.name), ("sans-serif", 18))
+                .caption(format!("{name} over training"), ("sans-serif", 18))
                 .margin(10)
                 .x_label_area_size(30)
                 .y_label_area_size(70)
@@ -104,7 +96,7 @@ pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError
             chart
                 .configure_mesh()
                 .x_desc("epoch")
-                .y_desc(p.name)
+                .y_desc(name.as_str())
                 .draw()
                 .map_err(|e| e.to_string())?;
             chart
@@ -112,7 +104,7 @@ pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError
                 .map_err(|e| e.to_string())?
                 .label("estimate")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
-            if let Some(t) = p.truth {
+            if let Some(t) = truth {
                 chart
                     .draw_series(DashedLineSeries::new(
                         vec![(0.0, t), (epochs, t)],

@@ -51,8 +51,13 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     let reference: Vec<(usize, usize)> = calibration.reference.iter().map(|r| (r.0, r.1)).collect();
     let [n, t, ..] = data.shape;
     if let Some(&(c, f)) = reference.iter().find(|&&(c, f)| c >= n || f >= t) {
+        let origin = if calibration.source == "flags" {
+            "--reference"
+        } else {
+            "meta.json reference point"
+        };
         return Err(input_error(format!(
-            "--reference {c}:{f}: the data has clips 0..{n} and frames 0..{t}"
+            "{origin} {c}:{f}: the data has clips 0..{n} and frames 0..{t}"
         ))
         .into());
     }

@@ -86,26 +86,25 @@ impl Model {
         (z, z_hat)
     }
 
-    fn snapshot(&self) -> Vec<Tensor> {
+    /// Every variable of the encoder and the block, in a fixed order (sorted by name).
+    fn variables(&self) -> Vec<Tensor> {
         let mut out = Vec::new();
         for vs in [&self.enc_vs, &self.phys_vs] {
             let mut vars: Vec<_> = vs.variables().into_iter().collect();
             vars.sort_by(|a, b| a.0.cmp(&b.0));
-            out.extend(vars.into_iter().map(|(_, t)| t.detach().copy()));
+            out.extend(vars.into_iter().map(|(_, t)| t));
         }
         out
     }
 
+    fn snapshot(&self) -> Vec<Tensor> {
+        self.variables().iter().map(|t| t.detach().copy()).collect()
+    }
+
     fn restore(&self, saved: &[Tensor]) {
-        let mut i = 0;
         tch::no_grad(|| {
-            for vs in [&self.enc_vs, &self.phys_vs] {
-                let mut vars: Vec<_> = vs.variables().into_iter().collect();
-                vars.sort_by(|a, b| a.0.cmp(&b.0));
-                for (_, mut t) in vars {
-                    t.copy_(&saved[i]);
-                    i += 1;
-                }
+            for (mut t, s) in self.variables().into_iter().zip(saved) {
+                t.copy_(s);
             }
         });
     }
@@ -276,13 +275,12 @@ impl<'a> Trainer<'a> {
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents) = tch::no_grad(|| {
             let k = data.n_val().min(4);
-            let (z, z_hat) = model.forward(&data.val.narrow(0, 0, k), steps);
-            let (zall, _) = model.forward(&data.val, steps);
+            let (z, z_hat) = model.forward(&data.val, steps);
             (
+                to_rows(&z.narrow(0, 0, k)),
+                to_rows(&z_hat.narrow(0, 0, k)),
+                z.std(false).double_value(&[]),
                 to_rows(&z),
-                to_rows(&z_hat),
-                zall.std(false).double_value(&[]),
-                to_rows(&zall),
             )
         });
         let n_train = data.n_train() as usize;

@@ -161,11 +161,13 @@ const SAMPLES_PER_PIECE: usize = 64;
 /// writing overlaps rendering and memory holds only a few pieces. Returns the written paths.
 pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
     let mut writer = DatasetWriter::create(&cfg.out, cfg.shape(), cfg.force)?;
-    let mut all = Generated {
+    // Ground truth of every sample; only the preview's clips keep their frames in memory.
+    let mut truth = Generated {
         frames: Vec::new(),
         samples: Vec::with_capacity(cfg.samples),
         latents: Vec::with_capacity(cfg.samples),
     };
+    let mut preview_frames = Vec::new();
     let preview_samples = cfg.samples.min(4);
     let written: Result<DatasetWriter, DatasetError> = std::thread::scope(|s| {
         let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f32>>(1);
@@ -180,10 +182,10 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
             let g = generate_samples(cfg, start..end);
             if start == 0 {
                 let per_sample = cfg.frames * cfg.size * cfg.size;
-                all.frames = g.frames[..preview_samples * per_sample].to_vec();
+                preview_frames = g.frames[..preview_samples * per_sample].to_vec();
             }
-            all.samples.extend(g.samples);
-            all.latents.extend(g.latents);
+            truth.samples.extend(g.samples);
+            truth.latents.extend(g.latents);
             if tx.send(g.frames).is_err() {
                 break; // The writer failed; its error comes back from join.
             }
@@ -192,8 +194,8 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         handle.join().expect("writer thread does not panic")
     });
     let writer = written?;
-    let meta = dataset_meta(cfg, &all);
-    let png = preview_png(cfg, &all.frames);
+    let meta = dataset_meta(cfg, &truth);
+    let png = preview_png(cfg, &preview_frames);
     Ok(writer.finish(&meta, &png)?)
 }
 
