@@ -426,7 +426,7 @@ fn delfys_scenes_write_their_model_truth_and_calibration_reproducibly() {
         assert!(meta.fps.unwrap() > 0.0 && (meta.fps.unwrap() * meta.dt - 1.0).abs() < 1e-9);
         if scenario != "led" {
             let refs = meta.calibration["reference_points"].as_array().unwrap();
-            assert_eq!(refs.len(), 2, "{scenario}");
+            assert_eq!(refs.len(), 5, "{scenario}");
         }
         assert!(ds.frames.iter().all(|v| (0.0..=1.0).contains(v)));
         // The scene moves: the first and last frame of the first clip differ.

@@ -13,8 +13,9 @@ use tch::{Kind, Tensor};
 pub trait PhysicsBlock {
     /// Frames the rollout starts from (1 for first-order models, 2 for second-order ones).
     fn order(&self) -> i64;
-    /// Rolls the latent out over `steps` frames from the first `order()` columns of `z` [B, T].
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor;
+    /// Rolls the latent out over `steps` frames from the first `order()` columns of `z` [B, T];
+    /// `start` [B] is each clip's start time since the release (s) where the data gives it.
+    fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor;
     /// Current parameter values, in the order of [`ModelKind::parameter_names`].
     fn values(&self) -> Vec<f64>;
 }
@@ -23,7 +24,7 @@ impl PhysicsBlock for DampedOscillatorBlock {
     fn order(&self) -> i64 {
         2
     }
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
         DampedOscillatorBlock::rollout(self, z, steps)
     }
     fn values(&self) -> Vec<f64> {
@@ -31,13 +32,16 @@ impl PhysicsBlock for DampedOscillatorBlock {
     }
 }
 
-/// Builds the block of `model` under `path`, starting from `init` (the model's parameter order).
+/// Builds the block of `model` under `path`, starting from `init` (the model's parameter order);
+/// `timed`: the clips' start times since the release are known (see
+/// [`ConstantAccelerationBlock`]).
 pub fn build_block(
     model: ModelKind,
     path: &nn::Path,
     init: &[f64],
     integrator: Integrator,
     dt: f64,
+    timed: bool,
 ) -> Box<dyn PhysicsBlock> {
     match model {
         ModelKind::DampedOscillator => Box::new(DampedOscillatorBlock::new(
@@ -49,7 +53,7 @@ pub fn build_block(
         ModelKind::Led => Box::new(ExponentialDecayBlock::new(path, init, integrator, dt)),
         ModelKind::Torricelli => Box::new(TorricelliBlock::new(path, init, integrator, dt)),
         ModelKind::SlidingBlock | ModelKind::FreeFall => {
-            Box::new(ConstantAccelerationBlock::new(path, init, dt))
+            Box::new(ConstantAccelerationBlock::new(path, init, dt, timed))
         }
         ModelKind::Pendulum => Box::new(PendulumBlock::new(path, init, integrator, dt)),
     }
@@ -60,8 +64,12 @@ fn frame_index(steps: i64, z: &Tensor) -> Tensor {
     Tensor::arange(steps, (Kind::Float, z.device())).unsqueeze(0)
 }
 
-/// LED: z' = −γ·(z − c), with the latent's resting value c learned too (the latent's offset is
-/// arbitrary). Parameters: gamma (1/s, scale-free: SI), offset (latent units).
+/// LED: z' = −γ·(z − c), with the latent's resting value c (the latent of a dark LED) as well.
+/// Over a short clip a decay is nearly a straight line, so only γ·(z0 − c) is sharply fixed and
+/// gradient descent on (γ, c) crawls along that valley. So c is not a gradient parameter: for
+/// the current γ, it is the least-squares best value over the batch, in closed form (variable
+/// projection), and the gradient flows through that solution; the last value is kept as a
+/// buffer for the report. Parameters: gamma (1/s, scale-free: SI), offset (latent units).
 pub struct ExponentialDecayBlock {
     log_gamma: Tensor,
     offset: Tensor,
@@ -71,9 +79,11 @@ pub struct ExponentialDecayBlock {
 
 impl ExponentialDecayBlock {
     pub fn new(path: &nn::Path, init: &[f64], integrator: Integrator, dt: f64) -> Self {
+        let mut offset = path.zeros_no_train("offset", &[]);
+        let _ = tch::no_grad(|| offset.fill_(init[1]));
         ExponentialDecayBlock {
             log_gamma: path.var("log_gamma", &[], nn::Init::Const(init[0].ln())),
-            offset: path.var("offset", &[], nn::Init::Const(init[1])),
+            offset,
             integrator,
             dt,
         }
@@ -84,7 +94,7 @@ impl PhysicsBlock for ExponentialDecayBlock {
     fn order(&self) -> i64 {
         1
     }
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
         let k = frame_index(steps, z);
         let gamma = self.log_gamma.exp();
         // Exact: e^(−γ·k·dt); the paper's Euler step: (1 − γ·dt)^k.
@@ -93,7 +103,14 @@ impl PhysicsBlock for ExponentialDecayBlock {
             Integrator::Euler => (-(&gamma * self.dt) + 1.0).pow(&k),
         };
         let z0 = z.narrow(1, 0, 1);
-        &self.offset + (z0 - &self.offset) * decay
+        // z[k] − z0·d[k] = c·(1 − d[k]): c by least squares over the batch's frames.
+        let rest = -&decay + 1.0;
+        let num = ((z.narrow(1, 0, steps) - &z0 * &decay) * &rest).sum(Kind::Float);
+        let den = (rest.square().sum(Kind::Float) * z.size()[0] as f64).clamp_min(1e-12);
+        let offset = num / den;
+        let mut buffer = self.offset.shallow_clone();
+        tch::no_grad(|| buffer.copy_(&offset));
+        &offset + (z0 - &offset) * decay
     }
     fn values(&self) -> Vec<f64> {
         vec![
@@ -129,7 +146,7 @@ impl PhysicsBlock for TorricelliBlock {
     fn order(&self) -> i64 {
         1
     }
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
         // σ: the level falls, so u = σ(z − base) must fall over each clip.
         let trend = (z.select(1, steps - 1) - z.select(1, 0)).mean(Kind::Float);
         let sigma = if trend.double_value(&[]) <= 0.0 {
@@ -164,35 +181,95 @@ impl PhysicsBlock for TorricelliBlock {
     }
 }
 
-/// Sliding block and free fall: z'' = a (constant), exact from two frames:
+/// Sliding block and free fall: z'' = a (constant). Both start from rest, and then the law alone
+/// is degenerate: any latent z = β·s + γ·√s + c is a parabola in time, so the encoder may bend
+/// the latent (γ ≠ 0, z'' = 0 at the extreme) and the calibrated acceleration comes out wrong.
+/// Known start times since the release pin it: the velocity at a clip's first frame is then
+/// a·t0, so the block rolls out from one frame, z[k] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only
+/// the latent affine in s fits. Without start times it rolls out from two frames,
 /// z[k] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler step gives the same sequence).
 /// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
 pub struct ConstantAccelerationBlock {
     /// a·dt², the change of velocity per frame (so one learning rate suits any dt).
     per_frame: Tensor,
     dt: f64,
+    timed: bool,
 }
 
 impl ConstantAccelerationBlock {
-    pub fn new(path: &nn::Path, init: &[f64], dt: f64) -> Self {
+    pub fn new(path: &nn::Path, init: &[f64], dt: f64, timed: bool) -> Self {
         ConstantAccelerationBlock {
             per_frame: path.var("accel_per_frame", &[], nn::Init::Const(init[0] * dt * dt)),
             dt,
+            timed,
         }
     }
 }
 
 impl PhysicsBlock for ConstantAccelerationBlock {
     fn order(&self) -> i64 {
-        2
+        if self.timed {
+            1
+        } else {
+            2
+        }
     }
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor {
         let k = frame_index(steps, z);
         let z0 = z.narrow(1, 0, 1);
-        let z1 = z.narrow(1, 1, 1);
-        &z0 + (&z1 - &z0) * &k + &self.per_frame * (&k * (&k - 1.0) * 0.5)
+        match start.filter(|_| self.timed) {
+            Some(t0) => {
+                let frames_since_release = (t0 / self.dt).unsqueeze(1);
+                &z0 + &self.per_frame * (frames_since_release * &k + &k * &k * 0.5)
+            }
+            None => {
+                let z1 = z.narrow(1, 1, 1);
+                &z0 + (&z1 - &z0) * &k + &self.per_frame * (&k * (&k - 1.0) * 0.5)
+            }
+        }
     }
     fn values(&self) -> Vec<f64> {
         vec![self.per_frame.double_value(&[]) / (self.dt * self.dt)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timed_constant_acceleration_rolls_out_from_one_frame() {
+        let vs = nn::VarStore::new(tch::Device::Cpu);
+        let (a, dt) = (1.42, 1.0 / 30.0);
+        let b = ConstantAccelerationBlock::new(&vs.root(), &[a], dt, true);
+        assert_eq!(b.order(), 1);
+        // s = a·t²/2 from the release; clips start 0.1 s and 0.5 s after it.
+        let starts = [0.1, 0.5];
+        let z: Vec<f32> = starts
+            .iter()
+            .flat_map(|t0| (0..6).map(move |k| (a * (t0 + k as f64 * dt).powi(2) / 2.0) as f32))
+            .collect();
+        let z = Tensor::from_slice(&z).view([2, 6]);
+        let t0 = Tensor::from_slice(&[0.1f32, 0.5]);
+        let err = (b.rollout(&z, Some(&t0), 6) - &z)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err < 1e-6, "{err}");
+        // The bent latent √s is linear in time: the untimed block fits it with a = 0, the
+        // timed one cannot.
+        let bent = z.sqrt();
+        let flat = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, false);
+        let err = (flat.rollout(&bent, None, 6) - &bent)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err < 1e-6, "{err}");
+        let timed_zero = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, true);
+        let err = (timed_zero.rollout(&bent, Some(&t0), 6) - &bent)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err > 1e-2, "{err}");
     }
 }

@@ -67,18 +67,32 @@ pub fn resolve(cfg: &EstimateConfig, meta: Option<&DatasetMeta>) -> Calibration 
 /// distinct values.
 fn latent_scale(cal: &Calibration, latents: &[f64]) -> Option<f64> {
     let q: Vec<f64> = cal.reference.iter().map(|r| r.2).collect();
-    if q.len() < 2 || latents.len() != q.len() {
+    slope(&q, latents)
+}
+
+/// Torricelli's scale: the slope q of √u against √h over the reference frames, for the block's
+/// u = |z − base|. The law is invariant under √u = p + q·√h (any such latent drains by the same
+/// law, with k_latent = q·k), so this, unlike α of an affine latent, holds whichever p the
+/// encoder settled on.
+fn root_scale(cal: &Calibration, latents: &[f64], base: f64) -> Option<f64> {
+    if cal.reference.iter().any(|r| r.2 < 0.0) {
         return None;
     }
-    let n = q.len() as f64;
-    let (mq, mz) = (q.iter().sum::<f64>() / n, latents.iter().sum::<f64>() / n);
-    let sqq: f64 = q.iter().map(|v| (v - mq).powi(2)).sum();
-    let sqz: f64 = q
-        .iter()
-        .zip(latents)
-        .map(|(v, z)| (v - mq) * (z - mz))
-        .sum();
-    (sqq > 0.0 && sqz != 0.0).then(|| sqz / sqq)
+    let root_h: Vec<f64> = cal.reference.iter().map(|r| r.2.sqrt()).collect();
+    let root_u: Vec<f64> = latents.iter().map(|z| (z - base).abs().sqrt()).collect();
+    slope(&root_h, &root_u)
+}
+
+/// Least-squares slope of `y` against `x`; `None` unless there are two or more distinct x.
+fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
+    if x.len() < 2 || y.len() != x.len() {
+        return None;
+    }
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    (sxx > 0.0 && sxy != 0.0).then(|| sxy / sxx)
 }
 
 /// The reported values of `model` from its block parameters, and warnings for answers left in
@@ -127,8 +141,8 @@ pub fn derive(
                 v("k_latent", params[0], "latent", None),
                 v("base", params[1], "latent", None),
             ];
-            match alpha {
-                Some(a) => rows.insert(0, v("k", params[0] / a.abs().sqrt(), "SI", Some("k"))),
+            match root_scale(cal, reference_latents, params[1]) {
+                Some(q) => rows.insert(0, v("k", params[0] / q.abs(), "SI", Some("k"))),
                 None => need_alpha("Torricelli's k"),
             }
             rows
@@ -189,6 +203,12 @@ mod tests {
         assert!(warnings.is_empty());
         assert_eq!(rows[0].name, "k");
         assert!((rows[0].estimate - 0.0128).abs() < 1e-12);
+        // A latent bent by the law's own symmetry, √u = p + q·√h (here p = 0.05, q = 3, base
+        // 0.2 with u = −(z − base)), still gives the SI k.
+        let (p, q, k) = (0.05f64, 3.0f64, 0.0128);
+        let latents = [0.07f64, 0.01].map(|h| 0.2 - (p + q * h.sqrt()).powi(2));
+        let (rows, _) = derive(ModelKind::Torricelli, &[q * k, 0.2], &cal, &latents);
+        assert!((rows[0].estimate - k).abs() < 1e-12, "{}", rows[0].estimate);
         let (rows, warnings) = derive(ModelKind::FreeFall, &[3.0], &Calibration::default(), &[]);
         assert_eq!(rows[0].units, "latent");
         assert!(warnings[0].contains("--reference"), "{warnings:?}");

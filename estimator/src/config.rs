@@ -72,6 +72,26 @@ impl ModelKind {
         }
     }
 
+    /// The encoder that makes the latent identifiable. LED brightness and a tank's water (its
+    /// area) are affine in the pixels, and their laws are invariant under maps an MLP could
+    /// learn (I^p decays at p·γ; any √u = p + q·√h drains by Torricelli's law), so a linear
+    /// encoder, whose latent is then affine in the quantity, pins them; the others need the MLP.
+    pub fn default_encoder(self) -> EncoderKind {
+        match self {
+            ModelKind::Led | ModelKind::Torricelli => EncoderKind::Linear,
+            _ => EncoderKind::Small,
+        }
+    }
+
+    /// Early-stop patience: the calibrated Delfys75 answers need the latent affine to a few
+    /// parts in 10⁴, which takes longer than the oscillator's scale-free rates.
+    pub fn default_patience(self) -> usize {
+        match self {
+            ModelKind::DampedOscillator | ModelKind::Pendulum => 10,
+            _ => 30,
+        }
+    }
+
     /// Parameters learned as logarithms (must start > 0).
     pub fn positive_parameters(self) -> &'static [&'static str] {
         match self {
@@ -104,8 +124,9 @@ pub struct EstimateConfig {
     pub model: Option<ModelKind>,
     /// Upper bound on epochs; the early stop usually ends the run sooner.
     pub epochs: usize,
-    /// Epochs without a better validation loss before stopping.
-    pub patience: usize,
+    /// Epochs without a better validation loss before stopping (the model's default when
+    /// `None`; see [`ModelKind::default_patience`]).
+    pub patience: Option<usize>,
     pub batch_size: usize,
     /// Adam learning rate of the encoder.
     pub lr: f64,
@@ -125,7 +146,9 @@ pub struct EstimateConfig {
     /// behaviour).
     pub single_start: bool,
     pub loss: LossKind,
-    pub encoder: EncoderKind,
+    /// Encoder architecture (the model's default when `None`; see
+    /// [`ModelKind::default_encoder`]).
+    pub encoder: Option<EncoderKind>,
     pub seed: u64,
     pub device: DeviceChoice,
     pub threads: Option<usize>,
@@ -177,6 +200,25 @@ pub fn parse_init(text: &str) -> Result<InitValues, String> {
 }
 
 impl EstimateConfig {
+    /// This configuration with the model's defaults filled in (encoder, patience).
+    pub fn for_model(&self, model: ModelKind) -> EstimateConfig {
+        EstimateConfig {
+            encoder: Some(self.encoder.unwrap_or(model.default_encoder())),
+            patience: Some(self.patience.unwrap_or(model.default_patience())),
+            ..self.clone()
+        }
+    }
+
+    /// The encoder for `model`: the flag, else the model's default.
+    pub fn encoder_for(&self, model: ModelKind) -> EncoderKind {
+        self.encoder.unwrap_or(model.default_encoder())
+    }
+
+    /// The early-stop patience for `model`: the flag, else the model's default.
+    pub fn patience_for(&self, model: ModelKind) -> usize {
+        self.patience.unwrap_or(model.default_patience())
+    }
+
     /// Checks the flags that do not depend on the data.
     pub fn validate(self) -> Result<EstimateConfig, EstimateError> {
         if let Some(dt) = self.dt {
@@ -185,7 +227,7 @@ impl EstimateConfig {
         if self.epochs == 0 {
             return Err(input_error("--epochs 0: must be at least 1"));
         }
-        if self.patience == 0 {
+        if self.patience == Some(0) {
             return Err(input_error("--patience 0: must be at least 1"));
         }
         if self.batch_size == 0 {

@@ -14,6 +14,10 @@ pub struct ClipData {
     pub train: Tensor,
     /// Validation clips [N_val, T, D]: the last 20 % of the file, no shuffling.
     pub val: Tensor,
+    /// Each training / validation clip's start time since the release (s) [N], when meta.json
+    /// gives `clip_start_times` (systems released from rest at the start of the recording).
+    pub train_start: Option<Tensor>,
+    pub val_start: Option<Tensor>,
     pub frames_per_clip: i64,
     pub inputs: i64,
     pub shape: [usize; 5],
@@ -123,9 +127,16 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
     let n_val = ((n as f64 * 0.2).round() as i64).max(1);
     let n_train = n as i64 - n_val;
     let all = standardise(&all, n_train);
+    let start = ds
+        .meta
+        .as_ref()
+        .and_then(|m| m.clip_start_times.as_ref())
+        .map(|t| Tensor::from_slice(t).to_kind(Kind::Float).to_device(device));
     Ok(ClipData {
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),
+        train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
+        val_start: start.as_ref().map(|t| t.narrow(0, n_train, n_val)),
         frames_per_clip: t as i64,
         inputs: d,
         shape: ds.shape,

@@ -36,9 +36,10 @@ struct Cli {
     #[arg(long, default_value_t = 300)]
     epochs: usize,
     /// Stop after this many epochs without a 0.1 % lower validation rollout error (MSE over the
-    /// latent's variance); learning rates halve every patience/3 such epochs.
-    #[arg(long, default_value_t = 10)]
-    patience: usize,
+    /// latent's variance); learning rates halve every patience/3 such epochs [default: 10 for
+    /// damped-oscillator and pendulum, 30 for the others].
+    #[arg(long)]
+    patience: Option<usize>,
     /// Clips per optimisation step.
     #[arg(long, default_value_t = 32)]
     batch_size: usize,
@@ -76,9 +77,11 @@ struct Cli {
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.
     #[arg(long, value_enum, default_value_t = LossKind::MseKl)]
     loss: LossKind,
-    /// Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), or linear (D → 1).
-    #[arg(long, value_enum, default_value_t = EncoderKind::Small)]
-    encoder: EncoderKind,
+    /// Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), or linear (D → 1)
+    /// [default: linear for led and torricelli, whose brightness / water area is affine in the
+    /// pixels and whose laws an MLP could bend; small for the others].
+    #[arg(long, value_enum)]
+    encoder: Option<EncoderKind>,
     /// Seed of the weight initialisation and batch order.
     #[arg(long, default_value_t = 0)]
     seed: u64,

@@ -57,7 +57,7 @@ impl PhysicsBlock for PendulumBlock {
         2
     }
 
-    fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
         let scale = self.log_scale.exp();
         let w2 = self.log_w2.exp();
         let theta = (z.narrow(1, 0, 2) - &self.offset) / &scale;
@@ -118,7 +118,7 @@ mod tests {
             generator::delfys::pendulum_trajectory(w2, zeta, 60f64.to_radians(), 0.0, 12, dt);
         let z: Vec<f32> = truth.iter().map(|t| (2.0 * t + 0.3) as f32).collect();
         let zt = Tensor::from_slice(&z).view([1, 12]);
-        let r = b.rollout(&zt, 12);
+        let r = b.rollout(&zt, None, 12);
         let err = (r - &zt).abs().max().double_value(&[]) / 2.0;
         assert!(err < 2e-3, "max angle error {err} rad");
     }

@@ -31,6 +31,8 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     tch::set_num_threads(threads as i32);
     let device = select_device(cfg.device)?;
     let data = load_clips(cfg, device)?;
+    // From here on the model's defaults (encoder, patience) are explicit, so the report shows them.
+    let cfg = &cfg.for_model(data.model);
     let init = cfg.initial_values(data.model)?;
     let names = data.model.parameter_names();
     // Two starts: the given (or default) values and one read off the frames' principal

@@ -80,9 +80,9 @@ struct Model {
 }
 
 impl Model {
-    fn forward(&self, x: &Tensor, steps: i64) -> (Tensor, Tensor) {
+    fn forward(&self, x: &Tensor, start: Option<&Tensor>, steps: i64) -> (Tensor, Tensor) {
         let z = self.encoder.encode(x);
-        let z_hat = self.block.rollout(&z, steps);
+        let z_hat = self.block.rollout(&z, start, steps);
         (z, z_hat)
     }
 
@@ -152,13 +152,18 @@ impl<'a> Trainer<'a> {
         tch::manual_seed(cfg.seed as i64);
         let enc_vs = nn::VarStore::new(device);
         let phys_vs = nn::VarStore::new(device);
-        let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
+        let encoder = Encoder::new(
+            &(enc_vs.root() / "encoder"),
+            data.inputs,
+            cfg.encoder_for(data.model),
+        );
         let block = build_block(
             data.model,
             &(phys_vs.root() / "physics"),
             init,
             cfg.integrator,
             data.dt,
+            data.train_start.is_some(),
         );
         let model = Model {
             enc_vs,
@@ -200,7 +205,8 @@ impl<'a> Trainer<'a> {
         for s in (0..n_train).step_by(batch as usize) {
             let idx = perm.narrow(0, s, batch.min(n_train - s));
             let x = data.train.index_select(0, &idx);
-            let (z, z_hat) = model.forward(&x, steps);
+            let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
+            let (z, z_hat) = model.forward(&x, start.as_ref(), steps);
             let (l, _) = loss(cfg.loss, &z, &z_hat);
             self.opt_enc.zero_grad();
             self.opt_phys.zero_grad();
@@ -216,7 +222,7 @@ impl<'a> Trainer<'a> {
             batches += 1;
         }
         let (val_loss, val_mse, latent_std) = tch::no_grad(|| {
-            let (z, z_hat) = model.forward(&data.val, steps);
+            let (z, z_hat) = model.forward(&data.val, data.val_start.as_ref(), steps);
             let (l, mse) = loss(cfg.loss, &z, &z_hat);
             (
                 l.double_value(&[]),
@@ -249,13 +255,12 @@ impl<'a> Trainer<'a> {
             self.since_best = 0;
         } else {
             self.since_best += 1;
-            if self.since_best >= cfg.patience {
-                self.stop = Some(StopReason::EarlyStop {
-                    patience: cfg.patience,
-                });
+            let patience = cfg.patience_for(data.model);
+            if self.since_best >= patience {
+                self.stop = Some(StopReason::EarlyStop { patience });
                 return;
             }
-            if self.since_best % (cfg.patience / 3).max(2) == 0 {
+            if self.since_best % (patience / 3).max(2) == 0 {
                 self.lr *= 0.5;
                 self.lr_phys *= 0.5;
                 self.opt_enc.set_lr(self.lr);
@@ -275,7 +280,7 @@ impl<'a> Trainer<'a> {
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents) = tch::no_grad(|| {
             let k = data.n_val().min(4);
-            let (z, z_hat) = model.forward(&data.val, steps);
+            let (z, z_hat) = model.forward(&data.val, data.val_start.as_ref(), steps);
             (
                 to_rows(&z.narrow(0, 0, k)),
                 to_rows(&z_hat.narrow(0, 0, k)),
@@ -288,12 +293,18 @@ impl<'a> Trainer<'a> {
             reference
                 .iter()
                 .map(|&(clip, frame)| {
-                    let one = if clip < n_train {
-                        data.train.narrow(0, clip as i64, 1)
+                    let (x, start) = if clip < n_train {
+                        (&data.train, &data.train_start)
                     } else {
-                        data.val.narrow(0, (clip - n_train) as i64, 1)
+                        (&data.val, &data.val_start)
                     };
-                    model.encoder.encode(&one).double_value(&[0, frame as i64])
+                    let i = if clip < n_train { clip } else { clip - n_train } as i64;
+                    let start = start.as_ref().map(|t| t.narrow(0, i, 1));
+                    let (z, z_hat) = model.forward(&x.narrow(0, i, 1), start.as_ref(), steps);
+                    // The physics rollout at the frame, shifted by the clip's mean residual:
+                    // the latent there as the whole clip sees it, not one frame's encoding.
+                    let shift = (&z - &z_hat).mean(Kind::Float);
+                    (z_hat.get(0).get(frame as i64) + shift).double_value(&[])
                 })
                 .collect()
         });

@@ -49,6 +49,13 @@ impl System {
         }
     }
 
+    /// Whether the recording starts at the release from rest (sliding block, free fall): then
+    /// each clip's start time since the release is written to meta.json, as a user reads it off
+    /// the frame counter.
+    pub fn released_from_rest(self) -> bool {
+        matches!(self, System::SlidingBlock | System::FreeFall)
+    }
+
     /// Table 4's values for `setting` 1, 2 or 3, plus the fixed quantities of the scene.
     pub fn setting(self, setting: u8) -> Params {
         let i = (setting.clamp(1, 3) - 1) as usize;

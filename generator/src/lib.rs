@@ -72,6 +72,11 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
         latent_mapping: cfg.scenario.mapping_text().into(),
         calibration,
         fps,
+        clip_start_times: cfg
+            .scenario
+            .system()
+            .filter(|s| s.released_from_rest())
+            .map(|_| g.samples.iter().map(|s| s.0["start_time"]).collect()),
         sampling: if cfg.scenario.system().is_some() {
             sampling::DELFYS_SAMPLING_TEXT.into()
         } else {
@@ -82,9 +87,14 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
     }
 }
 
+/// Fractions of the physical quantity's range at which `reference_points` are taken.
+pub const REFERENCE_FRACTIONS: [f64; 5] = [0.1, 0.3, 0.5, 0.7, 0.9];
+
 /// The calibration a user would measure for a Delfys75 scene: the scene's scale, and the
-/// physical quantity at two reference frames (where it is smallest and largest), which is what
-/// turns latent units into SI units (appendix A.6 measures h0 = 7 cm and ht = 1 cm likewise).
+/// physical quantity at five reference frames spread over its range (those nearest to 10, 30,
+/// 50, 70 and 90 % of it), which is what turns latent units into SI units (appendix A.6 measures
+/// h0 = 7 cm and ht = 1 cm likewise; marks inside the range, rather than at its ends, where a
+/// clip's first or last frame sits, make the scale less sensitive to any one frame).
 fn delfys_calibration(
     cfg: &GenConfig,
     system: delfys::System,
@@ -93,20 +103,28 @@ fn delfys_calibration(
     use serde_json::json;
     let mut c = std::collections::BTreeMap::new();
     let ppm = system.pixels_per_metre(&cfg.params, cfg.size);
-    let (mut lo, mut hi) = (
-        (0usize, 0usize, f64::INFINITY),
-        (0usize, 0usize, f64::NEG_INFINITY),
-    );
-    for (i, clip) in g.latents.iter().enumerate() {
-        for (k, &z) in clip.iter().enumerate() {
-            if z < lo.2 {
-                lo = (i, k, z);
+    let all = || {
+        g.latents
+            .iter()
+            .enumerate()
+            .flat_map(|(i, clip)| clip.iter().enumerate().map(move |(k, &z)| (i, k, z)))
+    };
+    let lo = all().map(|p| p.2).fold(f64::INFINITY, f64::min);
+    let hi = all().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
+    let points: Vec<serde_json::Value> = REFERENCE_FRACTIONS
+        .iter()
+        .map(|f| {
+            let target = lo + f * (hi - lo);
+            // The first frame nearest the target (a strict `<` keeps ties deterministic).
+            let mut best = (0, 0, f64::NAN);
+            for (i, k, z) in all() {
+                if best.2.is_nan() || (z - target).abs() < (best.2 - target).abs() {
+                    best = (i, k, z);
+                }
             }
-            if z > hi.2 {
-                hi = (i, k, z);
-            }
-        }
-    }
+            json!({"clip": best.0, "frame": best.1, "value": best.2})
+        })
+        .collect();
     let quantity = match system {
         delfys::System::Pendulum => "angle theta (rad)",
         delfys::System::Torricelli => "water level h (m)",
@@ -114,13 +132,7 @@ fn delfys_calibration(
         delfys::System::Led => "brightness I/I(0)",
         delfys::System::FreeFall => "distance from the camera h (m)",
     };
-    c.insert(
-        "reference_points".into(),
-        json!([
-            {"clip": lo.0, "frame": lo.1, "value": lo.2},
-            {"clip": hi.0, "frame": hi.1, "value": hi.2},
-        ]),
-    );
+    c.insert("reference_points".into(), json!(points));
     c.insert("quantity".into(), json!(quantity));
     match system {
         delfys::System::FreeFall => {

@@ -71,13 +71,14 @@ impl Canvas {
             .collect()
     }
 
-    /// Draws a filled polygon (pixel coordinates) of grey level `grey` into `out`, keeping the
-    /// brighter value where shapes overlap.
+    /// Draws an opaque filled polygon (pixel coordinates) of grey level `grey` over `out`: a
+    /// pixel covered by a fraction c becomes (1 − c)·below + c·grey ("over" compositing), so
+    /// every pixel stays affine in the shape's grey level (an LED's brightness shows linearly).
     pub fn draw_polygon(&mut self, points: &[(f32, f32)], grey: f32, out: &mut [f32]) {
         self.rasterise(points);
         self.last_geometry = None;
         for (o, c) in out.iter_mut().zip(&self.coverage) {
-            *o = o.max(c * grey);
+            *o += c * (grey - *o);
         }
     }
 

@@ -256,6 +256,24 @@ pub fn validate_meta(
             l.len()
         )));
     }
+    if let Some(times) = &meta.clip_start_times {
+        if times.len() != n {
+            return Err(inconsistent(format!(
+                "{} clip_start_times for N = {n} clips",
+                times.len()
+            )));
+        }
+        if let Some((i, v)) = times
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
+        {
+            return Err(bad_meta(
+                meta_path,
+                format!("clip_start_times[{i}] is {v}, must be a finite time >= 0 s"),
+            ));
+        }
+    }
     Ok(())
 }
 
@@ -347,6 +365,7 @@ mod tests {
             latent_mapping: String::new(),
             calibration: Default::default(),
             fps: None,
+            clip_start_times: None,
             sampling: String::new(),
             samples: vec![SampleTruth::from_pairs([("amplitude", 1.0), ("phase", 0.0)]); shape[0]],
             latents: vec![vec![0.0; shape[1]]; shape[0]],
@@ -385,6 +404,15 @@ mod tests {
         std::fs::write(out.join(META_FILE), serde_json::to_vec(&m).unwrap()).unwrap();
         let e = read_dataset(&out).unwrap_err().to_string();
         assert!(e.contains("1 latent series"), "{e}");
+        let mut m = meta([2, 3, 1, 4, 4]);
+        m.clip_start_times = Some(vec![0.0, -1.0]);
+        std::fs::write(out.join(META_FILE), serde_json::to_vec(&m).unwrap()).unwrap();
+        let e = read_dataset(&out).unwrap_err().to_string();
+        assert!(e.contains("clip_start_times[1]"), "{e}");
+        m.clip_start_times = Some(vec![0.0]);
+        std::fs::write(out.join(META_FILE), serde_json::to_vec(&m).unwrap()).unwrap();
+        let e = read_dataset(&out).unwrap_err().to_string();
+        assert!(e.contains("1 clip_start_times"), "{e}");
         std::fs::remove_file(out.join(META_FILE)).unwrap();
         let e = read_dataset(&out).unwrap_err().to_string();
         assert!(e.contains("meta.json") && e.contains("missing"), "{e}");

@@ -60,6 +60,12 @@ pub struct DatasetMeta {
     /// Frames per second of the (virtual) camera: 1/dt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fps: Option<f64>,
+    /// Time of each clip's first frame since the recording started (s), for systems released
+    /// from rest at the start of the recording (sliding block, free fall): what a user reads off
+    /// the frame counter, not a label. It pins the release, without which motion from rest is
+    /// not identified (the latent √s is exactly linear in time and fits z'' = 0 too).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clip_start_times: Option<Vec<f64>>,
     /// Distributions the per-sample amplitude and phase are drawn from, in words.
     pub sampling: String,
     pub samples: Vec<SampleTruth>,
