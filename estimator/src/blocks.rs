@@ -18,6 +18,21 @@ pub trait PhysicsBlock {
     fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor;
     /// Current parameter values, in the order of [`ModelKind::parameter_names`].
     fn values(&self) -> Vec<f64>;
+    /// Blocks that read a physical quantity off the latent during training (the pendulum's
+    /// angle) take the map from reference frames of known value: `latents` and `values` [R].
+    /// Called before every forward pass when the block was built with `calibrated`.
+    fn calibrate(&self, _latents: &Tensor, _values: &Tensor) {}
+}
+
+/// What a block needs to know besides its parameters.
+#[derive(Debug, Clone, Copy)]
+pub struct BlockOptions {
+    pub integrator: Integrator,
+    pub dt: f64,
+    /// The clips' start times since the release are known (see [`ConstantAccelerationBlock`]).
+    pub timed: bool,
+    /// Reference frames of known value will be passed to [`PhysicsBlock::calibrate`].
+    pub calibrated: bool,
 }
 
 impl PhysicsBlock for DampedOscillatorBlock {
@@ -32,17 +47,19 @@ impl PhysicsBlock for DampedOscillatorBlock {
     }
 }
 
-/// Builds the block of `model` under `path`, starting from `init` (the model's parameter order);
-/// `timed`: the clips' start times since the release are known (see
-/// [`ConstantAccelerationBlock`]).
+/// Builds the block of `model` under `path`, starting from `init` (the model's parameter order).
 pub fn build_block(
     model: ModelKind,
     path: &nn::Path,
     init: &[f64],
-    integrator: Integrator,
-    dt: f64,
-    timed: bool,
+    opts: BlockOptions,
 ) -> Box<dyn PhysicsBlock> {
+    let BlockOptions {
+        integrator,
+        dt,
+        timed,
+        calibrated,
+    } = opts;
     match model {
         ModelKind::DampedOscillator => Box::new(DampedOscillatorBlock::new(
             path,
@@ -55,7 +72,7 @@ pub fn build_block(
         ModelKind::SlidingBlock | ModelKind::FreeFall => {
             Box::new(ConstantAccelerationBlock::new(path, init, dt, timed))
         }
-        ModelKind::Pendulum => Box::new(PendulumBlock::new(path, init, integrator, dt)),
+        ModelKind::Pendulum => Box::new(PendulumBlock::new(path, init, integrator, dt, calibrated)),
     }
 }
 

@@ -125,13 +125,24 @@ pub fn derive(
             v("gamma0", params[0], "SI", Some("gamma0")),
             v("gamma1", params[1], "SI", Some("gamma1")),
         ],
-        ModelKind::Pendulum => vec![
-            v("length", cal.g / params[0], "SI", Some("length")),
-            v("damping", params[1], "SI", Some("damping")),
-            v("g_over_l", params[0], "SI", None),
-            v("angle_scale", params[2], "latent", None),
-            v("angle_offset", params[3], "latent", None),
-        ],
+        ModelKind::Pendulum => {
+            if cal.reference.len() < 2 {
+                warnings.push(
+                    "the pendulum's angle scale was learned, not calibrated: at finite amplitude \
+                     the period depends on the amplitude, so L depends on that scale, which the \
+                     video pins only weakly; give the angle in rad at two or more frames with \
+                     --reference CLIP:FRAME=ANGLE,... to calibrate it"
+                        .into(),
+                );
+            }
+            vec![
+                v("length", cal.g / params[0], "SI", Some("length")),
+                v("damping", params[1], "SI", Some("damping")),
+                v("g_over_l", params[0], "SI", None),
+                v("angle_scale", params[2], "latent", None),
+                v("angle_offset", params[3], "latent", None),
+            ]
+        }
         ModelKind::Led => vec![
             v("gamma", params[0], "SI", Some("gamma")),
             v("offset", params[1], "latent", None),

@@ -87,7 +87,7 @@ impl ModelKind {
     /// parts in 10⁴, which takes longer than the oscillator's scale-free rates.
     pub fn default_patience(self) -> usize {
         match self {
-            ModelKind::DampedOscillator | ModelKind::Pendulum => 10,
+            ModelKind::DampedOscillator => 10,
             _ => 30,
         }
     }

@@ -37,7 +37,7 @@ struct Cli {
     epochs: usize,
     /// Stop after this many epochs without a 0.1 % lower validation rollout error (MSE over the
     /// latent's variance); learning rates halve every patience/3 such epochs [default: 10 for
-    /// damped-oscillator and pendulum, 30 for the others].
+    /// damped-oscillator, 30 for the Delfys75 systems].
     #[arg(long)]
     patience: Option<usize>,
     /// Clips per optimisation step.

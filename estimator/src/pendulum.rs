@@ -1,46 +1,80 @@
 //! `PendulumBlock`: θ'' = −(g/L)·sin θ − ζ·θ' with the angle read from the latent as
-//! θ = (z − c)/s. The scale s and offset c are learned: the KL term holds the latent's spread
-//! at 1, which must not fix the angle's amplitude (the paper's block takes z as θ and so finds
-//! L about 20 % short on real swings). Integrated with RK4 at 8 sub-steps per frame; the
-//! initial angular velocity is the one that carries θ[0] to θ[1] in one frame (Newton's method
-//! on the integrator itself), not a finite difference, which would halve the acceleration term.
+//! θ = (z − c)/s. The KL term holds the latent's spread at 1, which must not fix the angle's
+//! amplitude (the paper's block takes z as θ and so finds L about 20 % short on real swings).
+//! At finite amplitude the period depends on the amplitude, so L depends on s. Given reference
+//! frames of known angle, s and c are fitted to them before every step (least squares, no
+//! gradient); otherwise they are learned, which the data pins only weakly (the encoder can bend
+//! the latent to mimic a different amplitude).
+//!
+//! The rollout is the trajectory (RK4, sub-steps of at most 50 ms) through the initial state
+//! (θ0, ω0) that best fits the whole clip, not one read off its first two frames: a velocity
+//! from two encoded frames turns an encoder error of 0.02 rad into rollout errors five times
+//! larger over a period, and the fit then buys them down with a too-large damping.
 
 use crate::blocks::PhysicsBlock;
 use crate::physics::Integrator;
 use tch::nn;
-use tch::Tensor;
+use tch::{Kind, Tensor};
 
-const SUBSTEPS: usize = 8;
+/// Longest RK4 sub-step (s): at ω ≤ 5 rad/s its relative phase error is below 1e-4.
+const MAX_SUBSTEP: f64 = 0.05;
 const NEWTON_STEPS: usize = 3;
+const GAUSS_NEWTON_STEPS: usize = 2;
 
 pub struct PendulumBlock {
     log_w2: Tensor,
     damping: Tensor,
-    log_scale: Tensor,
+    /// The angle's scale s: learned (as its logarithm's exponential) or calibrated (a buffer).
+    angle: AngleMap,
     offset: Tensor,
     integrator: Integrator,
     dt: f64,
+    substeps: usize,
 }
 
 impl PendulumBlock {
-    /// `init` = [g/L, damping, angle scale s, angle offset c].
-    pub fn new(path: &nn::Path, init: &[f64], integrator: Integrator, dt: f64) -> Self {
+    /// `init` = [g/L, damping, angle scale s, angle offset c]; `calibrated`: s and c come from
+    /// [`PhysicsBlock::calibrate`] instead of being learned.
+    pub fn new(
+        path: &nn::Path,
+        init: &[f64],
+        integrator: Integrator,
+        dt: f64,
+        calibrated: bool,
+    ) -> Self {
+        let (angle, offset) = if calibrated {
+            let buffer = |name: &str, v: f64| {
+                let mut t = path.zeros_no_train(name, &[]);
+                let _ = tch::no_grad(|| t.fill_(v));
+                t
+            };
+            (
+                AngleMap::Calibrated(buffer("angle_scale", init[2])),
+                buffer("angle_offset", init[3]),
+            )
+        } else {
+            (
+                AngleMap::Learned(path.var("log_angle_scale", &[], nn::Init::Const(init[2].ln()))),
+                path.var("angle_offset", &[], nn::Init::Const(init[3])),
+            )
+        };
         PendulumBlock {
             log_w2: path.var("log_g_over_l", &[], nn::Init::Const(init[0].ln())),
             damping: path.var("damping", &[], nn::Init::Const(init[1])),
-            log_scale: path.var("log_angle_scale", &[], nn::Init::Const(init[2].ln())),
-            offset: path.var("angle_offset", &[], nn::Init::Const(init[3])),
+            angle,
+            offset,
             integrator,
             dt,
+            substeps: (dt / MAX_SUBSTEP).ceil().max(1.0) as usize,
         }
     }
 
     /// One frame of RK4 from (θ, ω) [B] each.
-    fn step(&self, th: &Tensor, om: &Tensor, w2: &Tensor) -> (Tensor, Tensor) {
-        let h = self.dt / SUBSTEPS as f64;
-        let f = |t: &Tensor, o: &Tensor| (o.shallow_clone(), -(t.sin() * w2) - o * &self.damping);
+    fn step(&self, th: &Tensor, om: &Tensor, w2: &Tensor, zeta: &Tensor) -> (Tensor, Tensor) {
+        let h = self.dt / self.substeps as f64;
+        let f = |t: &Tensor, o: &Tensor| (o.shallow_clone(), -(t.sin() * w2) - o * zeta);
         let (mut th, mut om) = (th.shallow_clone(), om.shallow_clone());
-        for _ in 0..SUBSTEPS {
+        for _ in 0..self.substeps {
             let (a1, b1) = f(&th, &om);
             let (a2, b2) = f(&(&th + &a1 * (h / 2.0)), &(&om + &b1 * (h / 2.0)));
             let (a3, b3) = f(&(&th + &a2 * (h / 2.0)), &(&om + &b2 * (h / 2.0)));
@@ -50,6 +84,93 @@ impl PendulumBlock {
         }
         (th, om)
     }
+
+    /// θ at frames 0..steps from (θ0, ω0) [B]: [B, steps].
+    fn trajectory(
+        &self,
+        th0: &Tensor,
+        om0: &Tensor,
+        w2: &Tensor,
+        zeta: &Tensor,
+        steps: i64,
+    ) -> Tensor {
+        let mut out = vec![th0.shallow_clone()];
+        let (mut th, mut om) = (th0.shallow_clone(), om0.shallow_clone());
+        for _ in 1..steps {
+            (th, om) = self.step(&th, &om, w2, zeta);
+            out.push(th.shallow_clone());
+        }
+        Tensor::stack(&out, 1)
+    }
+
+    /// The initial state (θ0, ω0) [B] whose trajectory best fits `theta` [B, T] (least squares
+    /// over every frame), and the trajectory's sensitivities to it [B, T] each, all without
+    /// autograd: Newton shooting through the first two frames, then Gauss–Newton.
+    fn fit_initial_state(&self, theta: &Tensor, w2: &Tensor, zeta: &Tensor) -> [Tensor; 4] {
+        tch::no_grad(|| {
+            let steps = theta.size()[1];
+            let (w2, zeta) = (w2.detach(), zeta.detach());
+            let theta = theta.detach();
+            let (th0, th1) = (theta.select(1, 0), theta.select(1, 1));
+            let delta = 1e-3;
+            let mut om = (&th1 - &th0) / self.dt;
+            for _ in 0..NEWTON_STEPS {
+                let (a, _) = self.step(&th0, &om, &w2, &zeta);
+                let (b, _) = self.step(&th0, &(&om + delta), &w2, &zeta);
+                let slope = ((&b - &a) / delta).clamp_min(1e-3 * self.dt);
+                om = &om - (a - &th1) / slope;
+            }
+            let mut th = th0;
+            let b = th.size()[0];
+            let (mut j0, mut j1) = (Tensor::zeros_like(&theta), Tensor::zeros_like(&theta));
+            for _ in 0..GAUSS_NEWTON_STEPS {
+                // The base trajectory and the two perturbed ones in one batch.
+                let all = self.trajectory(
+                    &Tensor::cat(&[&th, &(&th + delta), &th], 0),
+                    &Tensor::cat(&[&om, &om, &(&om + delta)], 0),
+                    &w2,
+                    &zeta,
+                    steps,
+                );
+                let base = all.narrow(0, 0, b);
+                j0 = (all.narrow(0, b, b) - &base) / delta;
+                j1 = (all.narrow(0, 2 * b, b) - &base) / delta;
+                let (d_th, d_om) = gauss_newton_step(&j0, &j1, &(base - &theta));
+                th = &th + d_th;
+                om = &om + d_om;
+            }
+            [th, om, j0, j1]
+        })
+    }
+}
+
+/// How the block reads the angle's scale.
+enum AngleMap {
+    /// log s, trained with the other parameters.
+    Learned(Tensor),
+    /// s (signed), fitted to reference frames.
+    Calibrated(Tensor),
+}
+
+impl AngleMap {
+    fn scale(&self) -> Tensor {
+        match self {
+            AngleMap::Learned(log_s) => log_s.exp(),
+            AngleMap::Calibrated(s) => s.shallow_clone(),
+        }
+    }
+}
+
+/// The Gauss–Newton step (Δθ0, Δω0) [B] that best cancels the residual r [B, T] given the
+/// trajectory's sensitivities j0 = ∂θ/∂θ0 and j1 = ∂θ/∂ω0 [B, T].
+fn gauss_newton_step(j0: &Tensor, j1: &Tensor, r: &Tensor) -> (Tensor, Tensor) {
+    let dot = |a: &Tensor, b: &Tensor| (a * b).sum_dim_intlist(1, false, Kind::Float);
+    let (a, b, c) = (dot(j0, j0), dot(j0, j1), dot(j1, j1));
+    let (g0, g1) = (dot(j0, r), dot(j1, r));
+    let det = (&a * &c - &b * &b).clamp_min(1e-12);
+    let d_th = -(&c * &g0 - &b * &g1) / &det;
+    let d_om = -(&a * &g1 - &b * &g0) / det;
+    (d_th, d_om)
 }
 
 impl PhysicsBlock for PendulumBlock {
@@ -58,49 +179,60 @@ impl PhysicsBlock for PendulumBlock {
     }
 
     fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
-        let scale = self.log_scale.exp();
+        let scale = self.angle.scale();
         let w2 = self.log_w2.exp();
-        let theta = (z.narrow(1, 0, 2) - &self.offset) / &scale;
-        let (th0, th1) = (theta.select(1, 0), theta.select(1, 1));
-        let mut out = vec![th0.shallow_clone(), th1.shallow_clone()];
-        match self.integrator {
+        let theta = (z.narrow(1, 0, steps) - &self.offset) / &scale;
+        let out = match self.integrator {
             Integrator::Exact => {
-                // ω0 such that one frame of the integrator carries θ0 to θ1.
-                let mut om = (&th1 - &th0) / self.dt;
-                let delta = 1e-3;
-                for _ in 0..NEWTON_STEPS {
-                    let (a, _) = self.step(&th0, &om, &w2);
-                    let (b, _) = self.step(&th0, &(&om + delta), &w2);
-                    let slope = ((&b - &a) / delta).clamp_min(1e-3 * self.dt);
-                    om = &om - (a - &th1) / slope;
-                }
-                let (mut th, mut o) = self.step(&th0, &om, &w2);
-                for _ in 2..steps {
-                    (th, o) = self.step(&th, &o, &w2);
-                    out.push(th.shallow_clone());
-                }
+                // The trajectory through the best-fitting initial state: fitted without
+                // autograd, then one differentiable Gauss–Newton step from it, taken to first
+                // order (θ + j0·Δθ0 + j1·Δω0), which carries the exact first-order gradient
+                // (implicit function theorem) for one differentiable trajectory.
+                let [th0, om0, j0, j1] = self.fit_initial_state(&theta, &w2, &self.damping);
+                let base = self.trajectory(&th0, &om0, &w2, &self.damping, steps);
+                let (d_th, d_om) = gauss_newton_step(&j0, &j1, &(&base - &theta));
+                base + j0 * d_th.unsqueeze(1) + j1 * d_om.unsqueeze(1)
             }
             Integrator::Euler => {
                 // The paper's step: θ[t+1] = θ[t] + Δ − dt·(ζ·Δ + dt·(g/L)·sin θ[t]), Δ = θ[t] − θ[t−1].
+                let mut out = vec![theta.select(1, 0), theta.select(1, 1)];
                 for t in 2..steps as usize {
                     let d = &out[t - 1] - &out[t - 2];
                     let next = &out[t - 1] + &d
                         - (&d * &self.damping + out[t - 1].sin() * &w2 * self.dt) * self.dt;
                     out.push(next);
                 }
+                out.truncate(steps as usize);
+                Tensor::stack(&out, 1)
             }
-        }
-        out.truncate(steps as usize);
-        Tensor::stack(&out, 1) * scale + &self.offset
+        };
+        out * scale + &self.offset
     }
 
     fn values(&self) -> Vec<f64> {
         vec![
             self.log_w2.double_value(&[]).exp(),
             self.damping.double_value(&[]),
-            self.log_scale.double_value(&[]).exp(),
+            self.angle.scale().double_value(&[]),
             self.offset.double_value(&[]),
         ]
+    }
+
+    fn calibrate(&self, latents: &Tensor, values: &Tensor) {
+        let AngleMap::Calibrated(scale) = &self.angle else {
+            return;
+        };
+        // z = s·θ + c by least squares over the reference frames.
+        tch::no_grad(|| {
+            let (z, th) = (latents.detach().view([-1]), values.view([-1]));
+            let (zm, tm) = (z.mean(Kind::Float), th.mean(Kind::Float));
+            let s = ((&z - &zm) * (&th - &tm)).sum(Kind::Float)
+                / (&th - &tm).square().sum(Kind::Float).clamp_min(1e-12);
+            let s = s.sign() * s.abs().clamp_min(1e-6);
+            let c = zm - &s * tm;
+            scale.shallow_clone().copy_(&s);
+            self.offset.shallow_clone().copy_(&c);
+        });
     }
 }
 
@@ -112,7 +244,13 @@ mod tests {
     fn rollout_matches_a_fine_reference_at_large_angles() {
         let vs = nn::VarStore::new(tch::Device::Cpu);
         let (w2, zeta, dt) = (9.81 / 0.45, 0.059, 0.1);
-        let b = PendulumBlock::new(&vs.root(), &[w2, zeta, 2.0, 0.3], Integrator::Exact, dt);
+        let b = PendulumBlock::new(
+            &vs.root(),
+            &[w2, zeta, 2.0, 0.3],
+            Integrator::Exact,
+            dt,
+            false,
+        );
         // Reference: gen's own trajectory (RK4, 64 sub-steps per frame) from a 60° release.
         let truth =
             generator::delfys::pendulum_trajectory(w2, zeta, 60f64.to_radians(), 0.0, 12, dt);

@@ -50,9 +50,9 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
         starts.extend(spectral);
     }
     let calibration = resolve(cfg, data.meta.as_ref());
-    let reference: Vec<(usize, usize)> = calibration.reference.iter().map(|r| (r.0, r.1)).collect();
+    let reference = &calibration.reference;
     let [n, t, ..] = data.shape;
-    if let Some(&(c, f)) = reference.iter().find(|&&(c, f)| c >= n || f >= t) {
+    if let Some(&(c, f, _)) = reference.iter().find(|&&(c, f, _)| c >= n || f >= t) {
         let origin = if calibration.source == "flags" {
             "--reference"
         } else {
@@ -64,7 +64,7 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
         .into());
     }
     let progress = Progress::new(cfg.epochs, cfg.quiet);
-    let (outcome, probes) = fit(cfg, &data, device, &starts, &reference, &mut |rec| {
+    let (outcome, probes) = fit(cfg, &data, device, &starts, reference, &mut |rec| {
         progress.epoch(rec, names)
     })?;
     progress.finish();

@@ -2,8 +2,8 @@
 //! validation every epoch, the best-validation checkpoint, learning-rate halving on plateaus and
 //! an early stop; a non-finite loss stops the run with the last good parameters.
 
-use crate::blocks::{build_block, PhysicsBlock};
-use crate::config::EstimateConfig;
+use crate::blocks::{build_block, BlockOptions, PhysicsBlock};
+use crate::config::{EstimateConfig, ModelKind};
 use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::error::EstimateError;
@@ -71,16 +71,57 @@ pub struct TrainOutcome {
     pub reference_latents: Vec<f64>,
 }
 
+/// Frames of known physical value that a calibrated block reads its map from during training.
+struct ReferenceFrames {
+    /// [1, R, D], standardised like the clips.
+    frames: Tensor,
+    /// [R].
+    values: Tensor,
+}
+
+impl ReferenceFrames {
+    /// The reference frames of `reference` (clip, frame, value) for a block that calibrates
+    /// during training (the pendulum), when two or more distinct values are given.
+    fn for_training(data: &ClipData, reference: &[(usize, usize, f64)]) -> Option<Self> {
+        let distinct = reference.iter().any(|r| r.2 != reference[0].2);
+        if data.model != ModelKind::Pendulum || reference.len() < 2 || !distinct {
+            return None;
+        }
+        let n_train = data.n_train() as usize;
+        let frames: Vec<Tensor> = reference
+            .iter()
+            .map(|&(clip, frame, _)| {
+                let (x, i) = if clip < n_train {
+                    (&data.train, clip)
+                } else {
+                    (&data.val, clip - n_train)
+                };
+                x.get(i as i64).get(frame as i64)
+            })
+            .collect();
+        let values: Vec<f32> = reference.iter().map(|r| r.2 as f32).collect();
+        Some(ReferenceFrames {
+            frames: Tensor::stack(&frames, 0).unsqueeze(0),
+            values: Tensor::from_slice(&values).to_device(data.train.device()),
+        })
+    }
+}
+
 /// Encoder and physics block with their variable stores.
 struct Model {
     enc_vs: nn::VarStore,
     phys_vs: nn::VarStore,
     encoder: Encoder,
     block: Box<dyn PhysicsBlock>,
+    reference: Option<ReferenceFrames>,
 }
 
 impl Model {
     fn forward(&self, x: &Tensor, start: Option<&Tensor>, steps: i64) -> (Tensor, Tensor) {
+        if let Some(r) = &self.reference {
+            let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
+            self.block.calibrate(&z_ref, &r.values);
+        }
         let z = self.encoder.encode(x);
         let z_hat = self.block.rollout(&z, start, steps);
         (z, z_hat)
@@ -147,8 +188,10 @@ impl<'a> Trainer<'a> {
         data: &'a ClipData,
         device: Device,
         init: &[f64],
+        reference: &[(usize, usize, f64)],
         start: Instant,
     ) -> Result<Trainer<'a>, EstimateError> {
+        let reference = ReferenceFrames::for_training(data, reference);
         tch::manual_seed(cfg.seed as i64);
         let enc_vs = nn::VarStore::new(device);
         let phys_vs = nn::VarStore::new(device);
@@ -161,15 +204,19 @@ impl<'a> Trainer<'a> {
             data.model,
             &(phys_vs.root() / "physics"),
             init,
-            cfg.integrator,
-            data.dt,
-            data.train_start.is_some(),
+            BlockOptions {
+                integrator: cfg.integrator,
+                dt: data.dt,
+                timed: data.train_start.is_some(),
+                calibrated: reference.is_some(),
+            },
         );
         let model = Model {
             enc_vs,
             phys_vs,
             encoder,
             block,
+            reference,
         };
         let opt_enc = nn::Adam::default().build(&model.enc_vs, cfg.lr)?;
         let opt_phys = nn::Adam::default().build(&model.phys_vs, cfg.lr_phys)?;
@@ -273,7 +320,7 @@ impl<'a> Trainer<'a> {
     }
 
     /// Restores the best epoch's state (the starting state if no epoch was finite: never NaN).
-    fn finish(self, reference: &[(usize, usize)]) -> TrainOutcome {
+    fn finish(self, reference: &[(usize, usize, f64)]) -> TrainOutcome {
         let model = &self.model;
         model.restore(&self.best.2);
         let data = self.data;
@@ -292,7 +339,7 @@ impl<'a> Trainer<'a> {
         let reference_latents = tch::no_grad(|| {
             reference
                 .iter()
-                .map(|&(clip, frame)| {
+                .map(|&(clip, frame, _)| {
                     let (x, start) = if clip < n_train {
                         (&data.train, &data.train_start)
                     } else {
@@ -345,7 +392,7 @@ pub fn fit(
     data: &ClipData,
     device: Device,
     starts: &[Vec<f64>],
-    reference: &[(usize, usize)],
+    reference: &[(usize, usize, f64)],
     on_epoch: &mut dyn FnMut(&EpochRecord),
 ) -> Result<(TrainOutcome, Vec<StartProbe>), EstimateError> {
     assert!(!starts.is_empty(), "at least one start");
@@ -353,7 +400,7 @@ pub fn fit(
     let mut chosen: Option<(usize, Trainer)> = None;
     let start = Instant::now();
     for (i, init) in starts.iter().enumerate() {
-        let mut t = Trainer::new(cfg, data, device, init, start)?;
+        let mut t = Trainer::new(cfg, data, device, init, reference, start)?;
         if starts.len() > 1 {
             while t.stop.is_none() && t.history.len() < PROBE_EPOCHS {
                 t.epoch(&mut |_| {});
