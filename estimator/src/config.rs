@@ -227,6 +227,16 @@ impl EstimateConfig {
         if self.epochs == 0 {
             return Err(input_error("--epochs 0: must be at least 1"));
         }
+        if let Some(g) = self.g {
+            positive("--g", g)?;
+        }
+        if let Some(deg) = self.incline_deg {
+            if !(deg.is_finite() && deg > 0.0 && deg < 90.0) {
+                return Err(input_error(format!(
+                    "--incline-deg {deg}: must be an angle in (0, 90) degrees"
+                )));
+            }
+        }
         if self.patience == Some(0) {
             return Err(input_error("--patience 0: must be at least 1"));
         }

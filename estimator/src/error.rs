@@ -17,7 +17,7 @@ pub enum EstimateError {
     NoCuda,
     #[error("libtorch: {0}")]
     Torch(#[from] tch::TchError),
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}")]
     Write {
         path: PathBuf,
         source: std::io::Error,

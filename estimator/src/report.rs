@@ -1,7 +1,7 @@
 //! The run's report: `report.json`, `metrics.csv`, the plots, and the table printed at the end.
 
 use crate::calibration::{derive, Calibration};
-use crate::config::EstimateConfig;
+use crate::config::{EstimateConfig, ModelKind};
 use crate::data::ClipData;
 use crate::error::EstimateError;
 use crate::plots::{plot_latents, plot_parameters};
@@ -150,6 +150,16 @@ impl Report {
             })
             .collect();
         let mut warnings = calibration_warnings;
+        if matches!(data.model, ModelKind::SlidingBlock | ModelKind::FreeFall)
+            && data.train_start.is_none()
+        {
+            warnings.push(
+                "no clip start times (meta.json's clip_start_times): the block rolls out from two \
+                 frames, and for motion from rest that law is degenerate (a latent like √s is \
+                 linear in time and fits z'' = 0), so the acceleration may come out far too small"
+                    .into(),
+            );
+        }
         let peak_std = outcome
             .history
             .iter()

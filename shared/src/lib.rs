@@ -11,6 +11,7 @@ pub mod error;
 pub mod meta;
 pub mod npy;
 pub mod recurrence;
+pub mod video;
 
 pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
 pub use dynamics::DampedOscillator;
