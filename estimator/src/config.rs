@@ -4,6 +4,7 @@ use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
 use crate::physics::{Integrator, OSCILLATOR_PARAMETERS};
+use crate::recording::RecordingFlags;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -61,11 +62,24 @@ impl ModelKind {
         }
     }
 
+    /// Appendix Table 5's frames per clip and dt (s) for a recording of this system (the
+    /// oscillator: 20 frames of 0.2 s, as the synthetic sets).
+    pub fn table5_clip(self) -> (usize, f64) {
+        match self {
+            ModelKind::DampedOscillator => (20, 0.2),
+            ModelKind::Pendulum => (20, 0.1),
+            ModelKind::Torricelli => (20, 1.0),
+            ModelKind::SlidingBlock => (10, 1.0 / 30.0),
+            ModelKind::Led => (20, 1.0 / 60.0),
+            ModelKind::FreeFall => (4, 1.0 / 30.0),
+        }
+    }
+
     /// Default starting values.
     pub fn default_init(self) -> Vec<f64> {
         match self {
             ModelKind::DampedOscillator => vec![1.0, 0.1],
-            ModelKind::Pendulum => vec![10.0, 0.1, 2.0, 0.0],
+            ModelKind::Pendulum => vec![10.0, 0.1, 10.0, 0.0],
             ModelKind::Torricelli => vec![0.1, -3.0],
             ModelKind::SlidingBlock | ModelKind::FreeFall => vec![0.0],
             ModelKind::Led => vec![1.0, -2.0],
@@ -150,6 +164,8 @@ pub struct EstimateConfig {
     /// [`ModelKind::default_encoder`]).
     pub encoder: Option<EncoderKind>,
     pub seed: u64,
+    /// How a video or image folder becomes clips (ignored for datasets).
+    pub recording: RecordingFlags,
     pub device: DeviceChoice,
     pub threads: Option<usize>,
     pub out: PathBuf,
@@ -230,6 +246,7 @@ impl EstimateConfig {
         if let Some(g) = self.g {
             positive("--g", g)?;
         }
+        self.recording.validate()?;
         if let Some(deg) = self.incline_deg {
             if !(deg.is_finite() && deg > 0.0 && deg < 90.0) {
                 return Err(input_error(format!(

@@ -1,8 +1,12 @@
-//! `ClipData`: a dataset loaded onto the training device as one tensor, split 80/20 into
-//! training and validation clips, with dt, the model and the ground truth resolved.
+//! `ClipData`: a dataset (or a recording cut into clips) loaded onto the training device as one
+//! tensor, split 80/20 into training and validation clips, with dt, the model and the ground
+//! truth resolved.
 
 use crate::config::{EstimateConfig, ModelKind};
 use crate::error::{input_error, EstimateError};
+use crate::recording::{load_recording, RecordingSummary};
+use physvid_shared::contact_sheet::{contact_sheet, encode_png};
+use physvid_shared::video::is_recording;
 use physvid_shared::{read_dataset, DatasetMeta};
 use std::collections::BTreeMap;
 use tch::{Device, Kind, Tensor};
@@ -26,6 +30,13 @@ pub struct ClipData {
     /// True parameter values by name, when the metadata gives them.
     pub truth: BTreeMap<String, f64>,
     pub meta: Option<DatasetMeta>,
+    /// For a recording: what was decoded, and every frame standardised like the clips
+    /// [1, F, D] (for the latent over the whole recording).
+    pub recording: Option<(RecordingSummary, Tensor)>,
+    /// Things about the input the report should say (e.g. a doubtful frame rate).
+    pub warnings: Vec<String>,
+    /// clips.png for `--preview`: clips of a recording as the model sees them.
+    pub preview_png: Option<Vec<u8>>,
 }
 
 impl ClipData {
@@ -41,18 +52,125 @@ impl ClipData {
 /// Subtracts the mean training frame and divides by the training pixels' overall standard
 /// deviation (a fixed affine map of the input, computed on the training clips only): the static
 /// background drops out and the encoder's first layer starts well conditioned.
-fn standardise(all: &Tensor, n_train: i64) -> Tensor {
+/// Returns the map as (mean frame [D], std).
+fn standardisation(all: &Tensor, n_train: i64) -> (Tensor, Tensor) {
     let d = all.size()[2];
     let train = all.narrow(0, 0, n_train).reshape([-1, d]);
     let mean = train.mean_dim(0, false, Kind::Float);
     let centred = train - &mean;
     let std = centred.square().mean(Kind::Float).sqrt().clamp_min(1e-6);
-    (all - mean) / std
+    (mean, std)
+}
+
+/// Frames, their shape and what is known about them, before they go to the device.
+struct Source {
+    frames: Vec<f32>,
+    shape: [usize; 5],
+    dt: f64,
+    model: ModelKind,
+    meta: Option<DatasetMeta>,
+    start_times: Option<Vec<f64>>,
+    recording: Option<(RecordingSummary, Vec<Vec<f32>>)>,
+    warnings: Vec<String>,
+    preview_png: Option<Vec<u8>>,
+}
+
+/// A video or image folder, cut into clips for `--model`.
+fn recording_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
+    let model = cfg.model.ok_or_else(|| {
+        input_error(format!(
+            "{}: a recording needs --model (e.g. --model pendulum)",
+            cfg.input.display()
+        ))
+    })?;
+    if cfg.dt.is_some() {
+        return Err(input_error(
+            "--dt: for a recording dt is --stride / fps; set those instead",
+        ));
+    }
+    let rec = load_recording(&cfg.input, model, &cfg.recording)?;
+    // Systems released from rest: the release is the first frame kept (trim with --start).
+    let start_times = matches!(model, ModelKind::SlidingBlock | ModelKind::FreeFall).then(|| {
+        rec.summary
+            .clip_starts
+            .iter()
+            .map(|&s| s as f64 / rec.summary.fps)
+            .collect()
+    });
+    // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
+    let preview_png = cfg.recording.preview.then(|| {
+        let n = rec.shape[0];
+        let rows: Vec<usize> = (0..4.min(n)).map(|k| k * (n - 1) / 3.max(1)).collect();
+        encode_png(&contact_sheet(&rec.clips, rec.shape, &rows, 2))
+    });
+    Ok(Source {
+        preview_png,
+        frames: rec.clips,
+        shape: rec.shape,
+        dt: rec.dt,
+        model,
+        meta: None,
+        start_times,
+        recording: Some((rec.summary, rec.frames)),
+        warnings: rec.warnings,
+    })
 }
 
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
 pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, EstimateError> {
+    let src = if is_recording(&cfg.input) {
+        recording_source(cfg)?
+    } else {
+        dataset_source(cfg)?
+    };
+    let [n, t, c, h, w] = src.shape;
+    let truth: BTreeMap<String, f64> = src
+        .meta
+        .as_ref()
+        .map(|m| m.model.parameters.clone())
+        .unwrap_or_default();
+    let d = (c * h * w) as i64;
+    let all = Tensor::from_slice(&src.frames)
+        .view([n as i64, t as i64, d])
+        .to_kind(Kind::Float)
+        .to_device(device);
+    drop(src.frames);
+    let n_val = ((n as f64 * 0.2).round() as i64).max(1);
+    let n_train = n as i64 - n_val;
+    let (mean, std) = standardisation(&all, n_train);
+    let all = (all - &mean) / &std;
+    let start = src
+        .start_times
+        .as_ref()
+        .map(|t| Tensor::from_slice(t).to_kind(Kind::Float).to_device(device));
+    let recording = src.recording.map(|(summary, frames)| {
+        let flat: Vec<f32> = frames.concat();
+        let all_frames = Tensor::from_slice(&flat)
+            .view([1, frames.len() as i64, d])
+            .to_device(device);
+        (summary, (all_frames - &mean) / &std)
+    });
+    Ok(ClipData {
+        train: all.narrow(0, 0, n_train),
+        val: all.narrow(0, n_train, n_val),
+        train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
+        val_start: start.as_ref().map(|t| t.narrow(0, n_train, n_val)),
+        frames_per_clip: t as i64,
+        inputs: d,
+        shape: src.shape,
+        dt: src.dt,
+        model: src.model,
+        truth,
+        meta: src.meta,
+        recording,
+        warnings: src.warnings,
+        preview_png: src.preview_png,
+    })
+}
+
+/// A dataset directory or a bare `.npy`.
+fn dataset_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
     let ds = read_dataset(&cfg.input)?;
     let source = ds.frames_path.display().to_string();
     let [n, t, c, h, w] = ds.shape;
@@ -114,35 +232,16 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
             (dt, model)
         }
     };
-    let truth: BTreeMap<String, f64> = ds
-        .meta
-        .as_ref()
-        .map(|m| m.model.parameters.clone())
-        .unwrap_or_default();
-    let d = (c * h * w) as i64;
-    let all = Tensor::from_slice(&ds.frames)
-        .view([n as i64, t as i64, d])
-        .to_kind(Kind::Float)
-        .to_device(device);
-    let n_val = ((n as f64 * 0.2).round() as i64).max(1);
-    let n_train = n as i64 - n_val;
-    let all = standardise(&all, n_train);
-    let start = ds
-        .meta
-        .as_ref()
-        .and_then(|m| m.clip_start_times.as_ref())
-        .map(|t| Tensor::from_slice(t).to_kind(Kind::Float).to_device(device));
-    Ok(ClipData {
-        train: all.narrow(0, 0, n_train),
-        val: all.narrow(0, n_train, n_val),
-        train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
-        val_start: start.as_ref().map(|t| t.narrow(0, n_train, n_val)),
-        frames_per_clip: t as i64,
-        inputs: d,
+    let start_times = ds.meta.as_ref().and_then(|m| m.clip_start_times.clone());
+    Ok(Source {
+        frames: ds.frames,
         shape: ds.shape,
         dt,
         model,
-        truth,
         meta: ds.meta,
+        start_times,
+        recording: None,
+        warnings: Vec::new(),
+        preview_png: None,
     })
 }

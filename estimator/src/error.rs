@@ -8,6 +8,9 @@ pub enum EstimateError {
     /// The input dataset or file is unusable.
     #[error(transparent)]
     Dataset(#[from] DatasetError),
+    /// A recording that cannot be decoded or cut into clips, or ffmpeg missing.
+    #[error(transparent)]
+    Video(#[from] physvid_shared::video::VideoError),
     /// A flag or the input contradicts itself; the text names the flag or file and the fix.
     #[error("{0}")]
     Input(String),
@@ -31,7 +34,10 @@ impl EstimateError {
     pub fn is_bad_input(&self) -> bool {
         match self {
             EstimateError::Dataset(DatasetError::Write { .. }) => false,
-            EstimateError::Dataset(_) | EstimateError::Input(_) | EstimateError::NoCuda => true,
+            EstimateError::Dataset(_)
+            | EstimateError::Video(_)
+            | EstimateError::Input(_)
+            | EstimateError::NoCuda => true,
             _ => false,
         }
     }

@@ -13,6 +13,7 @@ pub mod pendulum;
 pub mod physics;
 pub mod plots;
 pub mod progress;
+pub mod recording;
 pub mod report;
 pub mod run;
 pub mod spectral;

@@ -8,7 +8,9 @@ use estimator::config::{
 use estimator::encoder::EncoderKind;
 use estimator::loss::LossKind;
 use estimator::physics::Integrator;
+use estimator::recording::{parse_crop, parse_size, RecordingFlags};
 use estimator::EstimateError;
+use physvid_shared::video::Crop;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -23,13 +25,47 @@ use std::process::ExitCode;
 #[derive(Debug, Parser)]
 #[command(name = "estimate", version, allow_negative_numbers = true)]
 struct Cli {
-    /// A dataset directory written by `gen` (frames.npy + meta.json), or a bare float32 .npy of
-    /// shape [N, T, C, H, W] (then --dt and --model are required).
+    /// A dataset directory written by `gen` (frames.npy + meta.json); a bare float32 .npy of
+    /// shape [N, T, C, H, W] (then --dt and --model are required); a video file (anything
+    /// ffmpeg reads) or a folder of PNG/JPEG images (with --fps), with --model.
     input: PathBuf,
+    /// Recording: frames per second of real time; overrides the container's (slow-motion files
+    /// store 30 fps for a 120 fps capture); required for an image folder.
+    #[arg(long, help_heading = "Recordings")]
+    fps: Option<f64>,
+    /// Recording: crop X,Y,W,H in pixels of the displayed (rotated) frame.
+    #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H", help_heading = "Recordings")]
+    crop: Option<Crop>,
+    /// Recording: first second to use (of the file's own timeline). For sliding-block and
+    /// free-fall the first frame kept is taken as the release from rest.
+    #[arg(long, help_heading = "Recordings")]
+    start: Option<f64>,
+    /// Recording: last second to use.
+    #[arg(long, help_heading = "Recordings")]
+    end: Option<f64>,
+    /// Recording: frame size fed to the encoder (grey, area-averaged).
+    #[arg(long, value_parser = parse_size, value_name = "WxH", default_value = "100x56", help_heading = "Recordings")]
+    size: (usize, usize),
+    /// Recording: frames per clip [default: appendix Table 5's for the model: pendulum 20,
+    /// torricelli 20, sliding-block 10, led 20, free-fall 4, damped-oscillator 20].
+    #[arg(long, help_heading = "Recordings")]
+    frames_per_clip: Option<usize>,
+    /// Recording: recording frames between clip frames, so dt = stride / fps [default: Table
+    /// 5's dt × fps, e.g. 6 for the pendulum at 60 fps].
+    #[arg(long, help_heading = "Recordings")]
+    stride: Option<usize>,
+    /// Recording: recording frames between the starts of consecutive clips [default: 1, or more
+    /// to stay within 1000 clips].
+    #[arg(long, help_heading = "Recordings")]
+    hop: Option<usize>,
+    /// Recording: also write clips.png, the first clips as the model sees them (check crop and
+    /// stride).
+    #[arg(long, help_heading = "Recordings")]
+    preview: bool,
     /// Seconds between frames (taken from meta.json when present).
     #[arg(long)]
     dt: Option<f64>,
-    /// The governing equation (taken from meta.json when present).
+    /// The governing equation (taken from meta.json when present; required for recordings).
     #[arg(long, value_enum)]
     model: Option<ModelKind>,
     /// Maximum number of epochs; the early stop usually ends training sooner.
@@ -51,7 +87,7 @@ struct Cli {
     #[arg(long, default_value_t = 1e-2)]
     lr_phys: f64,
     /// Initial values of the block's parameters, NAME=VALUE[,NAME=VALUE] (damped-oscillator:
-    /// gamma0=1,gamma1=0.1; pendulum: g_over_l=10,damping=0.1,angle_scale=2,angle_offset=0;
+    /// gamma0=1,gamma1=0.1; pendulum: g_over_l=10,damping=0.1,angle_scale=10,angle_offset=0;
     /// torricelli: k_latent=0.1,base=-3; led: gamma=1,offset=-2; sliding-block, free-fall:
     /// acceleration_latent=0).
     #[arg(long, value_parser = parse_init, value_name = "NAME=VALUE,...")]
@@ -122,6 +158,17 @@ fn main() -> ExitCode {
         loss: cli.loss,
         encoder: cli.encoder,
         seed: cli.seed,
+        recording: RecordingFlags {
+            fps: cli.fps,
+            crop: cli.crop,
+            start: cli.start,
+            end: cli.end,
+            size: cli.size,
+            frames_per_clip: cli.frames_per_clip,
+            stride: cli.stride,
+            hop: cli.hop,
+            preview: cli.preview,
+        },
         device: cli.device,
         threads: cli.threads,
         out: cli.out,

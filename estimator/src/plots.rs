@@ -4,6 +4,7 @@
 use crate::data::ClipData;
 use crate::error::EstimateError;
 use crate::report::{write_atomic, Report};
+use crate::train::Timeline;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -178,6 +179,63 @@ pub fn plot_latents(path: &Path, report: &Report, data: &ClipData) -> Result<(),
             .border_style(BLACK)
             .draw()
             .map_err(|e| e.to_string())?;
+        Ok(())
+    })
+}
+
+/// `timeline.png`: the encoded latent of every recording frame (grey) with the physics rollouts
+/// of back-to-back clips over it (coloured, dots at the clip frames).
+pub fn plot_timeline(path: &Path, t: &Timeline) -> Result<(), EstimateError> {
+    render_png(path, PANEL_HEIGHT + 100, |root| {
+        let end = t.latents.len().max(2) as f64 * t.frame_dt;
+        let values = t
+            .latents
+            .iter()
+            .chain(t.rollouts.iter().flat_map(|r| &r.1))
+            .map(|&v| v as f64);
+        let (lo, hi) = range(values);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                "encoded latent over the recording (grey) and physics rollouts of clips (colour)",
+                ("sans-serif", 18),
+            )
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..end, lo..hi)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("time in the recording (s, real time)")
+            .y_desc("latent z")
+            .draw()
+            .map_err(|e| e.to_string())?;
+        chart
+            .draw_series(LineSeries::new(
+                t.latents
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &v)| (i as f64 * t.frame_dt, v as f64)),
+                RGBColor(150, 150, 150).stroke_width(1),
+            ))
+            .map_err(|e| e.to_string())?;
+        for (k, (start, roll)) in t.rollouts.iter().enumerate() {
+            let color = Palette99::pick(k).to_rgba();
+            let at = |i: usize| (start + i * t.stride) as f64 * t.frame_dt;
+            chart
+                .draw_series(LineSeries::new(
+                    roll.iter().enumerate().map(|(i, &v)| (at(i), v as f64)),
+                    color.stroke_width(2),
+                ))
+                .map_err(|e| e.to_string())?;
+            chart
+                .draw_series(
+                    roll.iter()
+                        .enumerate()
+                        .map(|(i, &v)| Circle::new((at(i), v as f64), 2, color.filled())),
+                )
+                .map_err(|e| e.to_string())?;
+        }
         Ok(())
     })
 }

@@ -4,7 +4,7 @@ use crate::calibration::{derive, Calibration};
 use crate::config::{EstimateConfig, ModelKind};
 use crate::data::ClipData;
 use crate::error::EstimateError;
-use crate::plots::{plot_latents, plot_parameters};
+use crate::plots::{plot_latents, plot_parameters, plot_timeline};
 use crate::train::{StopReason, TrainOutcome};
 use serde::Serialize;
 use std::path::Path;
@@ -97,6 +97,9 @@ pub struct Report {
     pub initial_values: Vec<f64>,
     pub final_values: Vec<f64>,
     pub calibration: Calibration,
+    /// For a video or image folder: what was decoded and how it was cut into clips.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<crate::recording::RecordingSummary>,
     /// The starts tried (the given or default values, and the spectral estimate) and which
     /// one was kept.
     pub starts: Vec<crate::train::StartProbe>,
@@ -149,7 +152,8 @@ impl Report {
                 }
             })
             .collect();
-        let mut warnings = calibration_warnings;
+        let mut warnings = data.warnings.clone();
+        warnings.extend(calibration_warnings);
         if matches!(data.model, ModelKind::SlidingBlock | ModelKind::FreeFall)
             && data.train_start.is_none()
         {
@@ -215,6 +219,7 @@ impl Report {
             initial_values: init.to_vec(),
             final_values: outcome.parameters.clone(),
             calibration,
+            recording: data.recording.as_ref().map(|r| r.0.clone()),
             starts: Vec::new(),
             epochs_run: outcome.epochs_run,
             best_epoch: outcome.best_epoch,
@@ -326,6 +331,12 @@ pub fn write_outputs(
     )?;
     plot_parameters(&cfg.out.join("parameters.png"), report)?;
     plot_latents(&cfg.out.join("latents.png"), report, data)?;
+    if let Some(t) = &report.outcome.timeline {
+        plot_timeline(&cfg.out.join("timeline.png"), t)?;
+    }
+    if let Some(png) = &data.preview_png {
+        write_atomic(&cfg.out.join("clips.png"), png)?;
+    }
     let json = serde_json::to_vec_pretty(report).expect("report serialises");
     write_atomic(&cfg.out.join("report.json"), &json)
 }

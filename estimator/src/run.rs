@@ -41,13 +41,22 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     if !cfg.single_start {
         // The oscillator's two-step recurrence also gives the pendulum's small-angle g/L and
         // damping; the other systems do not oscillate.
-        let spectral = match data.model {
-            ModelKind::DampedOscillator => spectral_start(&data.train, data.dt, cfg.integrator),
-            ModelKind::Pendulum => spectral_start(&data.train, data.dt, cfg.integrator)
-                .map(|g| vec![g[0], g[1].max(0.0), init[2], init[3]]),
-            _ => None,
-        };
-        starts.extend(spectral);
+        match data.model {
+            ModelKind::DampedOscillator => {
+                starts.extend(spectral_start(&data.train, data.dt, cfg.integrator))
+            }
+            ModelKind::Pendulum => {
+                // The most persistent mode of a real swing is often the second harmonic (a
+                // latent like |x| oscillates at 2ω, so g/L 4× too large): its sub-harmonic is
+                // probed too, and the validation error picks.
+                if let Some(g) = spectral_start(&data.train, data.dt, cfg.integrator) {
+                    let damping = g[1].max(0.0);
+                    starts.push(vec![g[0], damping, init[2], init[3]]);
+                    starts.push(vec![g[0] / 4.0, damping / 2.0, init[2], init[3]]);
+                }
+            }
+            _ => {}
+        }
     }
     let calibration = resolve(cfg, data.meta.as_ref());
     let reference = &calibration.reference;

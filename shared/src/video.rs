@@ -47,8 +47,10 @@ pub struct VideoOptions {
     pub frames_per_clip: usize,
     /// Recording frames between consecutive clip frames (dt = stride / fps).
     pub stride: usize,
-    /// Recording frames between the starts of consecutive clips.
-    pub hop: usize,
+    /// Recording frames between the starts of consecutive clips; `None`: 1, or more so that at
+    /// most `max_clips` clips result.
+    pub hop: Option<usize>,
+    pub max_clips: usize,
 }
 
 /// What ffprobe says about a recording.
@@ -63,6 +65,8 @@ pub struct VideoInfo {
     pub capture_fps: Option<f64>,
     /// Rotation tag in degrees (0 when absent).
     pub rotation: i64,
+    /// Frames the container says it holds (nb_frames, or duration × fps), when it says.
+    pub expected_frames: Option<usize>,
 }
 
 /// A decoded recording: every kept frame, resized, and the clips cut from it.
@@ -75,6 +79,8 @@ pub struct DecodedVideo {
     pub frames: Vec<Vec<f32>>,
     /// First recording frame (index into `frames`) of each clip.
     pub clip_starts: Vec<usize>,
+    /// Frames between clip starts.
+    pub hop: usize,
     pub size: (usize, usize),
 }
 
@@ -97,11 +103,22 @@ impl DecodedVideo {
     }
 }
 
-/// Whether `path` is an input this module reads: a file that is not `.npy`, or a directory of
-/// images without `frames.npy`.
+/// Whether `path` is an input this module reads: a file that is not `.npy`, or a directory
+/// that is not a dataset (no `frames.npy`, no `meta.json`, no `.partial` files), taken as a
+/// folder of images.
 pub fn is_recording(path: &Path) -> bool {
     if path.is_dir() {
-        !path.join("frames.npy").exists() && !image_files(path).unwrap_or_default().is_empty()
+        let dataset_like = std::fs::read_dir(path).is_ok_and(|mut d| {
+            d.any(|e| {
+                e.is_ok_and(|e| {
+                    let name = e.file_name().to_string_lossy().into_owned();
+                    name.starts_with("frames.npy")
+                        || name.starts_with("meta.json")
+                        || name.ends_with(".partial")
+                })
+            })
+        });
+        !dataset_like
     } else {
         path.extension()
             .is_none_or(|e| !e.eq_ignore_ascii_case("npy"))
@@ -228,7 +245,20 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
         .or_else(|| stream["tags"]["com.android.capture.fps"].as_str())
         .and_then(|t| t.trim().parse::<f64>().ok())
         .filter(|f| *f > 0.0);
+    let expected_frames = stream["nb_frames"]
+        .as_str()
+        .and_then(|n| n.parse::<usize>().ok())
+        .or_else(|| {
+            let d = stream["duration"]
+                .as_str()
+                .or_else(|| v["format"]["duration"].as_str())?
+                .parse::<f64>()
+                .ok()?;
+            Some((d * fps?).round() as usize)
+        })
+        .filter(|&n| n > 0);
     Ok(VideoInfo {
+        expected_frames,
         width: if quarter { h } else { w },
         height: if quarter { w } else { h },
         container_fps: fps,
@@ -326,6 +356,7 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
         }
         let mut info = probe(first)?;
         info.container_fps = None;
+        info.expected_frames = Some(files.len());
         let mut text = String::from("ffconcat version 1.0\n");
         for f in &files {
             let abs = std::fs::canonicalize(f).map_err(|e| bad(f, e.to_string()))?;
@@ -433,6 +464,18 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
             ),
         ));
     }
+    let untrimmed = opts.start.is_none() && opts.end.is_none() && !folder;
+    if let Some(expected) = info.expected_frames.filter(|_| untrimmed) {
+        if !frames.is_empty() && (frames.len() as f64) < 0.95 * expected as f64 {
+            return Err(bad(
+                input,
+                format!(
+                    "decoding stopped after {} of the {expected} frames the container announces (a truncated file?)",
+                    frames.len()
+                ),
+            ));
+        }
+    }
     if frames.is_empty() {
         return Err(bad(
             input,
@@ -459,12 +502,17 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
             ),
         ));
     }
-    let clip_starts: Vec<usize> = (0..frames.len() - span).step_by(opts.hop).collect();
+    let possible = frames.len() - span;
+    let hop = opts
+        .hop
+        .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
+    let clip_starts: Vec<usize> = (0..possible).step_by(hop).collect();
     Ok(DecodedVideo {
         info,
         fps,
         frames,
         clip_starts,
+        hop,
         size: opts.size,
     })
 }

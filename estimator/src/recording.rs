@@ -1,0 +1,253 @@
+//! Recordings as input: the flags that turn a video or a folder of images into clips
+//! (`RecordingFlags`), their parsers, and `load_recording`, which decodes through
+//! `physvid_shared::video` (ffmpeg) and cuts the frames into clips.
+
+use crate::config::ModelKind;
+use crate::error::{input_error, EstimateError};
+use physvid_shared::video::{self, Crop, VideoInfo, VideoOptions};
+use serde::Serialize;
+use std::path::Path;
+
+/// At most this many clips by default: the hop between clip starts grows to stay below it.
+pub const MAX_DEFAULT_CLIPS: usize = 1000;
+
+/// How a recording becomes clips (ignored for datasets).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RecordingFlags {
+    /// Frames per second of real time (overrides the container's; required for image folders).
+    pub fps: Option<f64>,
+    pub crop: Option<Crop>,
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// Frame size fed to the encoder (width, height).
+    pub size: (usize, usize),
+    /// Frames per clip (default: appendix Table 5's for the model).
+    pub frames_per_clip: Option<usize>,
+    /// Recording frames between clip frames (default: Table 5's dt × fps, at least 1).
+    pub stride: Option<usize>,
+    /// Recording frames between clip starts (default: 1, or more to stay within 1000 clips).
+    pub hop: Option<usize>,
+    /// Write clips.png, the clips as the model sees them.
+    pub preview: bool,
+}
+
+impl Default for RecordingFlags {
+    fn default() -> Self {
+        RecordingFlags {
+            fps: None,
+            crop: None,
+            start: None,
+            end: None,
+            size: (100, 56),
+            frames_per_clip: None,
+            stride: None,
+            hop: None,
+            preview: false,
+        }
+    }
+}
+
+/// Parses `--crop X,Y,W,H`.
+pub fn parse_crop(text: &str) -> Result<Crop, String> {
+    let v: Vec<usize> = text
+        .split(',')
+        .map(|p| p.trim().parse::<usize>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{text}' is not X,Y,W,H in pixels (e.g. 100,0,400,300)"))?;
+    match v[..] {
+        [x, y, w, h] if w > 0 && h > 0 => Ok(Crop { x, y, w, h }),
+        _ => Err(format!(
+            "'{text}' is not X,Y,W,H with W, H > 0 (e.g. 100,0,400,300)"
+        )),
+    }
+}
+
+/// Parses `--size WxH`.
+pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{text}' is not WxH (e.g. 100x56)"))?;
+    match (w.trim().parse::<usize>(), h.trim().parse::<usize>()) {
+        (Ok(w), Ok(h)) if (4..=4096).contains(&w) && (4..=4096).contains(&h) => Ok((w, h)),
+        _ => Err(format!(
+            "'{text}' is not WxH with 4 ≤ W, H ≤ 4096 (e.g. 100x56)"
+        )),
+    }
+}
+
+impl RecordingFlags {
+    /// Checks the flags that do not depend on the recording.
+    pub fn validate(&self) -> Result<(), EstimateError> {
+        if let Some(f) = self.fps {
+            if !(f.is_finite() && f > 0.0) {
+                return Err(input_error(format!("--fps {f}: must be > 0")));
+            }
+        }
+        for (flag, v) in [("--start", self.start), ("--end", self.end)] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(input_error(format!("{flag} {v}: must be a time >= 0 s")));
+                }
+            }
+        }
+        if let (Some(s), Some(e)) = (self.start, self.end) {
+            if e <= s {
+                return Err(input_error(format!(
+                    "--end {e} is not after --start {s}: zero frames would remain"
+                )));
+            }
+        }
+        if self.frames_per_clip.is_some_and(|t| t < 3) {
+            return Err(input_error(
+                "--frames-per-clip: at least 3 (two to start a rollout, one to predict)",
+            ));
+        }
+        if self.stride == Some(0) || self.hop == Some(0) {
+            return Err(input_error("--stride and --hop: at least 1 frame"));
+        }
+        Ok(())
+    }
+}
+
+/// What was made of a recording, for the report and the plots.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordingSummary {
+    pub info: VideoInfo,
+    /// The frame rate used and where it came from ("--fps" or "container").
+    pub fps: f64,
+    pub fps_source: &'static str,
+    pub frames_decoded: usize,
+    pub frames_per_clip: usize,
+    pub stride: usize,
+    pub hop: usize,
+    pub clips: usize,
+    pub size: (usize, usize),
+    pub crop: Option<Crop>,
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// First recording frame of each clip (index into the decoded frames).
+    #[serde(skip)]
+    pub clip_starts: Vec<usize>,
+}
+
+/// A decoded recording cut into clips.
+pub struct LoadedRecording {
+    /// [N, T, 1, H, W] row-major, values in [0, 1].
+    pub clips: Vec<f32>,
+    pub shape: [usize; 5],
+    pub dt: f64,
+    /// Every decoded frame, [F][H·W], for the latent-over-the-recording plot.
+    pub frames: Vec<Vec<f32>>,
+    pub summary: RecordingSummary,
+    pub warnings: Vec<String>,
+}
+
+/// Decodes `input` for `model` and cuts it into clips.
+pub fn load_recording(
+    input: &Path,
+    model: ModelKind,
+    flags: &RecordingFlags,
+) -> Result<LoadedRecording, EstimateError> {
+    let (table_frames, table_dt) = model.table5_clip();
+    let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
+    let mut warnings = Vec::new();
+    // The frame rate first (cheap), for the default stride.
+    let info = if input.is_dir() {
+        None
+    } else {
+        Some(video::probe(input)?)
+    };
+    let (fps, fps_source) = match (flags.fps, info.as_ref().and_then(|i| i.container_fps)) {
+        (Some(f), _) => (f, "--fps"),
+        (None, Some(f)) => (f, "container"),
+        (None, None) => {
+            return Err(input_error(format!(
+                "{}: no frame rate known (an image folder, or a container without one): pass --fps",
+                input.display()
+            )))
+        }
+    };
+    if let (None, Some(i)) = (flags.fps, &info) {
+        if let (Some(capture), Some(container)) = (i.capture_fps, i.container_fps) {
+            if (capture / container - 1.0).abs() > 0.01 {
+                warnings.push(format!(
+                    "the container says {container:.3} fps but the file's com.android.capture.fps \
+                     tag says {capture} fps (a slow-motion capture?): dt, and every rate, is wrong \
+                     by {:.2}× unless you pass --fps {capture}",
+                    capture / container
+                ));
+            }
+        }
+    }
+    let stride = flags
+        .stride
+        .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
+    let opts = VideoOptions {
+        fps: Some(fps),
+        crop: flags.crop,
+        start: flags.start,
+        end: flags.end,
+        size: flags.size,
+        frames_per_clip,
+        stride,
+        hop: flags.hop,
+        max_clips: MAX_DEFAULT_CLIPS,
+    };
+    let decoded = video::decode(input, &opts)?;
+    let (clips, shape) = decoded.clips(frames_per_clip, stride);
+    let summary = RecordingSummary {
+        info: decoded.info.clone(),
+        fps,
+        fps_source,
+        frames_decoded: decoded.frames.len(),
+        frames_per_clip,
+        stride,
+        hop: decoded.hop,
+        clips: decoded.clip_starts.len(),
+        size: flags.size,
+        crop: flags.crop,
+        start: flags.start,
+        end: flags.end,
+        clip_starts: decoded.clip_starts.clone(),
+    };
+    if summary.clips < 2 {
+        return Err(input_error(format!(
+            "{}: only {} clip of {frames_per_clip} frames at stride {stride} fits in {} frames; \
+             at least 2 are needed (lower --frames-per-clip, --stride or --hop, or trim less)",
+            input.display(),
+            summary.clips,
+            summary.frames_decoded
+        )));
+    }
+    Ok(LoadedRecording {
+        clips,
+        shape,
+        dt: decoded.dt(stride),
+        frames: decoded.frames,
+        summary,
+        warnings,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crop_and_size_parse_or_say_what_is_expected() {
+        assert_eq!(
+            parse_crop("1,2,30,40").unwrap(),
+            Crop {
+                x: 1,
+                y: 2,
+                w: 30,
+                h: 40
+            }
+        );
+        assert!(parse_crop("1,2,0,4").unwrap_err().contains("X,Y,W,H"));
+        assert!(parse_crop("1,2,3").is_err());
+        assert_eq!(parse_size("100x56").unwrap(), (100, 56));
+        assert!(parse_size("100").unwrap_err().contains("WxH"));
+        assert!(parse_size("2x2").is_err());
+    }
+}
