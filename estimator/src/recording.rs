@@ -125,6 +125,9 @@ pub struct RecordingSummary {
     pub crop: Option<Crop>,
     pub start: Option<f64>,
     pub end: Option<f64>,
+    /// Seconds spent decoding (ffmpeg, the pipe, crop and resize) and frames per second.
+    pub decode_s: f64,
+    pub decode_fps: f64,
     /// First recording frame of each clip (index into the decoded frames).
     #[serde(skip)]
     pub clip_starts: Vec<usize>,
@@ -193,7 +196,9 @@ pub fn load_recording(
         hop: flags.hop,
         max_clips: MAX_DEFAULT_CLIPS,
     };
+    let started = std::time::Instant::now();
     let decoded = video::decode(input, &opts)?;
+    let decode_s = started.elapsed().as_secs_f64();
     let (clips, shape) = decoded.clips(frames_per_clip, stride);
     let summary = RecordingSummary {
         info: decoded.info.clone(),
@@ -208,6 +213,8 @@ pub fn load_recording(
         crop: flags.crop,
         start: flags.start,
         end: flags.end,
+        decode_s,
+        decode_fps: decoded.frames.len() as f64 / decode_s.max(1e-9),
         clip_starts: decoded.clip_starts.clone(),
     };
     if summary.clips < 2 {
