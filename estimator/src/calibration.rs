@@ -203,11 +203,11 @@ mod tests {
             g: 9.81,
             source: "flags".into(),
         };
-        // z = −40·h + 1 → α = −40; k_latent = k·√40.
+        // z = −40·h + 1 → α = −40, the empty tank's latent (base) is 1; k_latent = k·√40.
         let latents = [-40.0 * 0.07 + 1.0, -40.0 * 0.01 + 1.0];
         let (rows, warnings) = derive(
             ModelKind::Torricelli,
-            &[0.0128 * 40f64.sqrt(), 0.0],
+            &[0.0128 * 40f64.sqrt(), 1.0],
             &cal,
             &latents,
         );

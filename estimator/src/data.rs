@@ -100,7 +100,8 @@ fn recording_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
     // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
     let preview_png = cfg.recording.preview.then(|| {
         let n = rec.shape[0];
-        let rows: Vec<usize> = (0..4.min(n)).map(|k| k * (n - 1) / 3.max(1)).collect();
+        let m = n.min(4);
+        let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
         encode_png(&contact_sheet(&rec.clips, rec.shape, &rows, 2))
     });
     Ok(Source {
