@@ -379,6 +379,16 @@ fn help_describes_every_flag() {
         "--out",
         "--quiet",
         "--encoder",
+        "--ensemble",
+        "--fps",
+        "--crop",
+        "--start",
+        "--end",
+        "--size",
+        "--frames-per-clip",
+        "--stride",
+        "--hop",
+        "--preview",
     ] {
         assert!(help.contains(flag), "--help lacks {flag}");
     }
@@ -494,4 +504,47 @@ fn a_missing_calibration_gives_latent_units_and_says_why() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--reference 99:0"), "{}", stderr(&o));
+}
+
+#[test]
+fn an_ensemble_reports_the_spread_over_seeds() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = small_set(&tmp.path().join("data"), "intensity");
+    let out = tmp.path().join("run");
+    let o = run(
+        &estimate_bin(),
+        &[
+            &data,
+            "--ensemble",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("ensemble of 3"));
+    let r = read_report(&out);
+    let e = &r["ensemble"];
+    assert_eq!(e["members"], 3);
+    assert_eq!(e["seeds"], serde_json::json!([0, 1, 2]));
+    let g0 = &e["values"][0];
+    assert_eq!(g0["name"], "gamma0");
+    let values: Vec<f64> = g0["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(values.len(), 3);
+    // Member 0 is the run the rest of the report describes; different seeds differ.
+    assert_eq!(values[0], estimate_of(&r, "gamma0"));
+    assert!(g0["std"].as_f64().unwrap() > 0.0);
+    assert!((g0["mean"].as_f64().unwrap() / 4.0016 - 1.0).abs() < 0.01);
+    let o = run(
+        &estimate_bin(),
+        &[&data, "--ensemble", "0", "--out", out.to_str().unwrap()],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--ensemble 0"), "{}", stderr(&o));
 }

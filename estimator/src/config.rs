@@ -164,6 +164,8 @@ pub struct EstimateConfig {
     /// [`ModelKind::default_encoder`]).
     pub encoder: Option<EncoderKind>,
     pub seed: u64,
+    /// Independently seeded trainings whose spread is reported (1: a single run).
+    pub ensemble: usize,
     /// How a video or image folder becomes clips (ignored for datasets).
     pub recording: RecordingFlags,
     pub device: DeviceChoice,
@@ -247,6 +249,9 @@ impl EstimateConfig {
             positive("--g", g)?;
         }
         self.recording.validate()?;
+        if self.ensemble == 0 {
+            return Err(input_error("--ensemble 0: must be at least 1"));
+        }
         if let Some(deg) = self.incline_deg {
             if !(deg.is_finite() && deg > 0.0 && deg < 90.0) {
                 return Err(input_error(format!(

@@ -7,6 +7,7 @@ pub mod calibration;
 pub mod config;
 pub mod data;
 pub mod encoder;
+pub mod ensemble;
 pub mod error;
 pub mod loss;
 pub mod pendulum;

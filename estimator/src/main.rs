@@ -121,6 +121,10 @@ struct Cli {
     /// Seed of the weight initialisation and batch order.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Train K models with seeds --seed … --seed+K−1 (one after another, each on every core)
+    /// and report each value's mean, standard deviation and range (report.json `ensemble`).
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    ensemble: usize,
     /// Where to train.
     #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
     device: DeviceChoice,
@@ -158,6 +162,7 @@ fn main() -> ExitCode {
         loss: cli.loss,
         encoder: cli.encoder,
         seed: cli.seed,
+        ensemble: cli.ensemble,
         recording: RecordingFlags {
             fps: cli.fps,
             crop: cli.crop,

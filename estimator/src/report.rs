@@ -113,6 +113,10 @@ pub struct Report {
     /// over the validation clips (the method's premise; its sign and scale are arbitrary).
     pub latent_vs_truth: Option<AffineFit>,
     pub wall_time_s: f64,
+    /// `--ensemble K`: the spread of each value over K seeds (the fields above are seed
+    /// --seed's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ensemble: Option<crate::ensemble::Ensemble>,
     pub warnings: Vec<String>,
     pub history: Vec<crate::train::EpochRecord>,
     #[serde(skip)]
@@ -229,6 +233,7 @@ impl Report {
             latent_collapsed: collapsed,
             latent_vs_truth: latent_fit(data, &outcome.val_latents),
             wall_time_s: wall.as_secs_f64(),
+            ensemble: None,
             warnings,
             history: outcome.history.clone(),
             outcome,

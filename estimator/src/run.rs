@@ -3,6 +3,7 @@
 use crate::calibration::resolve;
 use crate::config::{DeviceChoice, EstimateConfig, ModelKind};
 use crate::data::load_clips;
+use crate::ensemble::summarise;
 use crate::error::input_error;
 use crate::error::EstimateError;
 use crate::progress::Progress;
@@ -82,14 +83,46 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
         .find(|p| p.chosen)
         .map_or(&starts[0], |p| &p.initial)
         .clone();
+    // Further members of an ensemble: the same clips and starts, seeds --seed+1 … --seed+K−1.
+    let mut members = Vec::new();
+    for i in 1..cfg.ensemble {
+        let member = EstimateConfig {
+            seed: cfg.seed + i as u64,
+            ..cfg.clone()
+        };
+        if !cfg.quiet {
+            eprintln!(
+                "ensemble member {}/{} (seed {})",
+                i + 1,
+                cfg.ensemble,
+                member.seed
+            );
+        }
+        let (o, _) = fit(&member, &data, device, &starts, reference, &mut |_| {})?;
+        let info = RunInfo {
+            device,
+            threads,
+            wall: start.elapsed(),
+        };
+        members.push(Report::new(&member, &data, info, &chosen, o, calibration.clone()).parameters);
+    }
     let info = RunInfo {
         device,
         threads,
         wall: start.elapsed(),
     };
-    let report = Report::new(cfg, &data, info, &chosen, outcome, calibration).with_starts(probes);
+    let mut report =
+        Report::new(cfg, &data, info, &chosen, outcome, calibration).with_starts(probes);
+    if cfg.ensemble > 1 {
+        members.insert(0, report.parameters.clone());
+        let seeds = (0..cfg.ensemble as u64).map(|i| cfg.seed + i).collect();
+        report.ensemble = Some(summarise(seeds, &members));
+    }
     write_outputs(cfg, &data, &report)?;
     println!("{}", report.table());
+    if let Some(e) = &report.ensemble {
+        println!("{}", e.table());
+    }
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }

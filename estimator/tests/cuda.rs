@@ -55,6 +55,7 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
         loss: LossKind::MseKl,
         encoder: Some(EncoderKind::Small),
         seed: 0,
+        ensemble: 1,
         recording: Default::default(),
         device: DeviceChoice::Cuda,
         threads: None,
