@@ -5,7 +5,6 @@
 use crate::config::{EstimateConfig, ModelKind};
 use crate::error::{input_error, EstimateError};
 use crate::recording::{load_recording, RecordingSummary};
-use physvid_shared::contact_sheet::{contact_sheet, encode_png};
 use physvid_shared::video::is_recording;
 use physvid_shared::{read_dataset, DatasetMeta};
 use std::collections::BTreeMap;
@@ -53,24 +52,30 @@ impl ClipData {
 /// deviation (a fixed affine map of the input, computed on the training clips only): the static
 /// background drops out and the encoder's first layer starts well conditioned.
 /// Returns the map as (mean frame [D], std).
+/// Computed without a full-size temporary: mean((x − m)²) = mean(x²) − mean(m²) per pixel.
 fn standardisation(all: &Tensor, n_train: i64) -> (Tensor, Tensor) {
     let d = all.size()[2];
     let train = all.narrow(0, 0, n_train).reshape([-1, d]);
     let mean = train.mean_dim(0, false, Kind::Float);
-    let centred = train - &mean;
-    let std = centred.square().mean(Kind::Float).sqrt().clamp_min(1e-6);
-    (mean, std)
+    let rows = train.size()[0] as f64;
+    let mean_square = train.norm().square() / (rows * d as f64);
+    let var = (mean_square - mean.square().mean(Kind::Float)).clamp_min(0.0);
+    (mean, var.sqrt().clamp_min(1e-6))
 }
 
 /// Frames, their shape and what is known about them, before they go to the device.
 struct Source {
+    /// The clips [N, T, C, H, W]; or, with `clip_index`, a recording's frames [F, C·H·W].
     frames: Vec<f32>,
+    /// For a recording: the frame of every clip frame [N·T].
+    clip_index: Option<Vec<i64>>,
+    /// Of the clips.
     shape: [usize; 5],
     dt: f64,
     model: ModelKind,
     meta: Option<DatasetMeta>,
     start_times: Option<Vec<f64>>,
-    recording: Option<(RecordingSummary, Vec<Vec<f32>>)>,
+    recording: Option<RecordingSummary>,
     warnings: Vec<String>,
     preview_png: Option<Vec<u8>>,
 }
@@ -97,22 +102,16 @@ fn recording_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
             .map(|&s| s as f64 / rec.summary.fps)
             .collect()
     });
-    // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
-    let preview_png = cfg.recording.preview.then(|| {
-        let n = rec.shape[0];
-        let m = n.min(4);
-        let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
-        encode_png(&contact_sheet(&rec.clips, rec.shape, &rows, 2))
-    });
     Ok(Source {
-        preview_png,
-        frames: rec.clips,
+        preview_png: rec.preview_png,
+        frames: rec.frames,
+        clip_index: Some(rec.clip_index),
         shape: rec.shape,
         dt: rec.dt,
         model,
         meta: None,
         start_times,
-        recording: Some((rec.summary, rec.frames)),
+        recording: Some(rec.summary),
         warnings: rec.warnings,
     })
 }
@@ -132,26 +131,36 @@ pub fn load_clips(cfg: &EstimateConfig, device: Device) -> Result<ClipData, Esti
         .map(|m| m.model.parameters.clone())
         .unwrap_or_default();
     let d = (c * h * w) as i64;
-    let all = Tensor::from_slice(&src.frames)
-        .view([n as i64, t as i64, d])
-        .to_kind(Kind::Float)
-        .to_device(device);
+    let source = Tensor::from_slice(&src.frames).to_device(device);
     drop(src.frames);
+    // A recording's clips are gathered from its frames, which stay for the timeline.
+    let (mut all, mut frames) = match &src.clip_index {
+        Some(idx) => {
+            let frames = source.view([-1, d]);
+            let idx = Tensor::from_slice(idx).to_device(device);
+            let clips = frames.index_select(0, &idx).view([n as i64, t as i64, d]);
+            (clips, Some(frames))
+        }
+        None => (source.view([n as i64, t as i64, d]), None),
+    };
     let n_val = ((n as f64 * 0.2).round() as i64).max(1);
     let n_train = n as i64 - n_val;
     let (mean, std) = standardisation(&all, n_train);
-    let all = (all - &mean) / &std;
+    // In place: no second copy of the clips.
+    all -= &mean;
+    all /= &std;
+    if let Some(f) = frames.as_mut() {
+        *f -= &mean;
+        *f /= &std;
+    }
     let start = src
         .start_times
         .as_ref()
         .map(|t| Tensor::from_slice(t).to_kind(Kind::Float).to_device(device));
-    let recording = src.recording.map(|(summary, frames)| {
-        let flat: Vec<f32> = frames.concat();
-        let all_frames = Tensor::from_slice(&flat)
-            .view([1, frames.len() as i64, d])
-            .to_device(device);
-        (summary, (all_frames - &mean) / &std)
-    });
+    let recording = src
+        .recording
+        .zip(frames)
+        .map(|(summary, f)| (summary, f.unsqueeze(0)));
     Ok(ClipData {
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),
@@ -241,6 +250,7 @@ fn dataset_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
         model,
         meta: ds.meta,
         start_times,
+        clip_index: None,
         recording: None,
         warnings: Vec::new(),
         preview_png: None,

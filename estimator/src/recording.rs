@@ -4,6 +4,7 @@
 
 use crate::config::ModelKind;
 use crate::error::{input_error, EstimateError};
+use physvid_shared::contact_sheet::{contact_sheet, encode_png};
 use physvid_shared::video::{self, Crop, VideoInfo, VideoOptions};
 use serde::Serialize;
 use std::path::Path;
@@ -133,14 +134,17 @@ pub struct RecordingSummary {
     pub clip_starts: Vec<usize>,
 }
 
-/// A decoded recording cut into clips.
+/// A decoded recording cut into clips (by index: the frames are held once).
 pub struct LoadedRecording {
-    /// [N, T, 1, H, W] row-major, values in [0, 1].
-    pub clips: Vec<f32>,
+    /// Every decoded frame, [F, H·W] row-major, values in [0, 1].
+    pub frames: Vec<f32>,
+    /// The recording frame of every clip frame, [N·T].
+    pub clip_index: Vec<i64>,
+    /// [N, T, 1, H, W] of the clips.
     pub shape: [usize; 5],
     pub dt: f64,
-    /// Every decoded frame, [F][H·W], for the latent-over-the-recording plot.
-    pub frames: Vec<Vec<f32>>,
+    /// clips.png for `--preview`.
+    pub preview_png: Option<Vec<u8>>,
     pub summary: RecordingSummary,
     pub warnings: Vec<String>,
 }
@@ -199,12 +203,21 @@ pub fn load_recording(
     let started = std::time::Instant::now();
     let decoded = video::decode(input, &opts)?;
     let decode_s = started.elapsed().as_secs_f64();
-    let (clips, shape) = decoded.clips(frames_per_clip, stride);
+    let n = decoded.clip_starts.len();
+    let shape = [n, frames_per_clip, 1, flags.size.1, flags.size.0];
+    // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
+    let preview_png = flags.preview.then(|| {
+        let m = n.min(4);
+        let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
+        let (clips, shape) = decoded.clips(&rows, frames_per_clip, stride);
+        let all: Vec<usize> = (0..rows.len()).collect();
+        encode_png(&contact_sheet(&clips, shape, &all, 2))
+    });
     let summary = RecordingSummary {
         info: decoded.info.clone(),
         fps,
         fps_source,
-        frames_decoded: decoded.frames.len(),
+        frames_decoded: decoded.frame_count,
         frames_per_clip,
         stride,
         hop: decoded.hop,
@@ -214,7 +227,7 @@ pub fn load_recording(
         start: flags.start,
         end: flags.end,
         decode_s,
-        decode_fps: decoded.frames.len() as f64 / decode_s.max(1e-9),
+        decode_fps: decoded.frame_count as f64 / decode_s.max(1e-9),
         clip_starts: decoded.clip_starts.clone(),
     };
     if summary.clips < 2 {
@@ -227,10 +240,11 @@ pub fn load_recording(
         )));
     }
     Ok(LoadedRecording {
-        clips,
+        clip_index: decoded.clip_index(frames_per_clip, stride),
         shape,
         dt: decoded.dt(stride),
         frames: decoded.frames,
+        preview_png,
         summary,
         warnings,
     })

@@ -75,8 +75,10 @@ pub struct DecodedVideo {
     pub info: VideoInfo,
     /// The frame rate used (the --fps override or the container's).
     pub fps: f64,
-    /// All frames after trimming, [F][H·W], values in [0, 1].
-    pub frames: Vec<Vec<f32>>,
+    /// All frames after trimming, [F, H·W] row-major, values in [0, 1].
+    pub frames: Vec<f32>,
+    /// F.
+    pub frame_count: usize,
     /// First recording frame (index into `frames`) of each clip.
     pub clip_starts: Vec<usize>,
     /// Frames between clip starts.
@@ -90,16 +92,31 @@ impl DecodedVideo {
         stride as f64 / self.fps
     }
 
-    /// The clips as one [N, T, 1, H, W] array (row-major) and its shape.
-    pub fn clips(&self, frames_per_clip: usize, stride: usize) -> (Vec<f32>, [usize; 5]) {
+    /// Recording frame index of every clip frame, [N·T] (clip-major): the clips are
+    /// `frames[index]`, so they need not be copied out.
+    pub fn clip_index(&self, frames_per_clip: usize, stride: usize) -> Vec<i64> {
+        self.clip_starts
+            .iter()
+            .flat_map(|&s| (0..frames_per_clip).map(move |k| (s + k * stride) as i64))
+            .collect()
+    }
+
+    /// The clips `which` (indices into `clip_starts`) as one [n, T, 1, H, W] array.
+    pub fn clips(
+        &self,
+        which: &[usize],
+        frames_per_clip: usize,
+        stride: usize,
+    ) -> (Vec<f32>, [usize; 5]) {
         let (w, h) = self.size;
-        let mut out = Vec::with_capacity(self.clip_starts.len() * frames_per_clip * w * h);
-        for &s in &self.clip_starts {
+        let mut out = Vec::with_capacity(which.len() * frames_per_clip * w * h);
+        for &c in which {
             for k in 0..frames_per_clip {
-                out.extend_from_slice(&self.frames[s + k * stride]);
+                let f = self.clip_starts[c] + k * stride;
+                out.extend_from_slice(&self.frames[f * w * h..(f + 1) * w * h]);
             }
         }
-        (out, [self.clip_starts.len(), frames_per_clip, 1, h, w])
+        (out, [which.len(), frames_per_clip, 1, h, w])
     }
 }
 
@@ -428,10 +445,14 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
     let mut buf = vec![0u8; frame_bytes];
     let mut resizer = FrameResizer::new(info.width, crop, opts.size);
     let mut frames = Vec::new();
+    let mut count = 0usize;
     let mut partial = false;
     loop {
         match read_full(&mut stdout, &mut buf) {
-            Ok(n) if n == frame_bytes => frames.push(resizer.resize(&buf)),
+            Ok(n) if n == frame_bytes => {
+                frames.extend(resizer.resize(&buf));
+                count += 1;
+            }
             Ok(0) => break,
             Ok(_) => {
                 partial = true;
@@ -450,7 +471,7 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
             .unwrap_or("decoding failed")
             .trim()
             .to_string();
-        if frames.is_empty() {
+        if count == 0 {
             return Err(VideoError::NotAVideo {
                 path: input.to_path_buf(),
                 reason: line,
@@ -460,23 +481,23 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
             input,
             format!(
                 "decoding stopped after {} frames: {line} (a truncated file?)",
-                frames.len()
+                count
             ),
         ));
     }
     let untrimmed = opts.start.is_none() && opts.end.is_none() && !folder;
     if let Some(expected) = info.expected_frames.filter(|_| untrimmed) {
-        if !frames.is_empty() && (frames.len() as f64) < 0.95 * expected as f64 {
+        if !count == 0 && (count as f64) < 0.95 * expected as f64 {
             return Err(bad(
                 input,
                 format!(
                     "decoding stopped after {} of the {expected} frames the container announces (a truncated file?)",
-                    frames.len()
+                    count
                 ),
             ));
         }
     }
-    if frames.is_empty() {
+    if count == 0 {
         return Err(bad(
             input,
             match (opts.start, opts.end) {
@@ -490,19 +511,19 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
         ));
     }
     let span = (opts.frames_per_clip - 1) * opts.stride;
-    if frames.len() <= span {
+    if count <= span {
         return Err(bad(
             input,
             format!(
                 "{} frames decoded, but one clip of {} frames at stride {} needs {}: lower --frames-per-clip or --stride, or trim less",
-                frames.len(),
+                count,
                 opts.frames_per_clip,
                 opts.stride,
                 span + 1
             ),
         ));
     }
-    let possible = frames.len() - span;
+    let possible = count - span;
     let hop = opts
         .hop
         .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
@@ -511,6 +532,7 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
         info,
         fps,
         frames,
+        frame_count: count,
         clip_starts,
         hop,
         size: opts.size,
