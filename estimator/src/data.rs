@@ -52,15 +52,21 @@ impl ClipData {
 /// deviation (a fixed affine map of the input, computed on the training clips only): the static
 /// background drops out and the encoder's first layer starts well conditioned.
 /// Returns the map as (mean frame [D], std).
-/// Computed without a full-size temporary: mean((x − m)²) = mean(x²) − mean(m²) per pixel.
+/// The sum of squares is accumulated over pieces of frames, so no full-size temporary is made
+/// (a mostly static recording has a pixel variance far below the mean square, so the shortcut
+/// mean(x²) − mean(m²) would cancel catastrophically in float32).
 fn standardisation(all: &Tensor, n_train: i64) -> (Tensor, Tensor) {
     let d = all.size()[2];
     let train = all.narrow(0, 0, n_train).reshape([-1, d]);
     let mean = train.mean_dim(0, false, Kind::Float);
-    let rows = train.size()[0] as f64;
-    let mean_square = train.norm().square() / (rows * d as f64);
-    let var = (mean_square - mean.square().mean(Kind::Float)).clamp_min(0.0);
-    (mean, var.sqrt().clamp_min(1e-6))
+    let rows = train.size()[0];
+    let mut sum_sq = 0.0f64;
+    for s in (0..rows).step_by(4096) {
+        let piece = train.narrow(0, s, (rows - s).min(4096)) - &mean;
+        sum_sq += piece.square().sum(Kind::Double).double_value(&[]);
+    }
+    let std = (sum_sq / (rows * d) as f64).sqrt().max(1e-6);
+    (mean, Tensor::from(std as f32).to_device(all.device()))
 }
 
 /// Frames, their shape and what is known about them, before they go to the device.
@@ -255,4 +261,28 @@ fn dataset_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
         warnings: Vec::new(),
         preview_png: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standardisation_keeps_a_small_spread_over_a_bright_static_background() {
+        // A mostly static recording: pixels near 0.7 that vary by 1e-3. A float32 shortcut
+        // (mean of squares minus square of means) loses this spread entirely.
+        let n = 50 * 20 * 64;
+        let v: Vec<f32> = (0..n)
+            .map(|i| 0.7 + 1e-3 * ((i * 7919 % 1000) as f32 / 500.0 - 1.0))
+            .collect();
+        let all = Tensor::from_slice(&v).view([50, 20, 64]);
+        let (mean, std) = standardisation(&all, 40);
+        assert!((mean.mean(Kind::Float).double_value(&[]) - 0.7).abs() < 1e-4);
+        let expect = 1e-3 / 3f64.sqrt(); // a uniform spread over ±1e-3
+        let got = std.double_value(&[]);
+        assert!(
+            (got / expect - 1.0).abs() < 0.05,
+            "std {got}, expected {expect}"
+        );
+    }
 }
