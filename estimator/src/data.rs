@@ -61,8 +61,8 @@ fn standardisation(all: &Tensor, n_train: i64) -> (Tensor, Tensor) {
     let mean = train.mean_dim(0, false, Kind::Float);
     let rows = train.size()[0];
     let mut sum_sq = 0.0f64;
-    for s in (0..rows).step_by(4096) {
-        let piece = train.narrow(0, s, (rows - s).min(4096)) - &mean;
+    for s in (0..rows).step_by(512) {
+        let piece = train.narrow(0, s, (rows - s).min(512)) - &mean;
         sum_sq += piece.square().sum(Kind::Double).double_value(&[]);
     }
     let std = (sum_sq / (rows * d) as f64).sqrt().max(1e-6);
