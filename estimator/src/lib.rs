@@ -18,6 +18,7 @@ pub mod recording;
 pub mod report;
 pub mod run;
 pub mod spectral;
+pub mod timeline;
 pub mod train;
 
 pub use config::{DeviceChoice, EstimateConfig, ModelKind};

@@ -4,7 +4,7 @@
 use crate::data::ClipData;
 use crate::error::EstimateError;
 use crate::report::{write_atomic, Report};
-use crate::train::Timeline;
+use crate::timeline::Timeline;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;

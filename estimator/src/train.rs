@@ -8,6 +8,7 @@ use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::error::EstimateError;
 use crate::loss::loss;
+use crate::timeline::{timeline, Timeline};
 use serde::Serialize;
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
@@ -74,20 +75,6 @@ pub struct TrainOutcome {
     pub timeline: Option<Timeline>,
 }
 
-/// The encoded latent over a whole recording with the physics rollouts of back-to-back clips.
-#[derive(Debug, Clone)]
-pub struct Timeline {
-    /// Seconds between recording frames (1 / fps).
-    pub frame_dt: f64,
-    /// Recording frames between clip frames.
-    pub stride: usize,
-    /// Latent of every frame.
-    pub latents: Vec<f32>,
-    /// (first recording frame, latent rollout at its clip frames) for clips that tile the
-    /// recording.
-    pub rollouts: Vec<(usize, Vec<f32>)>,
-}
-
 /// Frames of known physical value that a calibrated block reads its map from during training.
 struct ReferenceFrames {
     /// [1, R, D], standardised like the clips.
@@ -125,16 +112,22 @@ impl ReferenceFrames {
 }
 
 /// Encoder and physics block with their variable stores.
-struct Model {
+pub(crate) struct Model {
     enc_vs: nn::VarStore,
     phys_vs: nn::VarStore,
-    encoder: Encoder,
+    pub(crate) encoder: Encoder,
     block: Box<dyn PhysicsBlock>,
     reference: Option<ReferenceFrames>,
 }
 
 impl Model {
-    fn forward(&self, x: &Tensor, start: Option<&Tensor>, steps: i64) -> (Tensor, Tensor) {
+    /// Encodes clips [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
+    pub(crate) fn forward(
+        &self,
+        x: &Tensor,
+        start: Option<&Tensor>,
+        steps: i64,
+    ) -> (Tensor, Tensor) {
         if let Some(r) = &self.reference {
             let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
             self.block.calibrate(&z_ref, &r.values);
@@ -168,7 +161,7 @@ impl Model {
     }
 }
 
-fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
+pub(crate) fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
     let t = t.to_device(Device::Cpu).to_kind(Kind::Float).contiguous();
     let (rows, cols) = t.size2().expect("a matrix");
     let flat = Vec::<f32>::try_from(&t.view([-1])).expect("float tensor");
@@ -391,53 +384,6 @@ impl<'a> Trainer<'a> {
             reference_latents,
         }
     }
-}
-
-/// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
-/// clip span apart.
-fn timeline(
-    model: &Model,
-    data: &ClipData,
-    summary: &crate::recording::RecordingSummary,
-    frames: &Tensor,
-) -> Timeline {
-    tch::no_grad(|| {
-        let f = frames.size()[1];
-        let mut latents = Vec::with_capacity(f as usize);
-        for s in (0..f).step_by(512) {
-            let z = model.encoder.encode(&frames.narrow(1, s, (f - s).min(512)));
-            latents.extend(
-                Vec::<f32>::try_from(&z.view([-1]).to_device(Device::Cpu)).unwrap_or_default(),
-            );
-        }
-        let t = data.frames_per_clip as usize;
-        let span = (t - 1) * summary.stride;
-        let mut rollouts = Vec::new();
-        let mut next = 0;
-        for &start in &summary.clip_starts {
-            if start < next {
-                continue;
-            }
-            next = start + span;
-            let idx: Vec<i64> = (0..t)
-                .map(|k| (start + k * summary.stride) as i64)
-                .collect();
-            let idx = Tensor::from_slice(&idx).to_device(frames.device());
-            let x = frames.index_select(1, &idx);
-            let t0 = data.train_start.as_ref().map(|_| {
-                Tensor::from_slice(&[(start as f64 / summary.fps) as f32])
-                    .to_device(frames.device())
-            });
-            let (_, z_hat) = model.forward(&x, t0.as_ref(), data.frames_per_clip);
-            rollouts.push((start, to_rows(&z_hat).remove(0)));
-        }
-        Timeline {
-            frame_dt: 1.0 / summary.fps,
-            stride: summary.stride,
-            latents,
-            rollouts,
-        }
-    })
 }
 
 /// How one start fared in the probe phase of [`fit`].

@@ -1,0 +1,68 @@
+//! `Timeline`: the encoded latent of every frame of a recording, with the physics rollouts of
+//! clips that tile it back to back (what `timeline.png` draws).
+
+use crate::data::ClipData;
+use crate::recording::RecordingSummary;
+use crate::train::{to_rows, Model};
+use tch::{Device, Tensor};
+
+/// The encoded latent over a whole recording with the physics rollouts of back-to-back clips.
+#[derive(Debug, Clone)]
+pub struct Timeline {
+    /// Seconds between recording frames (1 / fps).
+    pub frame_dt: f64,
+    /// Recording frames between clip frames.
+    pub stride: usize,
+    /// Latent of every frame.
+    pub latents: Vec<f32>,
+    /// (first recording frame, latent rollout at its clip frames) for clips that tile the
+    /// recording.
+    pub rollouts: Vec<(usize, Vec<f32>)>,
+}
+
+/// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
+/// clip span apart.
+pub(crate) fn timeline(
+    model: &Model,
+    data: &ClipData,
+    summary: &RecordingSummary,
+    frames: &Tensor,
+) -> Timeline {
+    tch::no_grad(|| {
+        let f = frames.size()[1];
+        let mut latents = Vec::with_capacity(f as usize);
+        for s in (0..f).step_by(512) {
+            let z = model.encoder.encode(&frames.narrow(1, s, (f - s).min(512)));
+            latents.extend(
+                Vec::<f32>::try_from(&z.view([-1]).to_device(Device::Cpu)).unwrap_or_default(),
+            );
+        }
+        let t = data.frames_per_clip as usize;
+        let span = (t - 1) * summary.stride;
+        let mut rollouts = Vec::new();
+        let mut next = 0;
+        for &start in &summary.clip_starts {
+            if start < next {
+                continue;
+            }
+            next = start + span;
+            let idx: Vec<i64> = (0..t)
+                .map(|k| (start + k * summary.stride) as i64)
+                .collect();
+            let idx = Tensor::from_slice(&idx).to_device(frames.device());
+            let x = frames.index_select(1, &idx);
+            let t0 = data.train_start.as_ref().map(|_| {
+                Tensor::from_slice(&[(start as f64 / summary.fps) as f32])
+                    .to_device(frames.device())
+            });
+            let (_, z_hat) = model.forward(&x, t0.as_ref(), data.frames_per_clip);
+            rollouts.push((start, to_rows(&z_hat).remove(0)));
+        }
+        Timeline {
+            frame_dt: 1.0 / summary.fps,
+            stride: summary.stride,
+            latents,
+            rollouts,
+        }
+    })
+}

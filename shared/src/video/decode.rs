@@ -1,0 +1,285 @@
+//! `decode`: ffmpeg → grey frames through a pipe, one at a time, each resized as it arrives;
+//! image folders go through ffmpeg's concat demuxer so both inputs take the same path. Checks
+//! the crop, truncated files, empty trims and clips that do not fit.
+
+use super::probe::tool;
+use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
+
+/// A decoded recording: every kept frame, resized, and the clips cut from it.
+#[derive(Debug, Clone)]
+pub struct DecodedVideo {
+    pub info: VideoInfo,
+    /// The frame rate used (the --fps override or the container's).
+    pub fps: f64,
+    /// All frames after trimming, [F, H·W] row-major, values in [0, 1].
+    pub frames: Vec<f32>,
+    /// F.
+    pub frame_count: usize,
+    /// First recording frame (index into `frames`) of each clip.
+    pub clip_starts: Vec<usize>,
+    /// Frames between clip starts.
+    pub hop: usize,
+    pub size: (usize, usize),
+}
+
+impl DecodedVideo {
+    /// Seconds between clip frames.
+    pub fn dt(&self, stride: usize) -> f64 {
+        stride as f64 / self.fps
+    }
+
+    /// Recording frame index of every clip frame, [N·T] (clip-major): the clips are
+    /// `frames[index]`, so they need not be copied out.
+    pub fn clip_index(&self, frames_per_clip: usize, stride: usize) -> Vec<i64> {
+        self.clip_starts
+            .iter()
+            .flat_map(|&s| (0..frames_per_clip).map(move |k| (s + k * stride) as i64))
+            .collect()
+    }
+
+    /// The clips `which` (indices into `clip_starts`) as one [n, T, 1, H, W] array.
+    pub fn clips(
+        &self,
+        which: &[usize],
+        frames_per_clip: usize,
+        stride: usize,
+    ) -> (Vec<f32>, [usize; 5]) {
+        let (w, h) = self.size;
+        let mut out = Vec::with_capacity(which.len() * frames_per_clip * w * h);
+        for &c in which {
+            for k in 0..frames_per_clip {
+                let f = self.clip_starts[c] + k * stride;
+                out.extend_from_slice(&self.frames[f * w * h..(f + 1) * w * h]);
+            }
+        }
+        (out, [which.len(), frames_per_clip, 1, h, w])
+    }
+}
+
+/// Decodes `input` (a video file, or a folder of images with `opts.fps`) into frames and clips.
+/// Frames stream through a pipe one at a time; only the resized ones are kept.
+pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoError> {
+    let folder = input.is_dir();
+    let mut cmd = tool("ffmpeg")?;
+    cmd.args(["-v", "error", "-nostdin"]);
+    let mut list_file = None;
+    let info = if folder {
+        let files = image_files(input).map_err(|e| bad(input, format!("cannot list: {e}")))?;
+        let first = files
+            .first()
+            .ok_or_else(|| bad(input, "holds no .png, .jpg or .jpeg images"))?;
+        if opts.fps.is_none() {
+            return Err(bad(
+                input,
+                "an image folder has no frame rate: pass --fps (frames per second of real time)",
+            ));
+        }
+        if opts.start.is_some() || opts.end.is_some() {
+            return Err(bad(
+                input,
+                "--start/--end trim videos; for an image folder, remove the unwanted images",
+            ));
+        }
+        let mut info = probe(first)?;
+        info.container_fps = None;
+        info.expected_frames = Some(files.len());
+        let mut text = String::from("ffconcat version 1.0\n");
+        for f in &files {
+            let abs = std::fs::canonicalize(f).map_err(|e| bad(f, e.to_string()))?;
+            text += &format!("file '{}'\n", abs.to_string_lossy().replace('\'', "'\\''"));
+        }
+        let tmp = tempfile_path();
+        std::fs::write(&tmp, text).map_err(|e| bad(&tmp, e.to_string()))?;
+        cmd.args(["-f", "concat", "-safe", "0", "-i"]).arg(&tmp);
+        list_file = Some(TempFile(tmp));
+        info
+    } else {
+        if !input.exists() {
+            return Err(bad(input, "no such file"));
+        }
+        let info = probe(input)?;
+        if let Some(s) = opts.start {
+            cmd.args(["-ss", &format!("{s}")]);
+        }
+        cmd.arg("-i").arg(input);
+        if let Some(e) = opts.end {
+            cmd.args(["-t", &format!("{}", e - opts.start.unwrap_or(0.0))]);
+        }
+        info
+    };
+    let fps = opts
+        .fps
+        .or(info.container_fps)
+        .ok_or_else(|| bad(input, "the container gives no frame rate: pass --fps"))?;
+    let crop = opts.crop.unwrap_or(Crop {
+        x: 0,
+        y: 0,
+        w: info.width,
+        h: info.height,
+    });
+    if crop.w == 0 || crop.h == 0 || crop.x + crop.w > info.width || crop.y + crop.h > info.height {
+        return Err(bad(
+            input,
+            format!(
+                "--crop {},{},{},{} lies outside the {}×{} frame (after rotation)",
+                crop.x, crop.y, crop.w, crop.h, info.width, info.height
+            ),
+        ));
+    }
+    cmd.args([
+        "-map",
+        "0:v:0",
+        "-fps_mode",
+        "passthrough",
+        "-f",
+        "rawvideo",
+        "-pix_fmt",
+        "gray",
+        "-",
+    ]);
+    cmd.stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .stdin(Stdio::null());
+    let mut child = cmd
+        .spawn()
+        .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let mut stderr = child.stderr.take().expect("piped stderr");
+    let err_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stderr.read_to_string(&mut s);
+        s
+    });
+    let frame_bytes = info.width * info.height;
+    let mut buf = vec![0u8; frame_bytes];
+    let mut resizer = FrameResizer::new(info.width, crop, opts.size);
+    let mut frames = Vec::new();
+    let mut count = 0usize;
+    let mut partial = false;
+    loop {
+        match read_full(&mut stdout, &mut buf) {
+            Ok(n) if n == frame_bytes => {
+                frames.extend(resizer.resize(&buf));
+                count += 1;
+            }
+            Ok(0) => break,
+            Ok(_) => {
+                partial = true;
+                break;
+            }
+            Err(e) => return Err(bad(input, format!("reading ffmpeg's output: {e}"))),
+        }
+    }
+    let status = child.wait().map_err(|e| bad(input, e.to_string()))?;
+    let log = err_reader.join().unwrap_or_default();
+    drop(list_file);
+    if !status.success() || partial {
+        let line = log
+            .lines()
+            .last()
+            .unwrap_or("decoding failed")
+            .trim()
+            .to_string();
+        if count == 0 {
+            return Err(VideoError::NotAVideo {
+                path: input.to_path_buf(),
+                reason: line,
+            });
+        }
+        return Err(bad(
+            input,
+            format!(
+                "decoding stopped after {} frames: {line} (a truncated file?)",
+                count
+            ),
+        ));
+    }
+    let untrimmed = opts.start.is_none() && opts.end.is_none() && !folder;
+    if let Some(expected) = info.expected_frames.filter(|_| untrimmed) {
+        if !count == 0 && (count as f64) < 0.95 * expected as f64 {
+            return Err(bad(
+                input,
+                format!(
+                    "decoding stopped after {} of the {expected} frames the container announces (a truncated file?)",
+                    count
+                ),
+            ));
+        }
+    }
+    if count == 0 {
+        return Err(bad(
+            input,
+            match (opts.start, opts.end) {
+                (None, None) => "no frames decoded".to_string(),
+                _ => format!(
+                    "no frames between --start {} and --end {}",
+                    opts.start.unwrap_or(0.0),
+                    opts.end.map_or("the end".into(), |e| e.to_string())
+                ),
+            },
+        ));
+    }
+    let span = (opts.frames_per_clip - 1) * opts.stride;
+    if count <= span {
+        return Err(bad(
+            input,
+            format!(
+                "{} frames decoded, but one clip of {} frames at stride {} needs {}: lower --frames-per-clip or --stride, or trim less",
+                count,
+                opts.frames_per_clip,
+                opts.stride,
+                span + 1
+            ),
+        ));
+    }
+    let possible = count - span;
+    let hop = opts
+        .hop
+        .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
+    let clip_starts: Vec<usize> = (0..possible).step_by(hop).collect();
+    Ok(DecodedVideo {
+        info,
+        fps,
+        frames,
+        frame_count: count,
+        clip_starts,
+        hop,
+        size: opts.size,
+    })
+}
+
+/// Reads until `buf` is full or the stream ends; returns the bytes read.
+fn read_full(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut n = 0;
+    while n < buf.len() {
+        match r.read(&mut buf[n..]) {
+            Ok(0) => break,
+            Ok(k) => n += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(n)
+}
+
+/// A file removed when dropped.
+struct TempFile(PathBuf);
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+fn tempfile_path() -> PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    std::env::temp_dir().join(format!(
+        "physvid-frames-{}-{}.ffconcat",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ))
+}

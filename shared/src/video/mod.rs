@@ -1,0 +1,143 @@
+//! Real recordings in: probe a video (or a folder of images) with ffprobe, decode it to grey
+//! frames with the ffmpeg command-line tool, one frame at a time, crop and area-resize each in
+//! Rust (the same code for videos and image folders), and cut the frames into clips. This file:
+//! the errors, the options, and what counts as a recording.
+
+mod decode;
+mod probe;
+mod resize;
+
+pub use decode::{decode, DecodedVideo};
+pub use probe::{probe, VideoInfo};
+pub use resize::FrameResizer;
+
+use std::path::{Path, PathBuf};
+
+/// What can go wrong reading a recording; every message names the input and the fix.
+#[derive(Debug, thiserror::Error)]
+pub enum VideoError {
+    #[error("{tool} was not found on PATH: install ffmpeg (Debian/Ubuntu: apt-get install ffmpeg; macOS: brew install ffmpeg), which provides ffmpeg and ffprobe")]
+    ToolMissing { tool: &'static str },
+    #[error("{path}: not a readable video ({reason})")]
+    NotAVideo { path: PathBuf, reason: String },
+    #[error("{path}: {reason}")]
+    BadInput { path: PathBuf, reason: String },
+}
+
+pub(crate) fn bad(path: &Path, reason: impl Into<String>) -> VideoError {
+    VideoError::BadInput {
+        path: path.to_path_buf(),
+        reason: reason.into(),
+    }
+}
+
+/// A crop rectangle in pixels of the displayed (rotated) frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct Crop {
+    pub x: usize,
+    pub y: usize,
+    pub w: usize,
+    pub h: usize,
+}
+
+/// How to turn a recording into clips.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct VideoOptions {
+    /// Frames per second of real time; overrides the container's (slow-motion files).
+    pub fps: Option<f64>,
+    pub crop: Option<Crop>,
+    /// Trim, in seconds of the file's own timeline (as a player shows it).
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// Output frame size (width, height).
+    pub size: (usize, usize),
+    pub frames_per_clip: usize,
+    /// Recording frames between consecutive clip frames (dt = stride / fps).
+    pub stride: usize,
+    /// Recording frames between the starts of consecutive clips; `None`: 1, or more so that at
+    /// most `max_clips` clips result.
+    pub hop: Option<usize>,
+    pub max_clips: usize,
+}
+
+/// Whether `path` is an input this module reads: a file that is not `.npy`, or a directory
+/// that is not a dataset (no `frames.npy`, no `meta.json`, no `.partial` files), taken as a
+/// folder of images.
+pub fn is_recording(path: &Path) -> bool {
+    if path.is_dir() {
+        let dataset_like = std::fs::read_dir(path).is_ok_and(|mut d| {
+            d.any(|e| {
+                e.is_ok_and(|e| {
+                    let name = e.file_name().to_string_lossy().into_owned();
+                    name.starts_with("frames.npy")
+                        || name.starts_with("meta.json")
+                        || name.ends_with(".partial")
+                })
+            })
+        });
+        !dataset_like
+    } else {
+        path.extension()
+            .is_none_or(|e| !e.eq_ignore_ascii_case("npy"))
+    }
+}
+
+/// Image files (png, jpg, jpeg) in `dir`, in natural order (frame2 before frame10).
+pub fn image_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.is_file()
+                && p.extension().is_some_and(|e| {
+                    ["png", "jpg", "jpeg"]
+                        .iter()
+                        .any(|x| e.eq_ignore_ascii_case(x))
+                })
+        })
+        .collect();
+    files.sort_by(|a, b| natural_cmp(&a.to_string_lossy(), &b.to_string_lossy()));
+    Ok(files)
+}
+
+/// Compares strings with runs of digits compared as numbers.
+pub fn natural_cmp(a: &str, b: &str) -> std::cmp::Ordering {
+    let (mut a, mut b) = (a, b);
+    loop {
+        match (a.chars().next(), b.chars().next()) {
+            (None, None) => return std::cmp::Ordering::Equal,
+            (None, _) => return std::cmp::Ordering::Less,
+            (_, None) => return std::cmp::Ordering::Greater,
+            (Some(x), Some(y)) if x.is_ascii_digit() && y.is_ascii_digit() => {
+                let da = a.len() - a.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+                let db = b.len() - b.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+                let (na, nb) = (
+                    a[..da].trim_start_matches('0'),
+                    b[..db].trim_start_matches('0'),
+                );
+                let ord = na.len().cmp(&nb.len()).then_with(|| na.cmp(nb));
+                if ord != std::cmp::Ordering::Equal {
+                    return ord;
+                }
+                (a, b) = (&a[da..], &b[db..]);
+            }
+            (Some(x), Some(y)) => {
+                if x != y {
+                    return x.cmp(&y);
+                }
+                (a, b) = (&a[x.len_utf8()..], &b[y.len_utf8()..]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn natural_order_sorts_numbers_by_value() {
+        let mut v = vec!["f10.png", "f2.png", "f1.png", "f02b.png", "g.png"];
+        v.sort_by(|a, b| natural_cmp(a, b));
+        assert_eq!(v, ["f1.png", "f2.png", "f02b.png", "f10.png", "g.png"]);
+    }
+}

@@ -1,0 +1,131 @@
+//! `probe`: what ffprobe says about a recording (displayed size after the rotation tag, frame
+//! rate, the slow-motion capture tag, frame count), and running the ffmpeg tools at all.
+
+use super::{bad, VideoError};
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// What ffprobe says about a recording.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct VideoInfo {
+    /// Displayed size (after the rotation tag).
+    pub width: usize,
+    pub height: usize,
+    /// The container's frame rate (None for image folders).
+    pub container_fps: Option<f64>,
+    /// `com.android.capture.fps`, when the file has it (slow-motion captures).
+    pub capture_fps: Option<f64>,
+    /// Rotation tag in degrees (0 when absent).
+    pub rotation: i64,
+    /// Frames the container says it holds (nb_frames, or duration × fps), when it says.
+    pub expected_frames: Option<usize>,
+}
+
+pub(crate) fn tool(name: &'static str) -> Result<Command, VideoError> {
+    match Command::new(name)
+        .arg("-version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+    {
+        Ok(_) => Ok(Command::new(name)),
+        Err(_) => Err(VideoError::ToolMissing { tool: name }),
+    }
+}
+
+fn parse_rate(text: &str) -> Option<f64> {
+    let (n, d) = text.split_once('/').unwrap_or((text, "1"));
+    let (n, d) = (n.trim().parse::<f64>().ok()?, d.trim().parse::<f64>().ok()?);
+    (d != 0.0 && n > 0.0).then(|| n / d)
+}
+
+/// Probes the first video stream of `path` with ffprobe.
+pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
+    let out = tool("ffprobe")?
+        .args([
+            "-v",
+            "error",
+            "-print_format",
+            "json",
+            "-show_streams",
+            "-show_format",
+        ])
+        .arg(path)
+        .output()
+        .map_err(|e| bad(path, format!("cannot run ffprobe: {e}")))?;
+    let not_video = |reason: String| VideoError::NotAVideo {
+        path: path.to_path_buf(),
+        reason,
+    };
+    if !out.status.success() {
+        let msg = String::from_utf8_lossy(&out.stderr);
+        let line = msg.lines().last().unwrap_or("ffprobe failed").trim();
+        return Err(not_video(line.to_string()));
+    }
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .map_err(|e| not_video(format!("ffprobe printed no JSON: {e}")))?;
+    let stream = v["streams"]
+        .as_array()
+        .and_then(|s| s.iter().find(|s| s["codec_type"] == "video"))
+        .ok_or_else(|| not_video("no video stream".into()))?;
+    let dim = |k: &str| stream[k].as_u64().filter(|&d| d > 0).map(|d| d as usize);
+    let (w, h) = dim("width")
+        .zip(dim("height"))
+        .ok_or_else(|| not_video("the video stream has no size".into()))?;
+    let side_rotation = stream["side_data_list"].as_array().and_then(|l| {
+        l.iter().find_map(|d| {
+            d["rotation"]
+                .as_f64()
+                .or_else(|| d["rotation"].as_str()?.parse().ok())
+        })
+    });
+    let tag_rotation = stream["tags"]["rotate"]
+        .as_str()
+        .and_then(|r| r.parse::<f64>().ok());
+    let rotation = side_rotation.or(tag_rotation).unwrap_or(0.0).round() as i64;
+    let quarter = rotation.rem_euclid(180) == 90;
+    let fps = stream["avg_frame_rate"]
+        .as_str()
+        .and_then(parse_rate)
+        .or_else(|| stream["r_frame_rate"].as_str().and_then(parse_rate));
+    let capture_fps = v["format"]["tags"]["com.android.capture.fps"]
+        .as_str()
+        .or_else(|| stream["tags"]["com.android.capture.fps"].as_str())
+        .and_then(|t| t.trim().parse::<f64>().ok())
+        .filter(|f| *f > 0.0);
+    let expected_frames = stream["nb_frames"]
+        .as_str()
+        .and_then(|n| n.parse::<usize>().ok())
+        .or_else(|| {
+            let d = stream["duration"]
+                .as_str()
+                .or_else(|| v["format"]["duration"].as_str())?
+                .parse::<f64>()
+                .ok()?;
+            Some((d * fps?).round() as usize)
+        })
+        .filter(|&n| n > 0);
+    Ok(VideoInfo {
+        expected_frames,
+        width: if quarter { h } else { w },
+        height: if quarter { w } else { h },
+        container_fps: fps,
+        capture_fps,
+        rotation,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rates_parse_as_fractions() {
+        assert_eq!(
+            parse_rate("30000/1001").map(|r| (r * 1000.0).round()),
+            Some(29970.0)
+        );
+        assert_eq!(parse_rate("0/0"), None);
+        assert_eq!(parse_rate("60"), Some(60.0));
+    }
+}
