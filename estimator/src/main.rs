@@ -16,12 +16,15 @@ use std::process::ExitCode;
 
 /// Estimate the physical parameters of a known ODE from video, without labels.
 ///
-/// An MLP encoder maps each frame to a latent z, a physics block with learnable parameters rolls
-/// z forward from the first frame (first-order models) or two frames (second-order) of each
-/// clip, and the loss is MSE(encoded, rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025,
-/// arXiv 2410.01376). Values are labelled SI or latent units; latent-unit ones need --reference. Ends with a table of estimates (and
-/// ground truth with relative errors when meta.json gives them) and writes report.json,
-/// metrics.csv, parameters.png and latents.png into --out.
+/// An MLP (or linear) encoder maps each frame to a latent z, a physics block with learnable
+/// parameters rolls z forward from the start of each clip (its first frame for first-order
+/// models and for falls from rest with known start times, its first two frames for the
+/// oscillator, the best-fitting initial state for the pendulum), and the loss is MSE(encoded,
+/// rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025, arXiv 2410.01376). Reads gen datasets, bare
+/// .npy arrays, videos and image folders. Values are labelled SI or latent units; latent-unit
+/// ones need --reference. Ends with a table of estimates (and ground truth with relative errors
+/// when meta.json gives them) and writes report.json, metrics.csv, parameters.png and
+/// latents.png (and timeline.png for a recording) into --out.
 #[derive(Debug, Parser)]
 #[command(name = "estimate", version, allow_negative_numbers = true)]
 struct Cli {
@@ -92,8 +95,9 @@ struct Cli {
     /// acceleration_latent=0).
     #[arg(long, value_parser = parse_init, value_name = "NAME=VALUE,...")]
     init: Option<InitValues>,
-    /// Calibration for answers in SI units: the physical quantity (level, distance, …) at two
-    /// or more frames, CLIP:FRAME=VALUE[,...] (taken from meta.json for gen data).
+    /// Calibration for answers in SI units: the physical quantity (level, distance, …; the
+    /// pendulum's angle in rad, which then fixes its angle scale) at two or more frames,
+    /// CLIP:FRAME=VALUE[,...] (taken from meta.json for gen data).
     #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE,...")]
     reference: Option<ReferencePoints>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).

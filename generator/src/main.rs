@@ -16,7 +16,8 @@ use std::process::ExitCode;
 ///
 /// Writes DIR/frames.npy (float32 [N, T, 1, H, W], values in [0, 1]), DIR/meta.json (ground
 /// truth: the model and its parameters in SI units, dt, per-sample draws, the latent of every
-/// frame, the calibration a user would measure) and DIR/preview.png. Draws come from seeded
+/// frame, the calibration a user would measure, and for the sliding block and free fall each clip's
+/// start time since the release) and DIR/preview.png. Draws come from seeded
 /// per-sample ChaCha8 streams, so the same flags give byte-identical files on any number of
 /// threads.
 #[derive(Debug, Parser)]
