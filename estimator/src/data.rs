@@ -88,6 +88,12 @@ struct Source {
 
 /// A video or image folder, cut into clips for `--model`.
 fn recording_source(cfg: &EstimateConfig) -> Result<Source, EstimateError> {
+    if !cfg.input.exists() {
+        return Err(input_error(format!(
+            "{}: no such file or directory",
+            cfg.input.display()
+        )));
+    }
     let model = cfg.model.ok_or_else(|| {
         input_error(format!(
             "{}: a recording needs --model (e.g. --model pendulum)",
