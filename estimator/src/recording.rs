@@ -201,7 +201,7 @@ pub fn load_recording(
         max_clips: MAX_DEFAULT_CLIPS,
     };
     let started = std::time::Instant::now();
-    let decoded = video::decode(input, &opts)?;
+    let decoded = video::decode(input, &opts, info)?;
     let decode_s = started.elapsed().as_secs_f64();
     let n = decoded.clip_starts.len();
     let shape = [n, frames_per_clip, 1, flags.size.1, flags.size.0];
@@ -217,7 +217,7 @@ pub fn load_recording(
         info: decoded.info.clone(),
         fps,
         fps_source,
-        frames_decoded: decoded.frame_count,
+        frames_decoded: decoded.frame_count(),
         frames_per_clip,
         stride,
         hop: decoded.hop,
@@ -227,7 +227,7 @@ pub fn load_recording(
         start: flags.start,
         end: flags.end,
         decode_s,
-        decode_fps: decoded.frame_count as f64 / decode_s.max(1e-9),
+        decode_fps: decoded.frame_count() as f64 / decode_s.max(1e-9),
         clip_starts: decoded.clip_starts.clone(),
     };
     if summary.clips < 2 {

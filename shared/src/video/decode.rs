@@ -16,8 +16,6 @@ pub struct DecodedVideo {
     pub fps: f64,
     /// All frames after trimming, [F, H·W] row-major, values in [0, 1].
     pub frames: Vec<f32>,
-    /// F.
-    pub frame_count: usize,
     /// First recording frame (index into `frames`) of each clip.
     pub clip_starts: Vec<usize>,
     /// Frames between clip starts.
@@ -26,6 +24,11 @@ pub struct DecodedVideo {
 }
 
 impl DecodedVideo {
+    /// Frames decoded (after trimming).
+    pub fn frame_count(&self) -> usize {
+        self.frames.len() / (self.size.0 * self.size.1)
+    }
+
     /// Seconds between clip frames.
     pub fn dt(&self, stride: usize) -> f64 {
         stride as f64 / self.fps
@@ -60,8 +63,13 @@ impl DecodedVideo {
 }
 
 /// Decodes `input` (a video file, or a folder of images with `opts.fps`) into frames and clips.
-/// Frames stream through a pipe one at a time; only the resized ones are kept.
-pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoError> {
+/// Frames stream through a pipe one at a time; only the resized ones are kept. `probed`: the
+/// video's [`probe`], when the caller already has it (it is probed otherwise).
+pub fn decode(
+    input: &Path,
+    opts: &VideoOptions,
+    probed: Option<VideoInfo>,
+) -> Result<DecodedVideo, VideoError> {
     let folder = input.is_dir();
     let mut cmd = tool("ffmpeg")?;
     cmd.args(["-v", "error", "-nostdin"]);
@@ -100,7 +108,10 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
         if !input.exists() {
             return Err(bad(input, "no such file"));
         }
-        let info = probe(input)?;
+        let info = match probed {
+            Some(info) => info,
+            None => probe(input)?,
+        };
         if let Some(s) = opts.start {
             cmd.args(["-ss", &format!("{s}")]);
         }
@@ -244,7 +255,6 @@ pub fn decode(input: &Path, opts: &VideoOptions) -> Result<DecodedVideo, VideoEr
         info,
         fps,
         frames,
-        frame_count: count,
         clip_starts,
         hop,
         size: opts.size,
