@@ -4,6 +4,7 @@
 //! frames of known q give: `--reference CLIP:FRAME=VALUE,...`, or meta.json for `gen` data.
 
 use crate::config::{EstimateConfig, ModelKind};
+use crate::report::AffineFit;
 use physvid_shared::DatasetMeta;
 
 /// What turns latent units into SI units.
@@ -83,16 +84,10 @@ fn root_scale(cal: &Calibration, latents: &[f64], base: f64) -> Option<f64> {
     slope(&root_h, &root_u)
 }
 
-/// Least-squares slope of `y` against `x`; `None` unless there are two or more distinct x.
+/// Least-squares slope of `y` against `x`; `None` unless both vary and the slope is not 0
+/// (it divides the latent-unit answers).
 fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
-    if x.len() < 2 || y.len() != x.len() {
-        return None;
-    }
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
-    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    (sxx > 0.0 && sxy != 0.0).then(|| sxy / sxx)
+    AffineFit::of(x, y).map(|f| f.slope).filter(|s| *s != 0.0)
 }
 
 /// The reported values of `model` from its block parameters, and warnings for answers left in

@@ -30,7 +30,7 @@ pub struct ParameterResult {
     pub relative_error: Option<f64>,
 }
 
-/// Least-squares fit encoded = slope·truth + intercept.
+/// Least-squares fit y = slope·x + intercept, with R².
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct AffineFit {
     pub slope: f64,
@@ -38,34 +38,41 @@ pub struct AffineFit {
     pub r2: f64,
 }
 
+impl AffineFit {
+    /// The fit of `y` against `x` (pairs in order); `None` unless both vary.
+    pub fn of(x: &[f64], y: &[f64]) -> Option<AffineFit> {
+        if x.len() < 2 || y.len() != x.len() {
+            return None;
+        }
+        let n = x.len() as f64;
+        let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+        let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+        for (a, b) in x.iter().zip(y) {
+            sxx += (a - mx).powi(2);
+            sxy += (a - mx) * (b - my);
+            syy += (b - my).powi(2);
+        }
+        (sxx > 0.0 && syy > 0.0).then(|| AffineFit {
+            slope: sxy / sxx,
+            intercept: my - sxy / sxx * mx,
+            r2: sxy * sxy / (sxx * syy),
+        })
+    }
+}
+
 /// Fits the encoded validation latents against the ground truth of the same clips.
 fn latent_fit(data: &ClipData, encoded: &[Vec<f32>]) -> Option<AffineFit> {
     let meta = data.meta.as_ref()?;
     let n_train = data.n_train() as usize;
-    let pairs: Vec<(f64, f64)> = encoded
+    let (truth, latent): (Vec<f64>, Vec<f64>) = encoded
         .iter()
         .enumerate()
         .flat_map(|(i, row)| {
             let truth = &meta.latents[n_train + i];
             row.iter().zip(truth).map(|(&z, &q)| (q, z as f64))
         })
-        .collect();
-    let n = pairs.len() as f64;
-    let (mx, my) = pairs
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxx, sxy, syy) = pairs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
-        (
-            a + (x - mx).powi(2),
-            b + (x - mx) * (y - my),
-            c + (y - my).powi(2),
-        )
-    });
-    (sxx > 0.0 && syy > 0.0).then(|| AffineFit {
-        slope: sxy / sxx,
-        intercept: my - sxy / sxx * mx,
-        r2: sxy * sxy / (sxx * syy),
-    })
+        .unzip();
+    AffineFit::of(&truth, &latent)
 }
 
 /// Where and how long the run went.
