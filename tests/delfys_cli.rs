@@ -1,7 +1,9 @@
 //! End-to-end tests of the Delfys75 systems: `gen` renders each system, default `estimate`
 //! recovers its Table 4 parameter in SI units; a pendulum swinging at 60°; bad input.
 
-use physvid_e2e::{estimate_bin, estimate_of, gen_dataset, read_report, run, stderr};
+use physvid_e2e::{
+    assert_one_line_error, estimate_bin, estimate_of, gen_dataset, read_report, run, stderr,
+};
 use std::path::Path;
 
 /// Runs default `estimate` on `data` into `out` and returns the report.
@@ -105,11 +107,7 @@ fn delfys_bad_input_gets_a_one_line_error_and_exit_code_2() {
     ] {
         let mut full = vec![data.as_str(), "--out", out, "--epochs", "1"];
         full.extend_from_slice(&args);
-        let o = run(&estimate_bin(), &full);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(needle), "{args:?}: {err}");
+        assert_one_line_error(&estimate_bin(), &full, needle);
     }
 }
 

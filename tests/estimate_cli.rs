@@ -1,7 +1,9 @@
 //! End-to-end tests of the real `estimate` binary on data made by the real `gen`: recovery,
 //! determinism, the MSE-only collapse, bad input, and the output files.
 
-use physvid_e2e::{estimate_bin, estimate_of, gen_dataset, read_report, run, stderr};
+use physvid_e2e::{
+    assert_one_line_error, estimate_bin, estimate_of, gen_dataset, read_report, run, stderr,
+};
 use std::path::Path;
 
 /// A small intensity set: 200 clips of 32×32 (fast, still enough to recover the parameters).
@@ -333,15 +335,7 @@ fn bad_input_gets_a_one_line_error_and_exit_code_2() {
             "1".into(),
         ]);
         let refs: Vec<&str> = full.iter().map(String::as_str).collect();
-        let o = run(&estimate_bin(), &refs);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert_eq!(
-            err.trim().lines().count(),
-            1,
-            "{args:?}: not one line: {err}"
-        );
-        assert!(err.contains(needle), "{args:?}: {err}");
+        assert_one_line_error(&estimate_bin(), &refs, needle);
     }
     if !cuda_visible() {
         let o = run(

@@ -83,3 +83,17 @@ pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
         .and_then(|p| p["estimate"].as_f64())
         .unwrap_or_else(|| panic!("no estimate for {name}"))
 }
+
+/// Runs `bin` with `args` and asserts the bad-input contract: exit code 2 and one line on
+/// stderr that contains `needle`.
+pub fn assert_one_line_error(bin: &Path, args: &[&str], needle: &str) {
+    let o = run(bin, args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(
+        err.trim().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
+    assert!(err.contains(needle), "{args:?}: {err}");
+}

@@ -2,7 +2,7 @@
 //! (skipped with a message when that folder or ffmpeg is absent), image folders against videos of
 //! the same frames, and bad recordings.
 
-use physvid_e2e::{estimate_bin, estimate_of, read_report, run, stderr};
+use physvid_e2e::{assert_one_line_error, estimate_bin, estimate_of, read_report, run, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -155,6 +155,18 @@ fn write_frames(dir: &Path, n: usize) {
     }
 }
 
+/// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at 10 fps.
+fn encode_lossless(frames: &Path, video: &Path) {
+    let o = Command::new("ffmpeg")
+        .args(["-v", "error", "-framerate", "10", "-i"])
+        .arg(frames.join("frame%d.png"))
+        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
+        .arg(video)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn an_image_folder_and_a_video_of_the_same_frames_give_the_same_estimate() {
     if !ffmpeg_available() {
@@ -166,14 +178,7 @@ fn an_image_folder_and_a_video_of_the_same_frames_give_the_same_estimate() {
     write_frames(&frames, 120);
     // A lossless grey video of the same frames at 10 fps.
     let video = tmp.path().join("clip.mkv");
-    let o = Command::new("ffmpeg")
-        .args(["-v", "error", "-framerate", "10", "-i"])
-        .arg(frames.join("frame%d.png"))
-        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
-        .arg(&video)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    encode_lossless(&frames, &video);
     let args = [
         "--model",
         "damped-oscillator",
@@ -208,14 +213,7 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
     let frames = t.join("frames");
     write_frames(&frames, 60);
     let video = t.join("clip.mkv");
-    let o = Command::new("ffmpeg")
-        .args(["-v", "error", "-framerate", "10", "-i"])
-        .arg(frames.join("frame%d.png"))
-        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
-        .arg(&video)
-        .output()
-        .unwrap();
-    assert!(o.status.success());
+    encode_lossless(&frames, &video);
     let bytes = std::fs::read(&video).unwrap();
     let truncated = t.join("truncated.mkv");
     std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
@@ -248,11 +246,7 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
         let mut full = args.clone();
         full.extend(m);
         full.extend(["--out", out.to_str().unwrap(), "--epochs", "1"]);
-        let o = run(&estimate_bin(), &full);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(needle), "{args:?}: {err}");
+        assert_one_line_error(&estimate_bin(), &full, needle);
     }
     // A recording needs --model; ffmpeg missing is named with the fix.
     let o = run(&estimate_bin(), &[v, "--out", out.to_str().unwrap()]);

@@ -137,10 +137,11 @@ impl PhysicsBlock for ExponentialDecayBlock {
     }
 }
 
-/// Torricelli: h' = −k·√h. The latent is an affine image of h, z = α·h + c, so with
-/// u = σ·(z − base) (σ = ±1 read off the data: the level falls) the block is u' = −k_lat·√u,
-/// solved exactly as √u(t) = √u(0) − k_lat·t/2 (Euler: the paper's step). Parameters: k_latent
-/// (√latent/s; k = k_latent/√|α| in SI), base (the latent of an empty tank).
+/// Torricelli: h' = −k·√h. With u = σ·(z − base) (σ = ±1 read off the data: the level falls)
+/// the block is u' = −k_lat·√u, solved exactly as √u(t) = √u(0) − k_lat·t/2 (Euler: the paper's
+/// step). Any latent with √u = p + q·√h obeys it, with k_lat = q·k; the SI k takes q from the
+/// reference frames (see `calibration.rs`). Parameters: k_latent (√latent/s), base (the latent
+/// of an empty tank).
 pub struct TorricelliBlock {
     log_k: Tensor,
     base: Tensor,
