@@ -104,6 +104,11 @@ fn delfys_bad_input_gets_a_one_line_error_and_exit_code_2() {
         // A reference frame outside the data.
         (vec!["--reference", "0:99=0.1,1:0=0.2"], "--reference 0:99"),
         (vec!["--g", "-9.81"], "--g"),
+        // The peer's residual loss is written for the oscillator only.
+        (
+            vec!["--loss", "residual+floor"],
+            "--loss residual+floor: implemented for damped-oscillator only",
+        ),
     ] {
         let mut full = vec![data.as_str(), "--out", out, "--epochs", "1"];
         full.extend_from_slice(&args);

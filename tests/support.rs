@@ -57,6 +57,11 @@ pub fn estimate_bin() -> PathBuf {
     binary("physvid-estimator", "estimate")
 }
 
+/// The `reproduce` binary.
+pub fn reproduce_bin() -> PathBuf {
+    binary("physvid-estimator", "reproduce")
+}
+
 /// Generates a dataset with the real `gen` into `dir` and returns its path as text.
 pub fn gen_dataset(dir: &Path, scenario: &str, extra: &[&str]) -> String {
     let out = dir.to_str().expect("UTF-8 temp path").to_string();

@@ -5,7 +5,7 @@
 
 use crate::config::ModelKind;
 use crate::pendulum::PendulumBlock;
-use crate::physics::{DampedOscillatorBlock, Integrator};
+use crate::physics::{DampedOscillatorBlock, Integrator, RolloutStart};
 use tch::nn;
 use tch::{Kind, Tensor};
 
@@ -22,6 +22,11 @@ pub trait PhysicsBlock {
     /// angle) take the map from reference frames of known value: `latents` and `values` [R].
     /// Called before every forward pass when the block was built with `calibrated`.
     fn calibrate(&self, _latents: &Tensor, _values: &Tensor) {}
+    /// The ODE residual at the inner frames of `z` [B, T], [B, T − 2], by central differences,
+    /// for `--loss residual+floor`; `None` for blocks that do not offer it.
+    fn residual(&self, _z: &Tensor) -> Option<Tensor> {
+        None
+    }
 }
 
 /// What a block needs to know besides its parameters.
@@ -33,6 +38,8 @@ pub struct BlockOptions {
     pub timed: bool,
     /// Reference frames of known value will be passed to [`PhysicsBlock::calibrate`].
     pub calibrated: bool,
+    /// Where the oscillator's rollout starts.
+    pub start: RolloutStart,
 }
 
 impl PhysicsBlock for DampedOscillatorBlock {
@@ -44,6 +51,9 @@ impl PhysicsBlock for DampedOscillatorBlock {
     }
     fn values(&self) -> Vec<f64> {
         DampedOscillatorBlock::values(self).to_vec()
+    }
+    fn residual(&self, z: &Tensor) -> Option<Tensor> {
+        Some(DampedOscillatorBlock::residual(self, z))
     }
 }
 
@@ -59,6 +69,7 @@ pub fn build_block(
         dt,
         timed,
         calibrated,
+        start,
     } = opts;
     match model {
         ModelKind::DampedOscillator => Box::new(DampedOscillatorBlock::new(
@@ -66,6 +77,7 @@ pub fn build_block(
             (init[0], init[1]),
             integrator,
             dt,
+            start,
         )),
         ModelKind::Led => Box::new(ExponentialDecayBlock::new(path, init, integrator, dt)),
         ModelKind::Torricelli => Box::new(TorricelliBlock::new(path, init, integrator, dt)),

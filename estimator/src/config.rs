@@ -3,7 +3,7 @@
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
-use crate::physics::{Integrator, OSCILLATOR_PARAMETERS};
+use crate::physics::{Integrator, RolloutStart, OSCILLATOR_PARAMETERS};
 use crate::recording::RecordingFlags;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -101,7 +101,7 @@ impl ModelKind {
     /// parts in 10⁴, which takes longer than the oscillator's scale-free rates.
     pub fn default_patience(self) -> usize {
         match self {
-            ModelKind::DampedOscillator => 10,
+            ModelKind::DampedOscillator => 20,
             _ => 30,
         }
     }
@@ -156,6 +156,8 @@ pub struct EstimateConfig {
     /// Gravitational acceleration for the pendulum's L and the block's μ (default 9.81).
     pub g: Option<f64>,
     pub integrator: Integrator,
+    /// Where the oscillator's rollout starts (least-squares fit, or the paper's first frames).
+    pub rollout_start: RolloutStart,
     /// Train only from the given (or default) start, without the spectral start (the paper's
     /// behaviour).
     pub single_start: bool,

@@ -4,6 +4,7 @@
 
 pub mod blocks;
 pub mod calibration;
+pub mod cli;
 pub mod config;
 pub mod data;
 pub mod encoder;
@@ -16,6 +17,7 @@ pub mod plots;
 pub mod progress;
 pub mod recording;
 pub mod report;
+pub mod reproduce;
 pub mod run;
 pub mod spectral;
 pub mod timeline;

@@ -14,6 +14,17 @@ pub enum Integrator {
     Euler,
 }
 
+/// Where the oscillator's rollout starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RolloutStart {
+    /// The state (z0, z1) whose rollout fits the whole clip in least squares: noise in the first
+    /// two frames is not carried through the clip.
+    Fit,
+    /// The first two encoded frames (the paper's): pixel noise there biases the damping high.
+    Frames,
+}
+
 /// The damped oscillator z'' + γ1·z' + γ0·z = 0 with learnable γ0 > 0 and γ1. γ0 is stored
 /// as its logarithm so that Adam's steps are relative (one learning rate serves γ0 = 0.1 and
 /// γ0 = 100 alike); γ1, which is small and may cross zero, is learned directly.
@@ -23,6 +34,7 @@ pub struct DampedOscillatorBlock {
     gamma1: Tensor,
     integrator: Integrator,
     dt: f64,
+    start: RolloutStart,
 }
 
 /// Parameter names in report order.
@@ -30,7 +42,13 @@ pub const OSCILLATOR_PARAMETERS: [&str; 2] = ["gamma0", "gamma1"];
 
 impl DampedOscillatorBlock {
     /// Registers the parameters under `path`, starting at `init` = (γ0 > 0, γ1).
-    pub fn new(path: &nn::Path, init: (f64, f64), integrator: Integrator, dt: f64) -> Self {
+    pub fn new(
+        path: &nn::Path,
+        init: (f64, f64),
+        integrator: Integrator,
+        dt: f64,
+        start: RolloutStart,
+    ) -> Self {
         let log_gamma0 = path.var("log_gamma0", &[], nn::Init::Const(init.0.ln()));
         let gamma1 = path.var("gamma1", &[], nn::Init::Const(init.1));
         DampedOscillatorBlock {
@@ -38,6 +56,7 @@ impl DampedOscillatorBlock {
             gamma1,
             integrator,
             dt,
+            start,
         }
     }
 
@@ -80,13 +99,51 @@ impl DampedOscillatorBlock {
         }
     }
 
-    /// Autoregressive rollout over `steps` frames from the first two latents of `z` [B, ≥2]:
-    /// z_hat[t] = p[t]·z[0] + q[t]·z[1], where p and q are the block's impulse responses.
+    /// The ODE residual z'' + γ1·z' + γ0·z at the inner frames of `z` [B, T ≥ 3], [B, T − 2],
+    /// with central differences z' ≈ (z[t+1] − z[t−1])/2dt and z'' ≈ (z[t+1] − 2z[t] + z[t−1])/dt²
+    /// (the ICML 2026 peer's loss; independent of the integrator).
+    pub fn residual(&self, z: &Tensor) -> Tensor {
+        let t = z.size()[1];
+        let (prev, mid, next) = (
+            z.narrow(1, 0, t - 2),
+            z.narrow(1, 1, t - 2),
+            z.narrow(1, 2, t - 2),
+        );
+        let dt = self.dt;
+        let d1 = (&next - &prev) / (2.0 * dt);
+        let d2 = (&next - &mid * 2.0 + &prev) / (dt * dt);
+        d2 + d1 * &self.gamma1 + mid * self.log_gamma0.exp()
+    }
+
+    /// Autoregressive rollout over `steps` frames of `z` [B, steps]: z_hat[t] = p[t]·z0 + q[t]·z1,
+    /// where p and q are the block's impulse responses and (z0, z1) the first two latents or
+    /// the least-squares start (see [`RolloutStart`]).
     pub fn rollout(&self, z: &Tensor, steps: i64) -> Tensor {
         let (a, b) = self.coefficients();
         let (p, q) = impulse_responses(&a, &b, steps, z.device());
-        z.select(1, 0).unsqueeze(1) * p.unsqueeze(0) + z.select(1, 1).unsqueeze(1) * q.unsqueeze(0)
+        let (z0, z1) = if self.start == RolloutStart::Fit {
+            least_squares_start(z, &p, &q)
+        } else {
+            (z.select(1, 0), z.select(1, 1))
+        };
+        z0.unsqueeze(1) * p.unsqueeze(0) + z1.unsqueeze(1) * q.unsqueeze(0)
     }
+}
+
+/// The initial state (z0, z1) [B] whose rollout z0·p + z1·q fits each clip of `z` [B, T] best in
+/// least squares (2×2 normal equations in closed form; differentiable in p, q and z).
+fn least_squares_start(z: &Tensor, p: &Tensor, q: &Tensor) -> (Tensor, Tensor) {
+    let (pp, qq, pq) = (
+        (p * p).sum(Kind::Float),
+        (q * q).sum(Kind::Float),
+        (p * q).sum(Kind::Float),
+    );
+    let zp = z.matmul(p);
+    let zq = z.matmul(q);
+    let det = &pp * &qq - &pq * &pq;
+    let z0 = (&zp * &qq - &zq * &pq) / &det;
+    let z1 = (&zq * &pp - &zp * &pq) / &det;
+    (z0, z1)
 }
 
 /// The responses p, q [steps] of z[t+1] = a·z[t] + b·z[t−1] to (z0, z1) = (1, 0) and (0, 1).
@@ -140,7 +197,7 @@ mod tests {
         dt: f64,
     ) -> (nn::VarStore, DampedOscillatorBlock) {
         let vs = nn::VarStore::new(tch::Device::Cpu);
-        let b = DampedOscillatorBlock::new(&vs.root(), init, integrator, dt);
+        let b = DampedOscillatorBlock::new(&vs.root(), init, integrator, dt, RolloutStart::Frames);
         (vs, b)
     }
 

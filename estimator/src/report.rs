@@ -180,14 +180,20 @@ impl Report {
             .iter()
             .map(|h| h.latent_std)
             .fold(0.0, f64::max);
-        let collapsed = outcome.latent_std < COLLAPSE_FRACTION * peak_std;
+        // Training collapsed the latent if its spread fell that far by the last epoch, even when
+        // the checkpoint kept is from before (the kept parameters are then an early epoch's).
+        let last_std = outcome
+            .history
+            .last()
+            .map_or(outcome.latent_std, |h| h.latent_std);
+        let low_std = outcome.latent_std.min(last_std);
+        let collapsed = low_std < COLLAPSE_FRACTION * peak_std;
         if collapsed {
             warnings.push(format!(
-                "the latent collapsed towards a constant (std {:.2e} over the validation clips, \
-                 down from {peak_std:.2e}): a constant latent makes the rollout error vanish \
-                 whatever the parameters, so these estimates are not determined by the video; \
-                 train with --loss mse+kl",
-                outcome.latent_std
+                "the latent collapsed towards a constant (std {low_std:.2e} over the validation \
+                 clips, down from {peak_std:.2e}): a constant latent makes the rollout error \
+                 vanish whatever the parameters, so these estimates are not determined by the \
+                 video; train with --loss mse+kl"
             ));
         }
         match outcome.stop {
@@ -259,10 +265,7 @@ impl Report {
             "{} on {} ({}, {} integrator, {} epochs, best {}, {:.1} s on {})\n",
             self.model,
             self.input,
-            match self.config.loss {
-                crate::loss::LossKind::MseKl => "mse+kl",
-                crate::loss::LossKind::Mse => "mse",
-            },
+            self.config.loss.name(),
             match self.config.integrator {
                 crate::physics::Integrator::Exact => "exact",
                 crate::physics::Integrator::Euler => "euler",

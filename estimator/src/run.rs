@@ -2,10 +2,11 @@
 
 use crate::calibration::resolve;
 use crate::config::{DeviceChoice, EstimateConfig, ModelKind};
-use crate::data::load_clips;
+use crate::data::{load_clips, ClipData};
 use crate::ensemble::summarise;
 use crate::error::input_error;
 use crate::error::EstimateError;
+use crate::loss::LossKind;
 use crate::progress::Progress;
 use crate::report::{write_outputs, Report, RunInfo};
 use crate::spectral::spectral_start;
@@ -23,8 +24,35 @@ pub fn select_device(choice: DeviceChoice) -> Result<Device, EstimateError> {
     }
 }
 
-/// Runs one estimation as configured.
+/// An estimation's report with the clips it was trained on.
+pub struct Estimation {
+    pub report: Report,
+    pub data: ClipData,
+}
+
+/// Runs one estimation as configured and writes report.json, metrics.csv and the plots.
 pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
+    let Estimation { report, data } = estimate(cfg)?;
+    let cfg = &report.config;
+    write_outputs(cfg, &data, &report)?;
+    println!("{}", report.table());
+    if let Some(e) = &report.ensemble {
+        println!("{}", e.table());
+    }
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    if !cfg.quiet {
+        eprintln!(
+            "report: {}  (metrics.csv, parameters.png, latents.png beside it)",
+            cfg.out.join("report.json").display()
+        );
+    }
+    Ok(())
+}
+
+/// Loads the data and trains (and the ensemble's further members); writes nothing.
+pub fn estimate(cfg: &EstimateConfig) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     let threads = cfg
         .threads
@@ -35,6 +63,13 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
     // From here on the model's defaults (encoder, patience) are explicit, so the report shows them.
     let cfg = &cfg.for_model(data.model);
     let init = cfg.initial_values(data.model)?;
+    if cfg.loss == LossKind::ResidualFloor && data.model != ModelKind::DampedOscillator {
+        return Err(input_error(format!(
+            "--loss residual+floor: implemented for damped-oscillator only, not {}; use --loss mse+kl",
+            data.model.name()
+        ))
+        .into());
+    }
     let names = data.model.parameter_names();
     // Two starts: the given (or default) values and one read off the frames' principal
     // components; the better after a short probe is trained to the end.
@@ -118,19 +153,5 @@ pub fn run(cfg: &EstimateConfig) -> anyhow::Result<()> {
         let seeds = (0..cfg.ensemble as u64).map(|i| cfg.seed + i).collect();
         report.ensemble = Some(summarise(seeds, &members));
     }
-    write_outputs(cfg, &data, &report)?;
-    println!("{}", report.table());
-    if let Some(e) = &report.ensemble {
-        println!("{}", e.table());
-    }
-    for w in &report.warnings {
-        eprintln!("warning: {w}");
-    }
-    if !cfg.quiet {
-        eprintln!(
-            "report: {}  (metrics.csv, parameters.png, latents.png beside it)",
-            cfg.out.join("report.json").display()
-        );
-    }
-    Ok(())
+    Ok(Estimation { report, data })
 }

@@ -7,7 +7,7 @@ use crate::config::{EstimateConfig, ModelKind};
 use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::error::EstimateError;
-use crate::loss::loss;
+use crate::loss::{loss, LossKind};
 use crate::timeline::{timeline, Timeline};
 use serde::Serialize;
 use std::time::Instant;
@@ -137,6 +137,13 @@ impl Model {
         (z, z_hat)
     }
 
+    /// The block's ODE residual of `z` when the loss needs it.
+    fn residual(&self, kind: LossKind, z: &Tensor) -> Option<Tensor> {
+        (kind == LossKind::ResidualFloor)
+            .then(|| self.block.residual(z))
+            .flatten()
+    }
+
     /// Every variable of the encoder and the block, in a fixed order (sorted by name).
     fn variables(&self) -> Vec<Tensor> {
         let mut out = Vec::new();
@@ -219,6 +226,7 @@ impl<'a> Trainer<'a> {
                 dt: data.dt,
                 timed: data.train_start.is_some(),
                 calibrated: reference.is_some(),
+                start: cfg.rollout_start,
             },
         );
         let model = Model {
@@ -264,7 +272,8 @@ impl<'a> Trainer<'a> {
             let x = data.train.index_select(0, &idx);
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
             let (z, z_hat) = model.forward(&x, start.as_ref(), steps);
-            let (l, _) = loss(cfg.loss, &z, &z_hat);
+            let residual = model.residual(cfg.loss, &z);
+            let (l, _) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
             self.opt_enc.zero_grad();
             self.opt_phys.zero_grad();
             l.backward();
@@ -280,7 +289,8 @@ impl<'a> Trainer<'a> {
         }
         let (val_loss, val_mse, latent_std) = tch::no_grad(|| {
             let (z, z_hat) = model.forward(&data.val, data.val_start.as_ref(), steps);
-            let (l, mse) = loss(cfg.loss, &z, &z_hat);
+            let residual = model.residual(cfg.loss, &z);
+            let (l, mse) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
             (
                 l.double_value(&[]),
                 mse.double_value(&[]),
