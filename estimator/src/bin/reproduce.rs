@@ -13,7 +13,7 @@ use std::process::ExitCode;
 /// varies it) into a temporary directory, trains with `estimate`'s own arguments (every row
 /// names them), and writes OUT/TABLE.md and OUT/TABLE.csv, the paper's values and the ground
 /// truth in their own columns. `all` also writes OUT/RESULTS.md. Deterministic on CPU. Full
-/// set: about 50 minutes on 2 cores; --quick: about 3.
+/// set: about 56 minutes on 2 cores; --quick: about 2.
 #[derive(Debug, Parser)]
 #[command(name = "reproduce", version)]
 struct Cli {
@@ -23,7 +23,7 @@ struct Cli {
     /// Directory for the tables (created; files are replaced).
     #[arg(long, default_value = "results", value_name = "DIR")]
     out: PathBuf,
-    /// Small datasets and grids: every table in about 3 minutes (what the tests run).
+    /// Small datasets and grids: every table in about 2 minutes (what the tests run).
     #[arg(long)]
     quick: bool,
     /// Where to train.
