@@ -177,6 +177,8 @@ pub struct Runner {
     bar: ProgressBar,
     /// stderr is not a terminal (a log file, CI): one line per finished run instead of the bar.
     lines: bool,
+    /// `--scratch` was given: keep every dataset there.
+    keep: bool,
 }
 
 impl Runner {
@@ -208,9 +210,12 @@ impl Runner {
         Ok(dir)
     }
 
-    /// Deletes a dataset no later run needs (the coverage table renders twenty).
+    /// Deletes a dataset no later run needs (the coverage table renders twenty), unless the
+    /// user asked to keep them with `--scratch`.
     pub fn discard(&self, dir: &Path) {
-        let _ = std::fs::remove_dir_all(dir);
+        if !self.keep {
+            let _ = std::fs::remove_dir_all(dir);
+        }
     }
 
     /// Trains on `data` as `estimate DATA FLAGS...` would (quietly, outputs discarded).
@@ -294,6 +299,7 @@ pub fn run(cfg: &ReproduceConfig) -> anyhow::Result<()> {
         scratch,
         bar,
         lines: !cfg.quiet && !terminal,
+        keep: cfg.scratch.is_some(),
     };
     let kinds: Vec<TableKind> = match cfg.table {
         TableKind::All => TableKind::EACH.to_vec(),
