@@ -47,3 +47,17 @@ impl EstimateError {
 pub fn input_error(msg: impl Into<String>) -> EstimateError {
     EstimateError::Input(msg.into())
 }
+
+/// Prints a binary's error on one line and picks its exit code: 2 for bad input, 1 otherwise.
+pub fn exit_with(program: &str, result: anyhow::Result<()>) -> std::process::ExitCode {
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{program}: error: {e:#}");
+            let bad_input = e
+                .downcast_ref::<EstimateError>()
+                .is_some_and(EstimateError::is_bad_input);
+            std::process::ExitCode::from(if bad_input { 2 } else { 1 })
+        }
+    }
+}

@@ -2,7 +2,7 @@
 
 use clap::Parser;
 use estimator::cli::EstimateArgs;
-use estimator::EstimateError;
+use estimator::error::exit_with;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -15,14 +15,5 @@ fn main() -> ExitCode {
         .validate()
         .map_err(anyhow::Error::from)
         .and_then(|cfg| estimator::run(&cfg));
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("estimate: error: {e:#}");
-            let bad_input = e
-                .downcast_ref::<EstimateError>()
-                .is_some_and(EstimateError::is_bad_input);
-            ExitCode::from(if bad_input { 2 } else { 1 })
-        }
-    }
+    exit_with("estimate", result)
 }

@@ -2,8 +2,8 @@
 
 use clap::Parser;
 use estimator::config::DeviceChoice;
+use estimator::error::exit_with;
 use estimator::reproduce::{run, ReproduceConfig, TableKind};
-use estimator::EstimateError;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -54,18 +54,9 @@ fn main() -> ExitCode {
         scratch: cli.scratch,
         quiet: cli.quiet,
     };
-    match cfg
+    let result = cfg
         .validate()
         .map_err(anyhow::Error::from)
-        .and_then(|cfg| run(&cfg))
-    {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("reproduce: error: {e:#}");
-            let bad_input = e
-                .downcast_ref::<EstimateError>()
-                .is_some_and(EstimateError::is_bad_input);
-            ExitCode::from(if bad_input { 2 } else { 1 })
-        }
-    }
+        .and_then(|cfg| run(&cfg));
+    exit_with("reproduce", result)
 }

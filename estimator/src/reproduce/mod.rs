@@ -15,7 +15,7 @@ use crate::config::DeviceChoice;
 use crate::error::input_error;
 use crate::report::Report;
 use crate::run::estimate;
-use clap::Parser;
+use clap::{Parser, ValueEnum};
 use generator::delfys::System;
 use generator::{generate_to_disk, GenConfig, Scenario};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -226,15 +226,11 @@ impl Runner {
         let mut args: Vec<String> = vec!["estimate".into(), data.display().to_string()];
         args.extend(flags.iter().map(|f| f.to_string()));
         args.extend(["--quiet".into(), "--out".into(), out.display().to_string()]);
-        args.extend([
-            "--device".into(),
-            match self.device {
-                DeviceChoice::Auto => "auto",
-                DeviceChoice::Cpu => "cpu",
-                DeviceChoice::Cuda => "cuda",
-            }
-            .into(),
-        ]);
+        let device = self
+            .device
+            .to_possible_value()
+            .expect("no skipped variants");
+        args.extend(["--device".into(), device.get_name().into()]);
         if let Some(t) = self.threads {
             args.extend(["--threads".into(), t.to_string()]);
         }
