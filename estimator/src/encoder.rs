@@ -16,6 +16,14 @@ pub enum EncoderKind {
 }
 
 impl EncoderKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            EncoderKind::Small => "small",
+            EncoderKind::Paper => "paper",
+            EncoderKind::Linear => "linear",
+        }
+    }
+
     pub fn hidden_layers(self) -> &'static [i64] {
         match self {
             EncoderKind::Small => &[16],

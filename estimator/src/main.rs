@@ -1,8 +1,8 @@
-//! `estimate`: command-line entry point; parses flags into a validated `EstimateConfig` and calls `run`.
+//! `estimate`: command-line entry point; parses and validates the flags and calls `run`.
 
 use clap::Parser;
-use estimator::cli::EstimateArgs;
 use estimator::error::exit_with;
+use estimator::EstimateArgs;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -11,9 +11,8 @@ fn main() -> ExitCode {
         Err(e) => return physvid_shared::cli::exit_on_clap_error(e),
     };
     let result = args
-        .into_config()
         .validate()
         .map_err(anyhow::Error::from)
-        .and_then(|cfg| estimator::run(&cfg));
+        .and_then(|args| estimator::run(&args));
     exit_with("estimate", result)
 }

@@ -1,16 +1,21 @@
-//! PNG plots drawn with plotters: the parameters over epochs (ground truth as a dashed line) and
-//! the encoded latent against the physics rollout for a few validation clips.
+//! PNG plots drawn with plotters, returned as bytes (`output.rs` writes them): the parameters
+//! over epochs (ground truth dashed), the encoded latent against the physics rollout for a few
+//! validation clips, and a recording's timeline. One chart set-up serves all three.
 
-use crate::data::ClipData;
-use crate::error::EstimateError;
-use crate::report::{write_atomic, Report};
+use crate::report::Report;
 use crate::timeline::Timeline;
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
+use std::ops::Range;
 use std::sync::Once;
 
 const WIDTH: u32 = 900;
 const PANEL_HEIGHT: u32 = 300;
+
+type Area<'b> = DrawingArea<BitMapBackend<'b>, Shift>;
+type Chart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Registers the embedded DejaVu Sans as plotters' sans-serif font (once per process), so
 /// plots need no system fonts.
@@ -25,53 +30,79 @@ fn register_font() {
     });
 }
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> EstimateError {
-    EstimateError::Plot {
-        path: path.to_path_buf(),
-        reason: e.to_string(),
-    }
-}
-
-/// Draws into an RGB buffer with `draw`, then writes it as PNG atomically.
+/// Draws into an RGB buffer of `height` pixels with `draw` and encodes it as PNG.
 fn render_png(
-    path: &Path,
     height: u32,
-    draw: impl FnOnce(DrawingArea<BitMapBackend, plotters::coord::Shift>) -> Result<(), String>,
-) -> Result<(), EstimateError> {
+    draw: impl FnOnce(Area) -> Result<(), String>,
+) -> Result<Vec<u8>, String> {
     register_font();
     let mut buf = vec![0u8; (WIDTH * height * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
-        draw(root.clone()).map_err(|e| plot_error(path, e))?;
-        root.present().map_err(|e| plot_error(path, e))?;
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        draw(root.clone())?;
+        root.present().map_err(|e| e.to_string())?;
     }
     let img = image::RgbImage::from_raw(WIDTH, height, buf).expect("buffer matches size");
     let mut png = std::io::Cursor::new(Vec::new());
     img.write_to(&mut png, image::ImageFormat::Png)
-        .map_err(|e| plot_error(path, e))?;
-    write_atomic(path, &png.into_inner())
+        .map_err(|e| e.to_string())?;
+    Ok(png.into_inner())
 }
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// A chart with a caption, axes over `x` and `y`, and their labels.
+fn chart<'a, 'b>(
+    area: &'a Area<'b>,
+    caption: &str,
+    (x, x_desc): (Range<f64>, &str),
+    (y, y_desc): (Range<f64>, &str),
+) -> Result<Chart<'a, 'b>, String> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(30)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x, y)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
+/// Draws the legend of the series that have labels.
+fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// The finite values' range with a margin ((0, 1) when there are none).
+fn range(values: impl Iterator<Item = f64>) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
     if !lo.is_finite() {
-        return (0.0, 1.0);
+        return 0.0..1.0;
     }
     let pad = ((hi - lo) * 0.08)
         .max(hi.abs().max(lo.abs()) * 0.01)
         .max(1e-9);
-    (lo - pad, hi + pad)
+    lo - pad..hi + pad
 }
 
 /// `parameters.png`: each of the block's parameters against the epoch, its ground truth dashed.
-pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError> {
+pub fn parameters_png(report: &Report) -> Result<Vec<u8>, String> {
     let n = report.block_parameters.len().max(1);
-    render_png(path, PANEL_HEIGHT * n as u32, |root| {
+    render_png(PANEL_HEIGHT * n as u32, |root| {
         let panels = root.split_evenly((n, 1));
         let epochs = report.history.len().max(2) as f64;
         for (i, (panel, name)) in panels.iter().zip(&report.block_parameters).enumerate() {
@@ -86,155 +117,119 @@ pub fn plot_parameters(path: &Path, report: &Report) -> Result<(), EstimateError
                 .iter()
                 .map(|r| (r.epoch as f64, r.parameters[i]))
                 .collect();
-            let (lo, hi) = range(series.iter().map(|s| s.1).chain(truth));
-            let mut chart = ChartBuilder::on(panel)
-                .caption(format!("{name} over training"), ("sans-serif", 18))
-                .margin(10)
-                .x_label_area_size(30)
-                .y_label_area_size(70)
-                .build_cartesian_2d(0.0..epochs, lo..hi)
-                .map_err(|e| e.to_string())?;
-            chart
-                .configure_mesh()
-                .x_desc("epoch")
-                .y_desc(name.as_str())
-                .draw()
-                .map_err(|e| e.to_string())?;
-            chart
-                .draw_series(LineSeries::new(series, BLUE.stroke_width(2)))
+            let y = range(series.iter().map(|s| s.1).chain(truth));
+            let caption = format!("{name} over training");
+            let mut c = chart(panel, &caption, (0.0..epochs, "epoch"), (y, name.as_str()))?;
+            c.draw_series(LineSeries::new(series, BLUE.stroke_width(2)))
                 .map_err(|e| e.to_string())?
                 .label("estimate")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
             if let Some(t) = truth {
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        vec![(0.0, t), (epochs, t)],
-                        8,
-                        5,
-                        RED.stroke_width(2),
-                    ))
-                    .map_err(|e| e.to_string())?
-                    .label(format!("ground truth {t:.5}"))
-                    .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+                c.draw_series(DashedLineSeries::new(
+                    vec![(0.0, t), (epochs, t)],
+                    8,
+                    5,
+                    RED.stroke_width(2),
+                ))
+                .map_err(|e| e.to_string())?
+                .label(format!("ground truth {t:.5}"))
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| e.to_string())?;
+            legend(&mut c)?;
         }
         Ok(())
     })
 }
 
+/// Draws `values` at times `at(i)` as a line, with dots of `dot` pixels (none for 0).
+fn trace(
+    c: &mut Chart,
+    values: &[f32],
+    at: impl Fn(usize) -> f64,
+    color: RGBAColor,
+    dot: u32,
+) -> Result<(), String> {
+    let points: Vec<(f64, f64)> = values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (at(i), v as f64))
+        .collect();
+    c.draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+        .map_err(|e| e.to_string())?;
+    if dot > 0 {
+        c.draw_series(
+            points
+                .into_iter()
+                .map(|p| Circle::new(p, dot, color.filled())),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
 /// `latents.png`: encoded latent (dots) and physics rollout (line) over time for up to four
 /// validation clips.
-pub fn plot_latents(path: &Path, report: &Report, data: &ClipData) -> Result<(), EstimateError> {
+pub fn latents_png(report: &Report, dt: f64, frames_per_clip: i64) -> Result<Vec<u8>, String> {
     let z = &report.outcome.example_latents;
     let r = &report.outcome.example_rollouts;
-    let dt = data.dt;
-    render_png(path, PANEL_HEIGHT + 100, |root| {
-        let t_end = (data.frames_per_clip - 1) as f64 * dt;
-        let (lo, hi) = range(z.iter().chain(r).flatten().map(|&v| v as f64));
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "encoded latent (dots) vs physics rollout (lines), validation clips",
-                ("sans-serif", 18),
-            )
-            .margin(10)
-            .x_label_area_size(30)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0..t_end.max(dt), lo..hi)
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("time (s)")
-            .y_desc("latent z")
-            .draw()
-            .map_err(|e| e.to_string())?;
+    render_png(PANEL_HEIGHT + 100, |root| {
+        let t_end = (frames_per_clip - 1) as f64 * dt;
+        let y = range(z.iter().chain(r).flatten().map(|&v| v as f64));
+        let caption = "encoded latent (dots) vs physics rollout (lines), validation clips";
+        let mut c = chart(
+            &root,
+            caption,
+            (0.0..t_end.max(dt), "time (s)"),
+            (y, "latent z"),
+        )?;
         for (k, (zs, rs)) in z.iter().zip(r).enumerate() {
             let color = Palette99::pick(k).to_rgba();
-            chart
-                .draw_series(LineSeries::new(
-                    rs.iter()
-                        .enumerate()
-                        .map(|(i, &v)| (i as f64 * dt, v as f64)),
-                    color.stroke_width(2),
-                ))
-                .map_err(|e| e.to_string())?
-                .label(format!("clip {k}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            chart
-                .draw_series(
-                    zs.iter()
-                        .enumerate()
-                        .map(|(i, &v)| Circle::new((i as f64 * dt, v as f64), 4, color.filled())),
-                )
-                .map_err(|e| e.to_string())?;
+            trace(&mut c, rs, |i| i as f64 * dt, color, 0)?;
+            c.draw_series(
+                zs.iter()
+                    .enumerate()
+                    .map(|(i, &v)| Circle::new((i as f64 * dt, v as f64), 4, color.filled())),
+            )
+            .map_err(|e| e.to_string())?
+            .label(format!("clip {k}"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        Ok(())
+        legend(&mut c)
     })
 }
 
 /// `timeline.png`: the encoded latent of every recording frame (grey) with the physics rollouts
 /// of back-to-back clips over it (coloured, dots at the clip frames).
-pub fn plot_timeline(path: &Path, t: &Timeline) -> Result<(), EstimateError> {
-    render_png(path, PANEL_HEIGHT + 100, |root| {
+pub fn timeline_png(t: &Timeline) -> Result<Vec<u8>, String> {
+    render_png(PANEL_HEIGHT + 100, |root| {
         let end = t.latents.len().max(2) as f64 * t.frame_dt;
         let values = t
             .latents
             .iter()
             .chain(t.rollouts.iter().flat_map(|r| &r.1))
             .map(|&v| v as f64);
-        let (lo, hi) = range(values);
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "encoded latent over the recording (grey) and physics rollouts of clips (colour)",
-                ("sans-serif", 18),
-            )
-            .margin(10)
-            .x_label_area_size(30)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0..end, lo..hi)
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("time in the recording (s, real time)")
-            .y_desc("latent z")
-            .draw()
-            .map_err(|e| e.to_string())?;
-        chart
-            .draw_series(LineSeries::new(
-                t.latents
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| (i as f64 * t.frame_dt, v as f64)),
-                RGBColor(150, 150, 150).stroke_width(1),
-            ))
-            .map_err(|e| e.to_string())?;
+        let caption =
+            "encoded latent over the recording (grey) and physics rollouts of clips (colour)";
+        let x = (0.0..end, "time in the recording (s, real time)");
+        let mut c = chart(&root, caption, x, (range(values), "latent z"))?;
+        let grey = RGBColor(150, 150, 150).to_rgba();
+        c.draw_series(LineSeries::new(
+            t.latents
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| (i as f64 * t.frame_dt, v as f64)),
+            grey.stroke_width(1),
+        ))
+        .map_err(|e| e.to_string())?;
         for (k, (start, roll)) in t.rollouts.iter().enumerate() {
             let color = Palette99::pick(k).to_rgba();
-            let at = |i: usize| (start + i * t.stride) as f64 * t.frame_dt;
-            chart
-                .draw_series(LineSeries::new(
-                    roll.iter().enumerate().map(|(i, &v)| (at(i), v as f64)),
-                    color.stroke_width(2),
-                ))
-                .map_err(|e| e.to_string())?;
-            chart
-                .draw_series(
-                    roll.iter()
-                        .enumerate()
-                        .map(|(i, &v)| Circle::new((at(i), v as f64), 2, color.filled())),
-                )
-                .map_err(|e| e.to_string())?;
+            trace(
+                &mut c,
+                roll,
+                |i| (start + i * t.stride) as f64 * t.frame_dt,
+                color,
+                2,
+            )?;
         }
         Ok(())
     })

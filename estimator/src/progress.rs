@@ -1,6 +1,6 @@
 //! Progress display: an indicatif bar on a terminal, plain lines otherwise, nothing with --quiet.
 
-use crate::train::EpochRecord;
+use crate::train::outcome::EpochRecord;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 

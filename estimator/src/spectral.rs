@@ -9,7 +9,7 @@
 //! spurious modes of the fit decay within a few frames). A start there keeps training away from the
 //! harmonics (latents like |z| or z², at 2ω) that a start far off can lock onto.
 
-use crate::physics::Integrator;
+use crate::physics::block::Integrator;
 use tch::{Device, Kind, Tensor};
 
 /// Frames used for the principal components (evenly spaced over the training clips).

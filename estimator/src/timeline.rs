@@ -1,9 +1,9 @@
 //! `Timeline`: the encoded latent of every frame of a recording, with the physics rollouts of
 //! clips that tile it back to back (what `timeline.png` draws).
 
+use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
-use crate::recording::RecordingSummary;
-use crate::train::{to_rows, Model};
+use crate::network::{to_rows, Network};
 use tch::{Device, Tensor};
 
 /// The encoded latent over a whole recording with the physics rollouts of back-to-back clips.
@@ -22,8 +22,8 @@ pub struct Timeline {
 
 /// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
 /// clip span apart.
-pub(crate) fn timeline(
-    model: &Model,
+pub fn timeline(
+    model: &Network,
     data: &ClipData,
     summary: &RecordingSummary,
     frames: &Tensor,

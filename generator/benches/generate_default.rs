@@ -2,23 +2,13 @@
 //! speed-up of all threads over one thread, measured in the same process.
 //! Run with `cargo bench -p physvid-generator --bench generate_default`.
 
-use generator::{generate, generate_to_disk, GenConfig, Scenario};
+use generator::{generate, generate_to_disk, GenConfig, SceneRef};
 use std::time::Instant;
 
-fn config(scenario: Scenario, out: std::path::PathBuf) -> GenConfig {
+fn config(scenario: &str, out: std::path::PathBuf) -> GenConfig {
     GenConfig {
-        scenario,
-        out,
-        samples: 500,
-        frames: 20,
-        size: 50,
-        dt: 0.2,
-        omega: 2.0,
-        zeta: 0.04,
-        seed: 0,
-        noise: 0.0,
         force: true,
-        params: Default::default(),
+        ..GenConfig::new(SceneRef::by_name(scenario).unwrap(), out)
     }
     .validate()
     .expect("defaults are valid")
@@ -51,8 +41,8 @@ fn main() {
         "{:<10} {:>12} {:>12} {:>12} {:>12}",
         "scenario", "render 1T", "render all", "render+write", "speed-up"
     );
-    for sc in [Scenario::Intensity, Scenario::Position, Scenario::Scale] {
-        let cfg = config(sc, tmp.path().join(sc.name()));
+    for sc in ["intensity", "position", "scale"] {
+        let cfg = config(sc, tmp.path().join(sc));
         let r1 = best_of(5, || {
             one.install(|| std::hint::black_box(generate(&cfg)));
         });
@@ -67,7 +57,7 @@ fn main() {
         });
         println!(
             "{:<10} {:>10.3} s {:>10.3} s {:>10.3} s {:>11.2}x   (render+write on 1 thread: {:.3} s)",
-            sc.name(), r1, rn, fulln, full1 / fulln, full1
+            sc, r1, rn, fulln, full1 / fulln, full1
         );
     }
 }

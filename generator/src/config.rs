@@ -1,52 +1,48 @@
-//! `GenConfig`: the validated settings of one `gen` run, and `ConfigError` for bad flags.
+//! `GenConfig`: the validated settings of one `gen` run.
 
-use crate::delfys::Params;
-use crate::scenario::Scenario;
+use crate::error::{invalid, ConfigError};
+use crate::scenes::{Params, SceneRef};
 use std::path::PathBuf;
 
 /// Largest dataset `gen` will hold in memory.
 pub const MAX_BYTES: u64 = 8 << 30;
 
-/// Settings of one generation run; build with [`GenConfig::validate`].
+/// Settings of one generation run; build with [`GenConfig::new`], change fields, then
+/// [`GenConfig::validate`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenConfig {
-    pub scenario: Scenario,
+    pub scene: SceneRef,
     pub out: PathBuf,
     pub samples: usize,
     pub frames: usize,
     pub size: usize,
     pub dt: f64,
-    pub omega: f64,
-    pub zeta: f64,
     pub seed: u64,
     pub noise: f64,
     pub force: bool,
-    /// Parameters of a Delfys75 scene (SI), empty for the oscillator scenes.
+    /// The scene's parameters (SI): the oscillator's omega and zeta, or a Delfys75 system's.
     pub params: Params,
 }
 
-/// A flag outside its valid range; the message names the flag, the value and the range.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{flag} {value}: {expected}")]
-pub struct ConfigError {
-    pub flag: &'static str,
-    pub value: String,
-    pub expected: String,
-}
-
-fn invalid(flag: &'static str, value: impl ToString, expected: impl Into<String>) -> ConfigError {
-    ConfigError {
-        flag,
-        value: value.to_string(),
-        expected: expected.into(),
-    }
-}
-
-/// Amplitudes are drawn from U[AMPLITUDE_MIN, AMPLITUDE_MAX].
-pub const AMPLITUDE_MIN: f64 = 0.5;
-pub const AMPLITUDE_MAX: f64 = 1.0;
-
 impl GenConfig {
+    /// `gen`'s defaults for `scene` into `out`: 500 clips of 50×50, the scene's clip length
+    /// and dt, its first setting, seed 0, no noise.
+    pub fn new(scene: SceneRef, out: impl Into<PathBuf>) -> GenConfig {
+        let (frames, dt) = scene.default_clip();
+        GenConfig {
+            scene,
+            out: out.into(),
+            samples: 500,
+            frames,
+            size: 50,
+            dt,
+            seed: 0,
+            noise: 0.0,
+            force: false,
+            params: scene.params(1),
+        }
+    }
+
     /// Checks every field; the first problem found is returned.
     pub fn validate(self) -> Result<GenConfig, ConfigError> {
         if self.samples == 0 {
@@ -69,53 +65,7 @@ impl GenConfig {
                 "must be a finite number > 0 (seconds)",
             ));
         }
-        if let Some(system) = self.scenario.system() {
-            system.validate(&self.params, self.frames, self.dt)?;
-            return self.check_size();
-        }
-        if !(self.omega.is_finite() && self.omega > 0.0) {
-            return Err(invalid(
-                "--omega",
-                self.omega,
-                "must be a finite number > 0 (rad/s)",
-            ));
-        }
-        if self.omega * self.dt >= std::f64::consts::PI {
-            return Err(invalid(
-                "--omega",
-                self.omega,
-                format!(
-                    "with --dt {} the frames sample the oscillation below its Nyquist rate (omega*dt = {:.3} >= pi); need omega < {:.4}",
-                    self.dt,
-                    self.omega * self.dt,
-                    std::f64::consts::PI / self.dt
-                ),
-            ));
-        }
-        if !self.zeta.is_finite() {
-            return Err(invalid(
-                "--zeta",
-                self.zeta,
-                "must be a finite number (1/s)",
-            ));
-        }
-        let t_end = (self.frames - 1) as f64 * self.dt;
-        let growth = (-self.zeta * t_end).exp().max(1.0);
-        if AMPLITUDE_MAX * growth > 1.0 {
-            return Err(invalid(
-                "--zeta",
-                self.zeta,
-                format!(
-                    "a negative decay rate makes the amplitude grow {growth:.3}x by the last frame, pushing the object out of the frame; need zeta >= 0 for {} frames at dt {}",
-                    self.frames, self.dt
-                ),
-            ));
-        }
-        self.check_size()
-    }
-
-    /// Checks --noise and the memory the dataset needs.
-    fn check_size(self) -> Result<GenConfig, ConfigError> {
+        self.scene.validate(&self.params, self.frames, self.dt)?;
         if !(self.noise.is_finite() && (0.0..=1.0).contains(&self.noise)) {
             return Err(invalid(
                 "--noise",
@@ -153,21 +103,14 @@ impl GenConfig {
 mod tests {
     use super::*;
 
-    pub(crate) fn defaults() -> GenConfig {
-        GenConfig {
-            scenario: Scenario::Intensity,
-            out: "data".into(),
-            samples: 500,
-            frames: 20,
-            size: 50,
-            dt: 0.2,
-            omega: 2.0,
-            zeta: 0.04,
-            seed: 0,
-            noise: 0.0,
-            force: false,
-            params: Default::default(),
-        }
+    fn defaults() -> GenConfig {
+        GenConfig::new(SceneRef::by_name("intensity").unwrap(), "data")
+    }
+
+    fn with(name: &str, v: f64) -> GenConfig {
+        let mut c = defaults();
+        c.params.insert(name.into(), v);
+        c
     }
 
     #[test]
@@ -209,20 +152,8 @@ mod tests {
                 },
                 "--dt",
             ),
-            (
-                GenConfig {
-                    omega: 20.0,
-                    ..defaults()
-                },
-                "--omega",
-            ),
-            (
-                GenConfig {
-                    zeta: -0.5,
-                    ..defaults()
-                },
-                "--zeta",
-            ),
+            (with("omega", 20.0), "--omega"),
+            (with("zeta", -0.5), "--zeta"),
             (
                 GenConfig {
                     noise: -0.1,

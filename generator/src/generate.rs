@@ -2,8 +2,8 @@
 
 use crate::config::GenConfig;
 use crate::render::Canvas;
-use crate::sampling::{draw_initial_condition, sample_rng};
-use physvid_shared::{DampedOscillator, SampleTruth};
+use crate::sampling::sample_rng;
+use physvid_shared::SampleTruth;
 use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
 
@@ -23,13 +23,10 @@ pub fn generate(cfg: &GenConfig) -> Generated {
 
 /// Renders samples `range` of the dataset (identical to the same samples of [`generate`]).
 pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Generated {
-    let model = DampedOscillator {
-        omega: cfg.omega,
-        zeta: cfg.zeta,
-    };
     let pixels = cfg.size * cfg.size;
     let per_sample = cfg.frames * pixels;
     let mut frames = vec![0f32; range.len() * per_sample];
+    let scene = cfg.scene;
     let truths: Vec<(SampleTruth, Vec<f64>)> = frames
         .par_chunks_mut(per_sample)
         .enumerate()
@@ -37,28 +34,10 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
             || Canvas::new(cfg.size),
             |canvas, (i, clip)| {
                 let mut rng = sample_rng(cfg.seed, range.start + i);
-                let (truth, latents) = match cfg.scenario.system() {
-                    Some(system) => {
-                        let (truth, latents) =
-                            system.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt);
-                        for (z, frame) in latents.iter().zip(clip.chunks_exact_mut(pixels)) {
-                            system.render(&cfg.params, *z, cfg.size, canvas, frame);
-                        }
-                        (truth, latents)
-                    }
-                    None => {
-                        let (amplitude, phase) = draw_initial_condition(&mut rng);
-                        let mut latents = Vec::with_capacity(cfg.frames);
-                        for (k, frame) in clip.chunks_exact_mut(pixels).enumerate() {
-                            let z = model.latent(amplitude, phase, k as f64 * cfg.dt);
-                            latents.push(z);
-                            canvas.render_frame(&cfg.scenario.disc(z, cfg.size), frame);
-                        }
-                        let truth =
-                            SampleTruth::from_pairs([("amplitude", amplitude), ("phase", phase)]);
-                        (truth, latents)
-                    }
-                };
+                let (truth, latents) = scene.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt);
+                for (z, frame) in latents.iter().zip(clip.chunks_exact_mut(pixels)) {
+                    scene.render(&cfg.params, *z, cfg.size, canvas, frame);
+                }
                 if cfg.noise > 0.0 {
                     let sigma = cfg.noise as f32;
                     for v in clip.iter_mut() {

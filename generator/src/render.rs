@@ -1,7 +1,16 @@
-//! `Canvas::render_frame`: draws one anti-aliased disc with tiny-skia into an f32 frame in [0, 1].
+//! `Canvas`: anti-aliased discs and polygons drawn with tiny-skia at 2× and box-filtered into
+//! f32 frames in [0, 1].
 
-use crate::scenario::Disc;
 use tiny_skia::{FillRule, Paint, PathBuilder, PixmapMut, Transform};
+
+/// A disc to draw: centre, radius (pixels) and grey level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Disc {
+    pub cx: f32,
+    pub cy: f32,
+    pub radius: f32,
+    pub grey: f32,
+}
 
 /// Each output pixel is the mean of SUPERSAMPLE² pixels of the tiny-skia canvas. tiny-skia's
 /// 8-bit anti-aliasing alone leaves a size-dependent error in the drawn area (γ1 read from the

@@ -1,20 +1,17 @@
 //! Seeded per-sample random streams: amplitude, phase and pixel noise of sample i come from
 //! ChaCha8 stream i of the run's seed, so results never depend on thread scheduling.
 
-use crate::config::{AMPLITUDE_MAX, AMPLITUDE_MIN};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+
+/// Amplitudes are drawn from U[AMPLITUDE_MIN, AMPLITUDE_MAX).
+pub const AMPLITUDE_MIN: f64 = 0.5;
+pub const AMPLITUDE_MAX: f64 = 1.0;
 
 /// Text for `meta.json` describing the draws.
 pub const SAMPLING_TEXT: &str = "amplitude A ~ Uniform[0.5, 1.0), phase phi ~ Uniform[0, 2*pi), \
      drawn in that order from ChaCha8 stream i (seeded with --seed) for sample i, followed by the \
      pixel noise N(0, noise^2) of that sample in frame-major, row-major order";
-
-/// Text for `meta.json` describing the draws of the Delfys75 scenes.
-pub const DELFYS_SAMPLING_TEXT: &str = "per clip, from ChaCha8 stream i (seeded with --seed) for \
-     sample i: a start time uniform over the part of the motion a whole clip fits in (the pendulum: \
-     an amplitude uniform in [amplitude_min_deg, amplitude_max_deg], an initial angle uniform in \
-     [-amplitude, amplitude] and the direction of swing), then the pixel noise";
 
 /// The random stream of sample `index`.
 pub fn sample_rng(seed: u64, index: usize) -> ChaCha8Rng {

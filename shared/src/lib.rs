@@ -3,6 +3,8 @@
 //!
 //! This crate never depends on libtorch: rendering and reading datasets build without it.
 
+pub mod affine;
+pub mod atomic;
 pub mod cli;
 pub mod contact_sheet;
 pub mod dataset;
@@ -13,7 +15,9 @@ pub mod npy;
 pub mod recurrence;
 pub mod video;
 
+pub use affine::AffineFit;
+pub use atomic::write_atomic;
 pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
 pub use dynamics::DampedOscillator;
 pub use error::DatasetError;
-pub use meta::{DatasetMeta, ModelSpec, SampleTruth};
+pub use meta::{Calibration, DatasetMeta, ModelSpec, ReferencePoint, SampleTruth};

@@ -53,10 +53,10 @@ pub struct DatasetMeta {
     /// How the latent z maps to the picture, in words.
     pub latent_mapping: String,
     /// What a user would measure to turn latent-unit answers into SI units (pixels per metre,
-    /// focal length, incline angle, reference values of the physical quantity at given frames),
-    /// by name; empty for the oscillator scenes.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub calibration: BTreeMap<String, serde_json::Value>,
+    /// focal length, incline angle, reference values of the physical quantity at given frames);
+    /// empty for the oscillator scenes.
+    #[serde(default, skip_serializing_if = "Calibration::is_empty")]
+    pub calibration: Calibration,
     /// Frames per second of the (virtual) camera: 1/dt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fps: Option<f64>,
@@ -71,4 +71,82 @@ pub struct DatasetMeta {
     pub samples: Vec<SampleTruth>,
     /// Ground-truth z of every sample (outer) and frame (inner).
     pub latents: Vec<Vec<f64>>,
+}
+
+/// One reference frame of the calibration: the physical quantity (angle, level, distance,
+/// brightness; SI units) at frame `frame` of clip `clip`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ReferencePoint {
+    pub clip: usize,
+    pub frame: usize,
+    pub value: f64,
+}
+
+/// The `calibration` object of meta.json: what a user would measure in the scene. Written by
+/// `gen`, read by `estimate`; a malformed entry is an error, never dropped. Fields are in
+/// alphabetical order, the order they are written.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Calibration {
+    /// Free fall: the camera's focal length in pixels per metre of object size at 1 m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focal_px_per_m: Option<f64>,
+    /// Gravitational acceleration of the scene (m/s²).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub g: Option<f64>,
+    /// Free fall: the ball's distance from the camera at the release (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub h0: Option<f64>,
+    /// Sliding block: the incline's angle (degrees).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub incline_deg: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixels_per_metre: Option<f64>,
+    /// What the reference values measure, in words (e.g. "water level h (m)").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quantity: Option<String>,
+    /// Free fall: the ball's radius (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reference_points: Vec<ReferencePoint>,
+}
+
+impl Calibration {
+    /// Whether nothing was measured (the oscillator scenes).
+    pub fn is_empty(&self) -> bool {
+        *self == Calibration::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn calibration_reads_what_it_writes_and_refuses_malformed_points() {
+        let c = Calibration {
+            g: Some(9.81),
+            quantity: Some("angle theta (rad)".into()),
+            reference_points: vec![ReferencePoint {
+                clip: 3,
+                frame: 7,
+                value: 0.25,
+            }],
+            ..Default::default()
+        };
+        let text = serde_json::to_string(&c).unwrap();
+        assert_eq!(
+            text,
+            r#"{"g":9.81,"quantity":"angle theta (rad)","reference_points":[{"clip":3,"frame":7,"value":0.25}]}"#
+        );
+        assert_eq!(serde_json::from_str::<Calibration>(&text).unwrap(), c);
+        for bad in [
+            r#"{"reference_points":[{"clip":3,"value":0.25}]}"#,
+            r#"{"reference_points":[{"clip":-1,"frame":0,"value":0.25}]}"#,
+            r#"{"reference_points":[{"clip":1,"frame":0,"value":"high"}]}"#,
+            r#"{"g":"9.81"}"#,
+        ] {
+            assert!(serde_json::from_str::<Calibration>(bad).is_err(), "{bad}");
+        }
+    }
 }

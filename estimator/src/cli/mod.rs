@@ -1,0 +1,79 @@
+//! `EstimateArgs`: `estimate`'s command line, in argument groups flattened into one command
+//! (the model, training, recording and output flags; ripgrep's low-level arguments). Nothing
+//! here knows the data: `config::RunConfig::resolve` turns these arguments and the loaded clips
+//! into the one resolved configuration. Help for `--model`, `--init` and the per-model defaults
+//! is generated from `physics::MODELS`. `reproduce` builds its runs from the same arguments, so
+//! each table row is a command a user can type.
+
+mod model;
+mod recording;
+mod training;
+
+pub use model::{parse_init, parse_reference, ModelArgs};
+pub use recording::{parse_crop, parse_size, RecordingArgs};
+pub use training::{DeviceChoice, TrainingArgs};
+
+use crate::error::{input_error, EstimateError};
+use clap::Parser;
+use std::path::PathBuf;
+
+/// Estimate the physical parameters of a known ODE from video, without labels.
+///
+/// An MLP (or linear) encoder maps each frame to a latent z, a physics block with learnable
+/// parameters rolls z forward from the start of each clip (its first frame for first-order
+/// models and for falls from rest with known start times, the initial state that best fits the
+/// whole clip for the oscillator and the pendulum), and the loss is MSE(encoded,
+/// rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025, arXiv 2410.01376). Reads gen datasets, bare
+/// .npy arrays, videos and image folders. Values are labelled SI or latent units; latent-unit
+/// ones need --reference. Ends with a table of estimates (and ground truth with relative errors
+/// when meta.json gives them) and writes report.json, metrics.csv, parameters.png and
+/// latents.png (and timeline.png for a recording) into --out.
+#[derive(Debug, Clone, Parser)]
+#[command(name = "estimate", version, allow_negative_numbers = true)]
+pub struct EstimateArgs {
+    /// A dataset directory written by `gen` (frames.npy + meta.json); a bare float32 .npy of
+    /// shape [N, T, C, H, W] (then --dt and --model are required); a video file (anything
+    /// ffmpeg reads) or a folder of PNG/JPEG images (with --fps), with --model.
+    pub input: PathBuf,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    #[command(flatten)]
+    pub training: TrainingArgs,
+    #[command(flatten)]
+    pub recording: RecordingArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// Where the results go.
+#[derive(Debug, Clone, clap::Args)]
+#[command(next_help_heading = "Output")]
+pub struct OutputArgs {
+    /// Directory for report.json, metrics.csv and the plots (created; files are replaced).
+    #[arg(long, default_value = "runs/estimate", value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print only the final table.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+impl EstimateArgs {
+    /// Checks the flags that do not depend on the data.
+    pub fn validate(self) -> Result<EstimateArgs, EstimateError> {
+        self.model.validate()?;
+        self.training.validate()?;
+        self.recording.validate()?;
+        Ok(self)
+    }
+}
+
+/// `v` must be finite and > 0.
+pub(crate) fn positive(flag: &str, v: f64) -> Result<(), EstimateError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(input_error(format!(
+            "{flag} {v}: must be a finite number > 0"
+        )))
+    }
+}

@@ -1,0 +1,150 @@
+//! The recording flags: how a video or an image folder becomes clips (frame rate, crop, trim,
+//! size, clip length, stride, hop). Their model-dependent defaults (Table 5's clip) are
+//! resolved in `data::recording`.
+
+use crate::error::{input_error, EstimateError};
+use crate::physics::MODELS;
+use physvid_shared::video::Crop;
+use serde::Serialize;
+
+/// The frame size fed to the encoder when `--size` is not given (the paper's 100×56).
+pub const DEFAULT_SIZE: (usize, usize) = (100, 56);
+
+/// How a recording becomes clips (refused for datasets).
+#[derive(Debug, Clone, PartialEq, Serialize, clap::Args)]
+#[command(next_help_heading = "Recordings")]
+pub struct RecordingArgs {
+    /// Frames per second of real time; overrides the container's (slow-motion files store
+    /// 30 fps for a 120 fps capture); required for an image folder.
+    #[arg(long)]
+    pub fps: Option<f64>,
+    /// Crop X,Y,W,H in pixels of the displayed (rotated) frame.
+    #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H")]
+    pub crop: Option<Crop>,
+    /// First second to use (of the file's own timeline). For sliding-block and free-fall the
+    /// first frame kept is taken as the release from rest.
+    #[arg(long)]
+    pub start: Option<f64>,
+    /// Last second to use.
+    #[arg(long)]
+    pub end: Option<f64>,
+    #[arg(long, value_parser = parse_size, value_name = "WxH", help = format!(
+        "Frame size fed to the encoder (grey, area-averaged) [default: {}x{}]",
+        DEFAULT_SIZE.0, DEFAULT_SIZE.1
+    ))]
+    pub size: Option<(usize, usize)>,
+    #[arg(long, help = frames_help())]
+    pub frames_per_clip: Option<usize>,
+    /// Recording frames between clip frames, so dt = stride / fps [default: Table 5's dt × fps,
+    /// e.g. 6 for the pendulum at 60 fps].
+    #[arg(long)]
+    pub stride: Option<usize>,
+    /// Recording frames between the starts of consecutive clips [default: 1, or more to stay
+    /// within 1000 clips].
+    #[arg(long)]
+    pub hop: Option<usize>,
+    /// Also write clips.png, the first clips as the model sees them (check crop and stride).
+    #[arg(long)]
+    pub preview: bool,
+}
+
+fn frames_help() -> String {
+    let each: Vec<String> = MODELS
+        .iter()
+        .map(|m| format!("{} {}", m.name(), m.table5_clip().0))
+        .collect();
+    format!(
+        "Frames per clip [default: appendix Table 5's for the model: {}]",
+        each.join(", ")
+    )
+}
+
+/// Parses `--crop X,Y,W,H`.
+pub fn parse_crop(text: &str) -> Result<Crop, String> {
+    let v: Vec<usize> = text
+        .split(',')
+        .map(|p| p.trim().parse::<usize>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{text}' is not X,Y,W,H in pixels (e.g. 100,0,400,300)"))?;
+    match v[..] {
+        [x, y, w, h] if w > 0 && h > 0 => Ok(Crop { x, y, w, h }),
+        _ => Err(format!(
+            "'{text}' is not X,Y,W,H with W, H > 0 (e.g. 100,0,400,300)"
+        )),
+    }
+}
+
+/// Parses `--size WxH`.
+pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{text}' is not WxH (e.g. 100x56)"))?;
+    match (w.trim().parse::<usize>(), h.trim().parse::<usize>()) {
+        (Ok(w), Ok(h)) if (4..=4096).contains(&w) && (4..=4096).contains(&h) => Ok((w, h)),
+        _ => Err(format!(
+            "'{text}' is not WxH with 4 ≤ W, H ≤ 4096 (e.g. 100x56)"
+        )),
+    }
+}
+
+impl RecordingArgs {
+    /// The frame size: `--size`, else [`DEFAULT_SIZE`].
+    pub fn frame_size(&self) -> (usize, usize) {
+        self.size.unwrap_or(DEFAULT_SIZE)
+    }
+
+    /// Checks the flags that do not depend on the recording.
+    pub fn validate(&self) -> Result<(), EstimateError> {
+        if let Some(f) = self.fps {
+            if !(f.is_finite() && f > 0.0) {
+                return Err(input_error(format!("--fps {f}: must be > 0")));
+            }
+        }
+        for (flag, v) in [("--start", self.start), ("--end", self.end)] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(input_error(format!("{flag} {v}: must be a time >= 0 s")));
+                }
+            }
+        }
+        if let (Some(s), Some(e)) = (self.start, self.end) {
+            if e <= s {
+                return Err(input_error(format!(
+                    "--end {e} is not after --start {s}: zero frames would remain"
+                )));
+            }
+        }
+        if self.frames_per_clip.is_some_and(|t| t < 3) {
+            return Err(input_error(
+                "--frames-per-clip: at least 3 (two to start a rollout, one to predict)",
+            ));
+        }
+        if self.stride == Some(0) || self.hop == Some(0) {
+            return Err(input_error("--stride and --hop: at least 1 frame"));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crop_and_size_parse_or_say_what_is_expected() {
+        assert_eq!(
+            parse_crop("1,2,30,40").unwrap(),
+            Crop {
+                x: 1,
+                y: 2,
+                w: 30,
+                h: 40
+            }
+        );
+        assert!(parse_crop("1,2,0,4").unwrap_err().contains("X,Y,W,H"));
+        assert!(parse_crop("1,2,3").is_err());
+        assert_eq!(parse_size("100x56").unwrap(), (100, 56));
+        assert!(parse_size("100").unwrap_err().contains("WxH"));
+        assert!(parse_size("2x2").is_err());
+    }
+}

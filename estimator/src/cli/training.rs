@@ -1,0 +1,120 @@
+//! The training flags: epochs and the early stop, learning rates, starts, loss, encoder, seeds,
+//! ensemble and where to train. Per-model defaults (patience, encoder) are generated from
+//! `physics::MODELS`.
+
+use super::positive;
+use crate::encoder::EncoderKind;
+use crate::error::{input_error, EstimateError};
+use crate::loss::LossKind;
+use crate::physics::MODELS;
+use serde::Serialize;
+
+/// Where to train.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DeviceChoice {
+    /// CUDA when libtorch sees a GPU, else CPU.
+    Auto,
+    Cpu,
+    Cuda,
+}
+
+/// How the encoder and the physics parameters are trained.
+#[derive(Debug, Clone, clap::Args)]
+#[command(next_help_heading = "Training")]
+pub struct TrainingArgs {
+    /// Maximum number of epochs; the early stop usually ends training sooner.
+    #[arg(long, default_value_t = 300)]
+    pub epochs: usize,
+    #[arg(long, help = patience_help())]
+    pub patience: Option<usize>,
+    /// Clips per optimisation step.
+    #[arg(long, default_value_t = 32)]
+    pub batch_size: usize,
+    /// Adam learning rate of the encoder.
+    #[arg(long, default_value_t = 1e-3)]
+    pub lr: f64,
+    /// Adam learning rate of the physics parameters. Those that must stay positive (γ0, g/L,
+    /// rates) are learned as logarithms, so for them it is a relative step.
+    #[arg(long, default_value_t = 1e-2)]
+    pub lr_phys: f64,
+    /// Train only from --init (the paper's behaviour). By default starts estimated from the
+    /// frames (principal components) are probed beside it and the best one kept.
+    #[arg(long)]
+    pub single_start: bool,
+    /// Training loss; `mse` is the appendix's ablation, whose latent collapses.
+    #[arg(long, value_enum, default_value_t = LossKind::MseKl)]
+    pub loss: LossKind,
+    #[arg(long, value_enum, help = encoder_help())]
+    pub encoder: Option<EncoderKind>,
+    /// Seed of the weight initialisation and batch order.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Train K models with seeds --seed … --seed+K−1 (one after another, each on every core)
+    /// and report each value's mean, standard deviation and range (report.json `ensemble`).
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    pub ensemble: usize,
+    /// Where to train.
+    #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
+    pub device: DeviceChoice,
+    /// CPU threads for libtorch (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Lists `value` for every model.
+fn per_model(show: impl Fn(&dyn crate::physics::Model) -> String) -> String {
+    MODELS
+        .iter()
+        .map(|m| format!("{} {}", m.name(), show(*m)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn patience_help() -> String {
+    format!(
+        "Stop after this many epochs without a 0.1 % lower validation rollout error (MSE over \
+         the latent's variance); learning rates halve every patience/3 such epochs \
+         [default: the model's: {}]",
+        per_model(|m| m.patience().to_string())
+    )
+}
+
+fn encoder_help() -> String {
+    format!(
+        "Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), or linear (D → 1), \
+         for laws an MLP could bend where brightness or area is affine in the pixels \
+         [default: the model's: {}]",
+        per_model(|m| m.encoder().name().to_string())
+    )
+}
+
+impl TrainingArgs {
+    /// CPU threads for libtorch: `--threads`, else every core.
+    pub fn thread_count(&self) -> usize {
+        self.threads
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+    }
+
+    /// Checks the flags that do not depend on the data.
+    pub fn validate(&self) -> Result<(), EstimateError> {
+        if self.epochs == 0 {
+            return Err(input_error("--epochs 0: must be at least 1"));
+        }
+        if self.ensemble == 0 {
+            return Err(input_error("--ensemble 0: must be at least 1"));
+        }
+        if self.patience == Some(0) {
+            return Err(input_error("--patience 0: must be at least 1"));
+        }
+        if self.batch_size == 0 {
+            return Err(input_error("--batch-size 0: must be at least 1"));
+        }
+        positive("--lr", self.lr)?;
+        positive("--lr-phys", self.lr_phys)?;
+        if self.threads == Some(0) {
+            return Err(input_error("--threads 0: must be at least 1"));
+        }
+        Ok(())
+    }
+}

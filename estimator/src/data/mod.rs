@@ -1,0 +1,200 @@
+//! `ClipData`: a dataset (or a recording cut into clips) loaded onto the training device as one
+//! tensor, split 80/20 into training and validation clips, with dt, the model and the ground
+//! truth resolved.
+
+mod dataset;
+pub mod recording;
+
+use crate::cli::EstimateArgs;
+use crate::error::EstimateError;
+use crate::physics::ModelRef;
+use physvid_shared::video::is_recording;
+use physvid_shared::DatasetMeta;
+use recording::RecordingSummary;
+use std::collections::BTreeMap;
+use tch::{Device, Kind, Tensor};
+
+/// Clips ready for training.
+#[derive(Debug)]
+pub struct ClipData {
+    /// Training clips [N_train, T, D] (D = C·H·W), on the device.
+    pub train: Tensor,
+    /// Validation clips [N_val, T, D]: the last 20 % of the file, no shuffling.
+    pub val: Tensor,
+    /// Each training / validation clip's start time since the release (s) [N], when meta.json
+    /// gives `clip_start_times` (systems released from rest at the start of the recording).
+    pub train_start: Option<Tensor>,
+    pub val_start: Option<Tensor>,
+    pub frames_per_clip: i64,
+    pub inputs: i64,
+    pub shape: [usize; 5],
+    pub dt: f64,
+    pub model: ModelRef,
+    /// True parameter values by name, when the metadata gives them.
+    pub truth: BTreeMap<String, f64>,
+    pub meta: Option<DatasetMeta>,
+    /// For a recording: what was decoded, and every frame standardised like the clips
+    /// [1, F, D] (for the latent over the whole recording).
+    pub recording: Option<(RecordingSummary, Tensor)>,
+    /// Things about the input the report should say (e.g. a doubtful frame rate).
+    pub warnings: Vec<String>,
+    /// clips.png for `--preview`: clips of a recording as the model sees them.
+    pub preview_png: Option<Vec<u8>>,
+}
+
+impl ClipData {
+    pub fn n_train(&self) -> i64 {
+        self.train.size()[0]
+    }
+
+    pub fn n_val(&self) -> i64 {
+        self.val.size()[0]
+    }
+
+    /// Clip `clip` of the input (training clips first, then validation): the tensor that
+    /// holds it and its index there.
+    pub fn clip(&self, clip: usize) -> (&Tensor, i64) {
+        let n_train = self.n_train() as usize;
+        if clip < n_train {
+            (&self.train, clip as i64)
+        } else {
+            (&self.val, (clip - n_train) as i64)
+        }
+    }
+
+    /// The start time since the release of clip `clip` [1], when known.
+    pub fn clip_start(&self, clip: usize) -> Option<Tensor> {
+        let n_train = self.n_train() as usize;
+        let (times, i) = if clip < n_train {
+            (&self.train_start, clip)
+        } else {
+            (&self.val_start, clip - n_train)
+        };
+        times.as_ref().map(|t| t.narrow(0, i as i64, 1))
+    }
+}
+
+/// Subtracts the mean training frame and divides by the training pixels' overall standard
+/// deviation (a fixed affine map of the input, computed on the training clips only): the static
+/// background drops out and the encoder's first layer starts well conditioned.
+/// Returns the map as (mean frame [D], std).
+/// The sum of squares is accumulated over pieces of frames, so no full-size temporary is made
+/// (a mostly static recording has a pixel variance far below the mean square, so the shortcut
+/// mean(x²) − mean(m²) would cancel catastrophically in float32).
+fn standardisation(all: &Tensor, n_train: i64) -> (Tensor, Tensor) {
+    let d = all.size()[2];
+    let train = all.narrow(0, 0, n_train).reshape([-1, d]);
+    let mean = train.mean_dim(0, false, Kind::Float);
+    let rows = train.size()[0];
+    let mut sum_sq = 0.0f64;
+    for s in (0..rows).step_by(512) {
+        let piece = train.narrow(0, s, (rows - s).min(512)) - &mean;
+        sum_sq += piece.square().sum(Kind::Double).double_value(&[]);
+    }
+    let std = (sum_sq / (rows * d) as f64).sqrt().max(1e-6);
+    (mean, Tensor::from(std as f32).to_device(all.device()))
+}
+
+/// Frames, their shape and what is known about them, before they go to the device.
+pub(crate) struct Source {
+    /// The clips [N, T, C, H, W]; or, with `clip_index`, a recording's frames [F, C·H·W].
+    pub(crate) frames: Vec<f32>,
+    /// For a recording: the frame of every clip frame [N·T].
+    pub(crate) clip_index: Option<Vec<i64>>,
+    /// Of the clips.
+    pub(crate) shape: [usize; 5],
+    pub(crate) dt: f64,
+    pub(crate) model: ModelRef,
+    pub(crate) meta: Option<DatasetMeta>,
+    pub(crate) start_times: Option<Vec<f64>>,
+    pub(crate) recording: Option<RecordingSummary>,
+    pub(crate) warnings: Vec<String>,
+    pub(crate) preview_png: Option<Vec<u8>>,
+}
+
+/// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
+/// and moves the frames to `device`.
+pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, EstimateError> {
+    let src = if is_recording(&args.input) {
+        recording::recording_source(args)?
+    } else {
+        dataset::dataset_source(args)?
+    };
+    let [n, t, c, h, w] = src.shape;
+    let truth: BTreeMap<String, f64> = src
+        .meta
+        .as_ref()
+        .map(|m| m.model.parameters.clone())
+        .unwrap_or_default();
+    let d = (c * h * w) as i64;
+    let source = Tensor::from_slice(&src.frames).to_device(device);
+    drop(src.frames);
+    // A recording's clips are gathered from its frames, which stay for the timeline.
+    let (mut all, mut frames) = match &src.clip_index {
+        Some(idx) => {
+            let frames = source.view([-1, d]);
+            let idx = Tensor::from_slice(idx).to_device(device);
+            let clips = frames.index_select(0, &idx).view([n as i64, t as i64, d]);
+            (clips, Some(frames))
+        }
+        None => (source.view([n as i64, t as i64, d]), None),
+    };
+    let n_val = ((n as f64 * 0.2).round() as i64).max(1);
+    let n_train = n as i64 - n_val;
+    let (mean, std) = standardisation(&all, n_train);
+    // In place: no second copy of the clips.
+    all -= &mean;
+    all /= &std;
+    if let Some(f) = frames.as_mut() {
+        *f -= &mean;
+        *f /= &std;
+    }
+    let start = src
+        .start_times
+        .as_ref()
+        .map(|t| Tensor::from_slice(t).to_kind(Kind::Float).to_device(device));
+    let recording = src
+        .recording
+        .zip(frames)
+        .map(|(summary, f)| (summary, f.unsqueeze(0)));
+    Ok(ClipData {
+        train: all.narrow(0, 0, n_train),
+        val: all.narrow(0, n_train, n_val),
+        train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
+        val_start: start.as_ref().map(|t| t.narrow(0, n_train, n_val)),
+        frames_per_clip: t as i64,
+        inputs: d,
+        shape: src.shape,
+        dt: src.dt,
+        model: src.model,
+        truth,
+        meta: src.meta,
+        recording,
+        warnings: src.warnings,
+        preview_png: src.preview_png,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standardisation_keeps_a_small_spread_over_a_bright_static_background() {
+        // A mostly static recording: pixels near 0.7 that vary by 1e-3. A float32 shortcut
+        // (mean of squares minus square of means) loses this spread entirely.
+        let n = 50 * 20 * 64;
+        let v: Vec<f32> = (0..n)
+            .map(|i| 0.7 + 1e-3 * ((i * 7919 % 1000) as f32 / 500.0 - 1.0))
+            .collect();
+        let all = Tensor::from_slice(&v).view([50, 20, 64]);
+        let (mean, std) = standardisation(&all, 40);
+        assert!((mean.mean(Kind::Float).double_value(&[]) - 0.7).abs() < 1e-4);
+        let expect = 1e-3 / 3f64.sqrt(); // a uniform spread over ±1e-3
+        let got = std.double_value(&[]);
+        assert!(
+            (got / expect - 1.0).abs() < 0.05,
+            "std {got}, expected {expect}"
+        );
+    }
+}

@@ -1,0 +1,198 @@
+//! Recordings as input: `load_recording` decodes a video or a folder of images through
+//! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
+//! (appendix Table 5's clip), and cuts the frames into clips.
+
+use super::Source;
+use crate::cli::{EstimateArgs, RecordingArgs};
+use crate::error::{input_error, EstimateError};
+use crate::physics::ModelRef;
+use physvid_shared::contact_sheet::{contact_sheet, encode_png};
+use physvid_shared::video::{self, Crop, VideoInfo, VideoOptions};
+use serde::Serialize;
+use std::path::Path;
+
+/// At most this many clips by default: the hop between clip starts grows to stay below it.
+pub const MAX_DEFAULT_CLIPS: usize = 1000;
+
+/// What was made of a recording, for the report and the plots.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordingSummary {
+    pub info: VideoInfo,
+    /// The frame rate used and where it came from ("--fps" or "container").
+    pub fps: f64,
+    pub fps_source: &'static str,
+    pub frames_decoded: usize,
+    pub frames_per_clip: usize,
+    pub stride: usize,
+    pub hop: usize,
+    pub clips: usize,
+    pub size: (usize, usize),
+    pub crop: Option<Crop>,
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// Seconds spent decoding (ffmpeg, the pipe, crop and resize) and frames per second.
+    pub decode_s: f64,
+    pub decode_fps: f64,
+    /// First recording frame of each clip (index into the decoded frames).
+    #[serde(skip)]
+    pub clip_starts: Vec<usize>,
+}
+
+/// A decoded recording cut into clips (by index: the frames are held once).
+pub struct LoadedRecording {
+    /// Every decoded frame, [F, H·W] row-major, values in [0, 1].
+    pub frames: Vec<f32>,
+    /// The recording frame of every clip frame, [N·T].
+    pub clip_index: Vec<i64>,
+    /// [N, T, 1, H, W] of the clips.
+    pub shape: [usize; 5],
+    pub dt: f64,
+    /// clips.png for `--preview`.
+    pub preview_png: Option<Vec<u8>>,
+    pub summary: RecordingSummary,
+    pub warnings: Vec<String>,
+}
+
+/// A video or image folder, cut into clips for `--model`.
+pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateError> {
+    if !args.input.exists() {
+        return Err(input_error(format!(
+            "{}: no such file or directory",
+            args.input.display()
+        )));
+    }
+    let model = args.model.model.ok_or_else(|| {
+        input_error(format!(
+            "{}: a recording needs --model (e.g. --model pendulum)",
+            args.input.display()
+        ))
+    })?;
+    if args.model.dt.is_some() {
+        return Err(input_error(
+            "--dt: for a recording dt is --stride / fps; set those instead",
+        ));
+    }
+    let rec = load_recording(&args.input, model, &args.recording)?;
+    // Systems released from rest: the release is the first frame kept (trim with --start).
+    let start_times = model.released_from_rest().then(|| {
+        rec.summary
+            .clip_starts
+            .iter()
+            .map(|&s| s as f64 / rec.summary.fps)
+            .collect()
+    });
+    Ok(Source {
+        preview_png: rec.preview_png,
+        frames: rec.frames,
+        clip_index: Some(rec.clip_index),
+        shape: rec.shape,
+        dt: rec.dt,
+        model,
+        meta: None,
+        start_times,
+        recording: Some(rec.summary),
+        warnings: rec.warnings,
+    })
+}
+
+/// Decodes `input` for `model` and cuts it into clips.
+pub fn load_recording(
+    input: &Path,
+    model: ModelRef,
+    flags: &RecordingArgs,
+) -> Result<LoadedRecording, EstimateError> {
+    let (table_frames, table_dt) = model.table5_clip();
+    let size = flags.frame_size();
+    let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
+    let mut warnings = Vec::new();
+    // The frame rate first (cheap), for the default stride.
+    let info = if input.is_dir() {
+        None
+    } else {
+        Some(video::probe(input)?)
+    };
+    let (fps, fps_source) = match (flags.fps, info.as_ref().and_then(|i| i.container_fps)) {
+        (Some(f), _) => (f, "--fps"),
+        (None, Some(f)) => (f, "container"),
+        (None, None) => {
+            return Err(input_error(format!(
+                "{}: no frame rate known (an image folder, or a container without one): pass --fps",
+                input.display()
+            )))
+        }
+    };
+    if let (None, Some(i)) = (flags.fps, &info) {
+        if let (Some(capture), Some(container)) = (i.capture_fps, i.container_fps) {
+            if (capture / container - 1.0).abs() > 0.01 {
+                warnings.push(format!(
+                    "the container says {container:.3} fps but the file's com.android.capture.fps \
+                     tag says {capture} fps (a slow-motion capture?): dt, and every rate, is wrong \
+                     by {:.2}× unless you pass --fps {capture}",
+                    capture / container
+                ));
+            }
+        }
+    }
+    let stride = flags
+        .stride
+        .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
+    let opts = VideoOptions {
+        fps: Some(fps),
+        crop: flags.crop,
+        start: flags.start,
+        end: flags.end,
+        size,
+        frames_per_clip,
+        stride,
+        hop: flags.hop,
+        max_clips: MAX_DEFAULT_CLIPS,
+    };
+    let started = std::time::Instant::now();
+    let decoded = video::decode(input, &opts, info)?;
+    let decode_s = started.elapsed().as_secs_f64();
+    let n = decoded.clip_starts.len();
+    let shape = [n, frames_per_clip, 1, size.1, size.0];
+    // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
+    let preview_png = flags.preview.then(|| {
+        let m = n.min(4);
+        let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
+        let (clips, shape) = decoded.clips(&rows, frames_per_clip, stride);
+        let all: Vec<usize> = (0..rows.len()).collect();
+        encode_png(&contact_sheet(&clips, shape, &all, 2))
+    });
+    let summary = RecordingSummary {
+        info: decoded.info.clone(),
+        fps,
+        fps_source,
+        frames_decoded: decoded.frame_count(),
+        frames_per_clip,
+        stride,
+        hop: decoded.hop,
+        clips: decoded.clip_starts.len(),
+        size,
+        crop: flags.crop,
+        start: flags.start,
+        end: flags.end,
+        decode_s,
+        decode_fps: decoded.frame_count() as f64 / decode_s.max(1e-9),
+        clip_starts: decoded.clip_starts.clone(),
+    };
+    if summary.clips < 2 {
+        return Err(input_error(format!(
+            "{}: only {} clip of {frames_per_clip} frames at stride {stride} fits in {} frames; \
+             at least 2 are needed (lower --frames-per-clip, --stride or --hop, or trim less)",
+            input.display(),
+            summary.clips,
+            summary.frames_decoded
+        )));
+    }
+    Ok(LoadedRecording {
+        clip_index: decoded.clip_index(frames_per_clip, stride),
+        shape,
+        dt: decoded.dt(stride),
+        frames: decoded.frames,
+        preview_png,
+        summary,
+        warnings,
+    })
+}

@@ -1,0 +1,143 @@
+//! `Network`: the encoder and the physics block with their variable stores, the forward pass
+//! (encode clips, roll the latent out), and the reference frames a calibrating block reads
+//! its map from. Training, the timeline and the report all go through `forward`.
+
+use crate::config::RunConfig;
+use crate::data::ClipData;
+use crate::encoder::Encoder;
+use crate::loss::LossKind;
+use crate::physics::{BlockOptions, PhysicsBlock};
+use tch::nn;
+use tch::{Device, Kind, Tensor};
+
+/// Frames of known physical value that a calibrated block reads its map from during training.
+struct ReferenceFrames {
+    /// [1, R, D], standardised like the clips.
+    frames: Tensor,
+    /// [R].
+    values: Tensor,
+}
+
+impl ReferenceFrames {
+    /// The reference frames of `reference` (clip, frame, value) for a block that calibrates
+    /// during training (the pendulum), when two or more distinct values are given.
+    fn for_training(data: &ClipData, reference: &[(usize, usize, f64)]) -> Option<Self> {
+        let distinct = reference.iter().any(|r| r.2 != reference[0].2);
+        if !data.model.calibrates_in_training() || reference.len() < 2 || !distinct {
+            return None;
+        }
+        let frames: Vec<Tensor> = reference
+            .iter()
+            .map(|&(clip, frame, _)| {
+                let (x, i) = data.clip(clip);
+                x.get(i).get(frame as i64)
+            })
+            .collect();
+        let values: Vec<f32> = reference.iter().map(|r| r.2 as f32).collect();
+        Some(ReferenceFrames {
+            frames: Tensor::stack(&frames, 0).unsqueeze(0),
+            values: Tensor::from_slice(&values).to_device(data.train.device()),
+        })
+    }
+}
+
+/// Encoder and physics block with their variable stores.
+pub struct Network {
+    enc_vs: nn::VarStore,
+    phys_vs: nn::VarStore,
+    pub encoder: Encoder,
+    block: Box<dyn PhysicsBlock>,
+    reference: Option<ReferenceFrames>,
+}
+
+impl Network {
+    /// Builds the network with weights seeded by `cfg.seed` and physics parameters at `init`.
+    pub fn new(cfg: &RunConfig, data: &ClipData, device: Device, init: &[f64]) -> Network {
+        let reference = ReferenceFrames::for_training(data, &cfg.calibration.reference);
+        tch::manual_seed(cfg.seed as i64);
+        let enc_vs = nn::VarStore::new(device);
+        let phys_vs = nn::VarStore::new(device);
+        let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
+        let block = data.model.build(
+            &(phys_vs.root() / "physics"),
+            init,
+            BlockOptions {
+                integrator: cfg.integrator,
+                dt: data.dt,
+                timed: data.train_start.is_some(),
+                calibrated: reference.is_some(),
+                start: cfg.rollout_start,
+            },
+        );
+        Network {
+            enc_vs,
+            phys_vs,
+            encoder,
+            block,
+            reference,
+        }
+    }
+
+    /// The encoder's and the block's variable stores (for their optimisers).
+    pub fn stores(&self) -> (&nn::VarStore, &nn::VarStore) {
+        (&self.enc_vs, &self.phys_vs)
+    }
+
+    /// Encodes clips [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
+    pub fn forward(&self, x: &Tensor, start: Option<&Tensor>, steps: i64) -> (Tensor, Tensor) {
+        if let Some(r) = &self.reference {
+            let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
+            self.block.calibrate(&z_ref, &r.values);
+        }
+        let z = self.encoder.encode(x);
+        let z_hat = self.block.rollout(&z, start, steps);
+        (z, z_hat)
+    }
+
+    /// The block's ODE residual of `z` when the loss needs it.
+    pub fn residual(&self, kind: LossKind, z: &Tensor) -> Option<Tensor> {
+        (kind == LossKind::ResidualFloor)
+            .then(|| self.block.residual(z))
+            .flatten()
+    }
+
+    /// The block's parameter values, those solved per batch solved over `latents` [B, T].
+    pub fn values(&self, latents: &Tensor) -> Vec<f64> {
+        self.block.values(latents)
+    }
+
+    /// Every variable of the encoder and the block, in a fixed order (sorted by name).
+    fn variables(&self) -> Vec<Tensor> {
+        let mut out = Vec::new();
+        for vs in [&self.enc_vs, &self.phys_vs] {
+            let mut vars: Vec<_> = vs.variables().into_iter().collect();
+            vars.sort_by(|a, b| a.0.cmp(&b.0));
+            out.extend(vars.into_iter().map(|(_, t)| t));
+        }
+        out
+    }
+
+    /// A copy of every variable.
+    pub fn snapshot(&self) -> Vec<Tensor> {
+        self.variables().iter().map(|t| t.detach().copy()).collect()
+    }
+
+    /// Puts back a [`Network::snapshot`].
+    pub fn restore(&self, saved: &[Tensor]) {
+        tch::no_grad(|| {
+            for (mut t, s) in self.variables().into_iter().zip(saved) {
+                t.copy_(s);
+            }
+        });
+    }
+}
+
+/// A [B, T] tensor as rows of f32 on the host.
+pub fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
+    let t = t.to_device(Device::Cpu).to_kind(Kind::Float).contiguous();
+    let (rows, cols) = t.size2().expect("a matrix");
+    let flat = Vec::<f32>::try_from(&t.view([-1])).expect("float tensor");
+    (0..rows as usize)
+        .map(|r| flat[r * cols as usize..(r + 1) * cols as usize].to_vec())
+        .collect()
+}

@@ -1,0 +1,51 @@
+//! The one place that writes a run's outputs into `--out`: report.json, metrics.csv, the plots
+//! and, for a recording, timeline.png and clips.png. Each file is written under a temporary
+//! name and renamed.
+
+use crate::data::ClipData;
+use crate::error::EstimateError;
+use crate::plots::{latents_png, parameters_png, timeline_png};
+use crate::report::Report;
+use physvid_shared::write_atomic;
+use std::path::Path;
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), EstimateError> {
+    write_atomic(&dir.join(name), bytes).map_err(|e| match e {
+        physvid_shared::DatasetError::Write { path, source } => {
+            EstimateError::Write { path, source }
+        }
+        other => EstimateError::Dataset(other),
+    })
+}
+
+fn plot(dir: &Path, name: &str, png: Result<Vec<u8>, String>) -> Result<(), EstimateError> {
+    let png = png.map_err(|reason| EstimateError::Plot {
+        path: dir.join(name),
+        reason,
+    })?;
+    write(dir, name, &png)
+}
+
+/// Writes report.json, metrics.csv, parameters.png and latents.png (and timeline.png and
+/// clips.png for a recording) into `out`, report.json last.
+pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
+    std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
+        path: out.to_path_buf(),
+        source,
+    })?;
+    write(out, "metrics.csv", report.metrics_csv().as_bytes())?;
+    plot(out, "parameters.png", parameters_png(report))?;
+    plot(
+        out,
+        "latents.png",
+        latents_png(report, data.dt, data.frames_per_clip),
+    )?;
+    if let Some(t) = &report.outcome.timeline {
+        plot(out, "timeline.png", timeline_png(t))?;
+    }
+    if let Some(png) = &data.preview_png {
+        write(out, "clips.png", png)?;
+    }
+    let json = serde_json::to_vec_pretty(report).expect("report serialises");
+    write(out, "report.json", &json)
+}

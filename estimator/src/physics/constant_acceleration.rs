@@ -1,0 +1,196 @@
+//! Constant acceleration z'' = a from rest (Delfys75): the sliding block (s'' = g·(sin α −
+//! μ·cos α)) and free fall (h'' = g), two models that share `ConstantAccelerationBlock` and
+//! differ in what their SI answers are.
+
+use super::block::{frame_index, BlockOptions, PhysicsBlock};
+use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use crate::calibration::{needs_reference, Calibration, DerivedValue};
+use tch::nn;
+use tch::Tensor;
+
+const PARAMETERS: [ParamSpec; 1] = [ParamSpec::new("acceleration_latent", 0.0, false)];
+
+const UNTIMED: &str = "no clip start times (meta.json's clip_start_times): the block rolls out \
+     from two frames, and for motion from rest that law is degenerate (a latent like √s is \
+     linear in time and fits z'' = 0), so the acceleration may come out far too small";
+
+/// A model of motion from rest with constant acceleration.
+pub struct ConstantAcceleration {
+    info: ModelInfo,
+    /// Whether the acceleration is the incline's (μ follows from it), else gravity's.
+    incline: bool,
+}
+
+/// The block sliding down an incline of Delfys75.
+pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
+    info: ModelInfo {
+        released_from_rest: true,
+        ..ModelInfo::new(
+            "sliding-block",
+            "s'' = g·(sin α − μ·cos α), constant (acceleration_latent)",
+            &PARAMETERS,
+            (10, 1.0 / 30.0),
+        )
+    },
+    incline: true,
+};
+
+/// The ball falling away from the camera of Delfys75.
+pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
+    info: ModelInfo {
+        released_from_rest: true,
+        ..ModelInfo::new(
+            "free-fall",
+            "h'' = g (acceleration_latent)",
+            &PARAMETERS,
+            (4, 1.0 / 30.0),
+        )
+    },
+    incline: false,
+};
+
+impl Model for ConstantAcceleration {
+    fn info(&self) -> &ModelInfo {
+        &self.info
+    }
+    fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock> {
+        Box::new(ConstantAccelerationBlock::new(
+            path, init, opts.dt, opts.timed,
+        ))
+    }
+    /// The acceleration in SI needs the latent's scale (g for free fall); the block's μ also
+    /// the incline's angle.
+    fn derive(&self, params: &[f64], cal: &Calibration, reference: &[f64]) -> Derived {
+        let mut values = vec![DerivedValue::latent("acceleration_latent", params[0])];
+        let mut warnings = Vec::new();
+        let Some(alpha) = cal.latent_scale(reference) else {
+            let what = if self.incline {
+                "the block's acceleration (and so μ)"
+            } else {
+                "the fall's acceleration g"
+            };
+            warnings.push(needs_reference(what));
+            return (values, warnings);
+        };
+        let acc = params[0] / alpha;
+        if !self.incline {
+            values.insert(0, DerivedValue::si("g", acc, Some("g")));
+            return (values, warnings);
+        }
+        values.insert(
+            0,
+            DerivedValue::si("acceleration", acc, Some("acceleration")),
+        );
+        match cal.incline_deg {
+            Some(deg) => {
+                let r = deg.to_radians();
+                let mu = r.tan() - acc / (cal.g * r.cos());
+                values.insert(0, DerivedValue::si("mu", mu, Some("mu")));
+            }
+            None => warnings.push(
+                "the friction coefficient needs the incline's angle: pass --incline-deg".into(),
+            ),
+        }
+        (values, warnings)
+    }
+    fn data_warnings(&self, timed: bool) -> Vec<String> {
+        if timed {
+            Vec::new()
+        } else {
+            vec![UNTIMED.into()]
+        }
+    }
+}
+
+/// z'' = a (constant). Motion from rest makes the law alone degenerate: any latent
+/// z = β·s + γ·√s + c is a parabola in time, so the encoder may bend the latent (γ ≠ 0,
+/// z'' = 0 at the extreme) and the calibrated acceleration comes out wrong. Known start times
+/// since the release pin it: the velocity at a clip's first frame is then a·t0, so the block
+/// rolls out from one frame, z[k] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only the latent affine
+/// in s fits. Without start times it rolls out from two frames,
+/// z[k] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler step gives the same sequence).
+/// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
+pub struct ConstantAccelerationBlock {
+    /// a·dt², the change of velocity per frame (so one learning rate suits any dt).
+    per_frame: Tensor,
+    dt: f64,
+    timed: bool,
+}
+
+impl ConstantAccelerationBlock {
+    pub fn new(path: &nn::Path, init: &[f64], dt: f64, timed: bool) -> Self {
+        ConstantAccelerationBlock {
+            per_frame: path.var("accel_per_frame", &[], nn::Init::Const(init[0] * dt * dt)),
+            dt,
+            timed,
+        }
+    }
+}
+
+impl PhysicsBlock for ConstantAccelerationBlock {
+    fn order(&self) -> i64 {
+        if self.timed {
+            1
+        } else {
+            2
+        }
+    }
+    fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor {
+        let k = frame_index(steps, z);
+        let z0 = z.narrow(1, 0, 1);
+        match start.filter(|_| self.timed) {
+            Some(t0) => {
+                let frames_since_release = (t0 / self.dt).unsqueeze(1);
+                &z0 + &self.per_frame * (frames_since_release * &k + &k * &k * 0.5)
+            }
+            None => {
+                let z1 = z.narrow(1, 1, 1);
+                &z0 + (&z1 - &z0) * &k + &self.per_frame * (&k * (&k - 1.0) * 0.5)
+            }
+        }
+    }
+    fn values(&self, _latents: &Tensor) -> Vec<f64> {
+        vec![self.per_frame.double_value(&[]) / (self.dt * self.dt)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timed_constant_acceleration_rolls_out_from_one_frame() {
+        let vs = nn::VarStore::new(tch::Device::Cpu);
+        let (a, dt) = (1.42, 1.0 / 30.0);
+        let b = ConstantAccelerationBlock::new(&vs.root(), &[a], dt, true);
+        assert_eq!(b.order(), 1);
+        // s = a·t²/2 from the release; clips start 0.1 s and 0.5 s after it.
+        let starts = [0.1, 0.5];
+        let z: Vec<f32> = starts
+            .iter()
+            .flat_map(|t0| (0..6).map(move |k| (a * (t0 + k as f64 * dt).powi(2) / 2.0) as f32))
+            .collect();
+        let z = Tensor::from_slice(&z).view([2, 6]);
+        let t0 = Tensor::from_slice(&[0.1f32, 0.5]);
+        let err = (b.rollout(&z, Some(&t0), 6) - &z)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err < 1e-6, "{err}");
+        // The bent latent √s is linear in time: the untimed block fits it with a = 0, the
+        // timed one cannot.
+        let bent = z.sqrt();
+        let flat = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, false);
+        let err = (flat.rollout(&bent, None, 6) - &bent)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err < 1e-6, "{err}");
+        let timed_zero = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, true);
+        let err = (timed_zero.rollout(&bent, Some(&t0), 6) - &bent)
+            .abs()
+            .max()
+            .double_value(&[]);
+        assert!(err > 1e-2, "{err}");
+    }
+}

@@ -1,0 +1,66 @@
+//! The physical models `estimate` fits. `model.rs` holds the `Model` trait (parameters,
+//! defaults, block, starts, SI answers), `block.rs` the `PhysicsBlock` trait (the
+//! differentiable rollout), and each model is one file listed once in `MODELS`; `--model`'s
+//! values and help are generated from that list. Adding a model = a file and a line here.
+
+pub mod block;
+pub mod constant_acceleration;
+pub mod led;
+pub mod model;
+pub mod oscillator;
+pub mod pendulum;
+pub mod torricelli;
+mod two_step;
+
+pub use block::{BlockOptions, Integrator, PhysicsBlock, RolloutStart};
+pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec};
+
+/// Every model, in the order `--help` lists them.
+pub static MODELS: &[&dyn Model] = &[
+    &oscillator::DampedOscillator,
+    &pendulum::Pendulum,
+    &torricelli::Torricelli,
+    &constant_acceleration::SLIDING_BLOCK,
+    &led::Led,
+    &constant_acceleration::FREE_FALL,
+];
+
+impl ModelRef {
+    /// The model called `name`.
+    pub fn by_name(name: &str) -> Option<ModelRef> {
+        MODELS
+            .iter()
+            .find(|m| m.name() == name)
+            .map(|m| ModelRef(*m))
+    }
+
+    /// Every model's name, for messages.
+    pub fn names() -> String {
+        MODELS
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registry_names_are_unique_and_parameters_consistent() {
+        for m in MODELS {
+            assert_eq!(ModelRef::by_name(m.name()).unwrap().name(), m.name());
+            for p in m.parameters() {
+                assert!(!p.positive || p.start > 0.0, "{}: {}", m.name(), p.name);
+            }
+            let (frames, dt) = m.table5_clip();
+            assert!(frames >= 3 && dt > 0.0);
+        }
+        let mut names: Vec<_> = MODELS.iter().map(|m| m.name()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), MODELS.len());
+    }
+}

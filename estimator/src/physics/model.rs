@@ -1,0 +1,175 @@
+//! `Model`: everything `estimate` knows about one physical model (its parameters, defaults,
+//! block, extra starts and SI answers), and `ModelRef`, a model of the registry as a value.
+
+use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use crate::calibration::{Calibration, DerivedValue};
+use crate::encoder::EncoderKind;
+use tch::{nn, Tensor};
+
+/// One learnable parameter of a block.
+#[derive(Debug, Clone, Copy)]
+pub struct ParamSpec {
+    pub name: &'static str,
+    /// The default start (`--init` overrides it).
+    pub start: f64,
+    /// Learned as a logarithm, so it stays > 0 and must start > 0.
+    pub positive: bool,
+}
+
+impl ParamSpec {
+    /// A parameter `name` starting at `start`, learned as a logarithm when `positive`.
+    pub const fn new(name: &'static str, start: f64, positive: bool) -> ParamSpec {
+        ParamSpec {
+            name,
+            start,
+            positive,
+        }
+    }
+}
+
+/// What the report shows of a trained block: values (SI or latent units) and warnings about
+/// answers left in latent units.
+pub type Derived = (Vec<DerivedValue>, Vec<String>);
+
+/// The facts about a model, one record per model (its file's `INFO`).
+#[derive(Debug, Clone, Copy)]
+pub struct ModelInfo {
+    /// The `--model` value (and meta.json's `model.name`).
+    pub name: &'static str,
+    /// The equation and its parameters, one line for `--help`.
+    pub help: &'static str,
+    /// The block's learnable parameters, in its order.
+    pub parameters: &'static [ParamSpec],
+    /// The encoder that makes the latent identifiable for this law.
+    pub encoder: EncoderKind,
+    /// Early-stop patience (epochs without improvement).
+    pub patience: usize,
+    /// Appendix Table 5's frames per clip and dt (s) for a recording of this system.
+    pub table5_clip: (usize, f64),
+    /// Motion from rest at the start of the recording: clip start times since the release pin
+    /// the latent (from meta.json, or the first frame kept of a recording).
+    pub released_from_rest: bool,
+    /// The block reads the latent's map from reference frames during training.
+    pub calibrates_in_training: bool,
+    /// The block offers an ODE residual for `--loss residual+floor`.
+    pub supports_residual: bool,
+}
+
+impl ModelInfo {
+    /// A model with the defaults most share: the small encoder, patience 30, no special needs.
+    pub const fn new(
+        name: &'static str,
+        help: &'static str,
+        parameters: &'static [ParamSpec],
+        table5_clip: (usize, f64),
+    ) -> ModelInfo {
+        ModelInfo {
+            name,
+            help,
+            parameters,
+            encoder: EncoderKind::Small,
+            patience: 30,
+            table5_clip,
+            released_from_rest: false,
+            calibrates_in_training: false,
+            supports_residual: false,
+        }
+    }
+}
+
+/// A physical model `estimate` can fit. One file of `physics/` per model, listed once in
+/// `physics::MODELS`: its [`ModelInfo`], how to build its block, the starts it reads off the
+/// data, and how its SI answers follow from the block's parameters.
+pub trait Model: Sync {
+    fn info(&self) -> &ModelInfo;
+    /// Builds the block under `path`, starting from `init` (the model's parameter order).
+    fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock>;
+    /// Starts read off the training clips [N, T, D] before training, beside `init`.
+    fn extra_starts(
+        &self,
+        _train: &Tensor,
+        _dt: f64,
+        _integrator: Integrator,
+        _init: &[f64],
+    ) -> Vec<Vec<f64>> {
+        Vec::new()
+    }
+    /// The reported values from the block's parameters and the calibration (the latent at the
+    /// reference frames, in order).
+    fn derive(&self, params: &[f64], cal: &Calibration, reference_latents: &[f64]) -> Derived;
+    /// Warnings about the data: `timed` says whether the clips' start times are known.
+    fn data_warnings(&self, _timed: bool) -> Vec<String> {
+        Vec::new()
+    }
+
+    fn name(&self) -> &'static str {
+        self.info().name
+    }
+    fn help(&self) -> &'static str {
+        self.info().help
+    }
+    fn parameters(&self) -> &'static [ParamSpec] {
+        self.info().parameters
+    }
+    fn encoder(&self) -> EncoderKind {
+        self.info().encoder
+    }
+    fn patience(&self) -> usize {
+        self.info().patience
+    }
+    fn table5_clip(&self) -> (usize, f64) {
+        self.info().table5_clip
+    }
+    fn released_from_rest(&self) -> bool {
+        self.info().released_from_rest
+    }
+    fn calibrates_in_training(&self) -> bool {
+        self.info().calibrates_in_training
+    }
+    fn supports_residual(&self) -> bool {
+        self.info().supports_residual
+    }
+    /// The parameters' names, in order.
+    fn parameter_names(&self) -> Vec<&'static str> {
+        self.parameters().iter().map(|p| p.name).collect()
+    }
+    /// The default starts, in order.
+    fn default_init(&self) -> Vec<f64> {
+        self.parameters().iter().map(|p| p.start).collect()
+    }
+}
+
+/// A model of the registry, compared, printed and serialised by name.
+#[derive(Clone, Copy)]
+pub struct ModelRef(pub &'static dyn Model);
+
+impl std::ops::Deref for ModelRef {
+    type Target = dyn Model;
+    fn deref(&self) -> &(dyn Model + 'static) {
+        self.0
+    }
+}
+
+impl PartialEq for ModelRef {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl std::fmt::Debug for ModelRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::fmt::Display for ModelRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl serde::Serialize for ModelRef {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}

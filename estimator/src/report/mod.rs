@@ -1,0 +1,207 @@
+//! The run's report as data: `Report` (what report.json holds), made from the configuration,
+//! the clips and the training outcome: the derived values with ground truth and errors, the
+//! warnings, the latent's check against the truth. `text.rs` prints it; `output.rs` writes it.
+
+pub mod ensemble;
+pub mod parameters;
+mod text;
+
+use crate::calibration::Calibration;
+use crate::config::RunConfig;
+use crate::data::recording::RecordingSummary;
+use crate::data::ClipData;
+use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
+use ensemble::Ensemble;
+use parameters::ParameterResult;
+use physvid_shared::AffineFit;
+use serde::Serialize;
+use std::time::Duration;
+use tch::Device;
+
+/// libtorch's version, read from the linked installation at build time.
+pub const LIBTORCH_VERSION: &str = env!("PHYSVID_LIBTORCH_VERSION");
+
+/// A latent whose spread falls below this fraction of its largest spread during training has
+/// collapsed towards a constant (the latent's scale is arbitrary, so the test is relative).
+pub const COLLAPSE_FRACTION: f64 = 0.1;
+
+/// Fits the encoded validation latents against the ground truth of the same clips.
+fn latent_fit(data: &ClipData, encoded: &[Vec<f32>]) -> Option<AffineFit> {
+    let meta = data.meta.as_ref()?;
+    let n_train = data.n_train() as usize;
+    let (truth, latent): (Vec<f64>, Vec<f64>) = encoded
+        .iter()
+        .enumerate()
+        .flat_map(|(i, row)| {
+            let truth = &meta.latents[n_train + i];
+            row.iter().zip(truth).map(|(&z, &q)| (q, z as f64))
+        })
+        .unzip();
+    AffineFit::of(&truth, &latent)
+}
+
+/// Where and how long the run went.
+#[derive(Debug, Clone, Copy)]
+pub struct RunInfo {
+    pub device: Device,
+    pub threads: usize,
+    pub wall: Duration,
+}
+
+/// Everything `report.json` holds.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub tool: String,
+    pub version: String,
+    pub input: String,
+    pub model: String,
+    pub dt: f64,
+    pub shape: [usize; 5],
+    pub train_clips: i64,
+    pub validation_clips: i64,
+    pub config: RunConfig,
+    pub device: String,
+    pub threads: usize,
+    pub libtorch_version: String,
+    pub parameters: Vec<ParameterResult>,
+    /// The block's own parameters at the start and at the end, in its order.
+    pub block_parameters: Vec<String>,
+    pub initial_values: Vec<f64>,
+    pub final_values: Vec<f64>,
+    pub calibration: Calibration,
+    /// For a video or image folder: what was decoded and how it was cut into clips.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<RecordingSummary>,
+    /// The starts tried (the given or default values, and the spectral estimate) and which
+    /// one was kept.
+    pub starts: Vec<StartProbe>,
+    pub epochs_run: usize,
+    pub best_epoch: usize,
+    pub best_val_rel_mse: f64,
+    pub stop: StopReason,
+    pub latent_std: f64,
+    pub latent_collapsed: bool,
+    /// With ground truth: how well an affine map of the true latent explains the encoded one
+    /// over the validation clips (the method's premise; its sign and scale are arbitrary).
+    pub latent_vs_truth: Option<AffineFit>,
+    pub wall_time_s: f64,
+    /// `--ensemble K`: the spread of each value over K seeds (the fields above are seed
+    /// --seed's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ensemble: Option<Ensemble>,
+    pub warnings: Vec<String>,
+    pub history: Vec<EpochRecord>,
+    #[serde(skip)]
+    pub outcome: TrainOutcome,
+}
+
+impl Report {
+    pub fn new(
+        cfg: &RunConfig,
+        data: &ClipData,
+        run: RunInfo,
+        init: &[f64],
+        outcome: TrainOutcome,
+    ) -> Report {
+        let RunInfo {
+            device,
+            threads,
+            wall,
+        } = run;
+        let model = cfg.model;
+        let calibration = cfg.calibration.clone();
+        let (rows, calibration_warnings) = model.derive(
+            &outcome.parameters,
+            &calibration,
+            &outcome.reference_latents,
+        );
+        let parameters: Vec<ParameterResult> = rows
+            .into_iter()
+            .map(|r| ParameterResult::new(r, &data.truth))
+            .collect();
+        let mut warnings = data.warnings.clone();
+        warnings.extend(calibration_warnings);
+        warnings.extend(model.data_warnings(data.train_start.is_some()));
+        let peak_std = outcome
+            .history
+            .iter()
+            .map(|h| h.latent_std)
+            .fold(0.0, f64::max);
+        // Training collapsed the latent if its spread fell that far by the last epoch, even when
+        // the checkpoint kept is from before (the kept parameters are then an early epoch's).
+        let last_std = outcome
+            .history
+            .last()
+            .map_or(outcome.latent_std, |h| h.latent_std);
+        let low_std = outcome.latent_std.min(last_std);
+        let collapsed = low_std < COLLAPSE_FRACTION * peak_std;
+        if collapsed {
+            warnings.push(format!(
+                "the latent collapsed towards a constant (std {low_std:.2e} over the validation \
+                 clips, down from {peak_std:.2e}): a constant latent makes the rollout error \
+                 vanish whatever the parameters, so these estimates are not determined by the \
+                 video; train with --loss mse+kl"
+            ));
+        }
+        match outcome.stop {
+            StopReason::NonFiniteLoss { epoch } => warnings.push(format!(
+                "the loss became NaN or infinite in epoch {epoch}; training stopped and the \
+                 parameters are {} (lower --lr or --lr-phys)",
+                if outcome.best_epoch == 0 {
+                    "the starting values: no epoch finished with a finite loss".to_string()
+                } else {
+                    format!("those of epoch {}, the best before it", outcome.best_epoch)
+                }
+            )),
+            StopReason::MaxEpochs => warnings.push(format!(
+                "the validation rollout error was still improving after --epochs {}; the estimate \
+                 may not have converged (raise --epochs)",
+                cfg.epochs
+            )),
+            StopReason::EarlyStop { .. } => {}
+        }
+        Report {
+            tool: "estimate".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            input: cfg.input.display().to_string(),
+            model: model.name().into(),
+            dt: data.dt,
+            shape: data.shape,
+            train_clips: data.n_train(),
+            validation_clips: data.n_val(),
+            config: cfg.clone(),
+            device: format!("{device:?}"),
+            threads,
+            libtorch_version: LIBTORCH_VERSION.into(),
+            parameters,
+            block_parameters: model
+                .parameter_names()
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            initial_values: init.to_vec(),
+            final_values: outcome.parameters.clone(),
+            calibration,
+            recording: data.recording.as_ref().map(|r| r.0.clone()),
+            starts: Vec::new(),
+            epochs_run: outcome.epochs_run,
+            best_epoch: outcome.best_epoch,
+            best_val_rel_mse: outcome.best_val_rel_mse,
+            stop: outcome.stop.clone(),
+            latent_std: outcome.latent_std,
+            latent_collapsed: collapsed,
+            latent_vs_truth: latent_fit(data, &outcome.val_latents),
+            wall_time_s: wall.as_secs_f64(),
+            ensemble: None,
+            warnings,
+            history: outcome.history.clone(),
+            outcome,
+        }
+    }
+
+    /// Records the starts of a multi-start fit.
+    pub fn with_starts(mut self, starts: Vec<StartProbe>) -> Report {
+        self.starts = starts;
+        self
+    }
+}

@@ -1,0 +1,32 @@
+//! `ParameterResult`: one reported value with its units and, when the data's metadata knows
+//! it, the ground truth and the relative error.
+
+use crate::calibration::DerivedValue;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// One estimated parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct ParameterResult {
+    pub name: String,
+    pub estimate: f64,
+    /// "SI" or "latent" (latent units: not determined by the video without a calibration).
+    pub units: String,
+    pub truth: Option<f64>,
+    /// (estimate − truth) / truth.
+    pub relative_error: Option<f64>,
+}
+
+impl ParameterResult {
+    /// The result for a derived value, with the truth looked up in `truth` by its key.
+    pub fn new(value: DerivedValue, truth: &BTreeMap<String, f64>) -> ParameterResult {
+        let t = value.truth_key.and_then(|k| truth.get(k).copied());
+        ParameterResult {
+            relative_error: t.filter(|t| *t != 0.0).map(|t| (value.estimate - t) / t),
+            name: value.name,
+            estimate: value.estimate,
+            units: value.units.into(),
+            truth: t,
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! The report as text: the table printed at the end of a run and `metrics.csv`.
+
+use super::Report;
+
+impl Report {
+    /// The closing table: parameter, estimate, ground truth, relative error.
+    pub fn table(&self) -> String {
+        let mut s = format!(
+            "{} on {} ({}, {} integrator, {} epochs, best {}, {:.1} s on {})\n",
+            self.model,
+            self.input,
+            self.config.loss.name(),
+            self.config.integrator.name(),
+            self.epochs_run,
+            self.best_epoch,
+            self.wall_time_s,
+            self.device
+        );
+        s += &format!(
+            "{:<20} {:>12} {:>7} {:>12} {:>12}\n",
+            "parameter", "estimate", "units", "truth", "rel. error"
+        );
+        for p in &self.parameters {
+            let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
+            let err = p
+                .relative_error
+                .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
+            s += &format!(
+                "{:<20} {:>12.6} {:>7} {:>12} {:>12}\n",
+                p.name, p.estimate, p.units, truth, err
+            );
+        }
+        s.trim_end().to_string()
+    }
+
+    /// `metrics.csv`: one row per epoch.
+    pub fn metrics_csv(&self) -> String {
+        let names: Vec<&str> = self.block_parameters.iter().map(String::as_str).collect();
+        let mut s = format!(
+            "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
+            names.join(",")
+        );
+        for r in &self.history {
+            let params: Vec<String> = r.parameters.iter().map(|v| format!("{v}")).collect();
+            s += &format!(
+                "{},{},{},{},{},{},{},{},{},{:.4}\n",
+                r.epoch,
+                r.train_loss,
+                r.val_loss,
+                r.val_mse,
+                r.val_rel_mse,
+                r.latent_std,
+                params.join(","),
+                r.lr,
+                r.lr_phys,
+                r.elapsed_s
+            );
+        }
+        s
+    }
+}

@@ -1,0 +1,55 @@
+//! Test helpers: `estimate` as a `TestCommand`, datasets rendered with gen's library as `gen`
+//! would make them, and readers for report.json. Each test file uses part of it.
+#![allow(dead_code)]
+
+pub use physvid_testkit::{stderr, TestCommand};
+use std::path::{Path, PathBuf};
+
+/// `estimate` invocations.
+pub struct Estimate;
+
+impl Estimate {
+    /// `estimate INPUT`.
+    #[allow(clippy::new_ret_no_self)]
+    pub fn new(input: impl AsRef<std::ffi::OsStr>) -> TestCommand {
+        Estimate::bare().arg(input)
+    }
+
+    /// `estimate` with no input yet.
+    pub fn bare() -> TestCommand {
+        TestCommand::new(bin())
+    }
+}
+
+/// The `estimate` binary built for these tests.
+pub fn bin() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_estimate"))
+}
+
+/// Renders a dataset into `dir` with gen's library, from the arguments `gen` would take
+/// (`--scenario SCENARIO --out DIR --force EXTRA...`), and returns its path as text.
+pub fn gen_dataset(dir: &Path, scenario: &str, extra: &[&str]) -> String {
+    let out = dir.to_str().expect("UTF-8 temp path").to_string();
+    let mut args = vec!["--scenario", scenario, "--out", &out, "--force"];
+    args.extend_from_slice(extra);
+    let cfg = generator::GenArgs::config_from(&args).expect("valid gen arguments");
+    generator::generate_to_disk(&cfg).expect("gen writes the dataset");
+    out
+}
+
+/// Reads `report.json` from an estimate output directory.
+pub fn read_report(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("report.json")).expect("report.json written");
+    serde_json::from_str(&text).expect("report.json is JSON")
+}
+
+/// The estimate of parameter `name` in a report.
+pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
+    report["parameters"]
+        .as_array()
+        .expect("parameters array")
+        .iter()
+        .find(|p| p["name"] == name)
+        .and_then(|p| p["estimate"].as_f64())
+        .unwrap_or_else(|| panic!("no estimate for {name}"))
+}

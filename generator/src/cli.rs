@@ -1,0 +1,206 @@
+//! `GenArgs`: `gen`'s command line (clap), and its resolution into a `GenConfig`: the scene's
+//! defaults, `--setting`, `--set`, `--omega` and `--zeta`. Scene names and help come from
+//! `scenes::SCENES`. `reproduce` and the tests build datasets from the same arguments.
+
+use crate::config::GenConfig;
+use crate::error::{invalid, ConfigError};
+use crate::scenes::{SceneRef, SCENES};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::Parser;
+use physvid_shared::cli::parse_name_values;
+use std::path::PathBuf;
+
+/// Render a seeded synthetic video dataset of a known dynamical system.
+///
+/// intensity, position, scale: a damped oscillator z(t) = A·exp(−ζt)·cos(ωt + φ), γ0 = ω² + ζ²,
+/// γ1 = 2ζ; A ~ Uniform[0.5, 1), φ ~ Uniform[0, 2π). pendulum, torricelli, sliding-block, led,
+/// free-fall: the Delfys75 systems with the parameters of appendix Table 4 (--setting 1|2|3,
+/// any value changed with --set), clips starting at random points of the motion.
+///
+/// Writes DIR/frames.npy (float32 [N, T, 1, H, W], values in [0, 1]), DIR/meta.json (ground
+/// truth: the model and its parameters in SI units, dt, per-sample draws, the latent of every
+/// frame, the calibration a user would measure, and for the sliding block and free fall each clip's
+/// start time since the release) and DIR/preview.png. Draws come from seeded
+/// per-sample ChaCha8 streams, so the same flags give byte-identical files on any number of
+/// threads.
+#[derive(Debug, Parser)]
+#[command(name = "gen", version, allow_negative_numbers = true)]
+pub struct GenArgs {
+    /// The scene: one of the damped-oscillator scenes (what z controls) or a Delfys75 system.
+    #[arg(long, value_parser = scene_parser())]
+    pub scenario: SceneRef,
+    /// Output directory (created; must be empty unless --force).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Number of clips N (≥ 1).
+    #[arg(long, default_value_t = 500)]
+    pub samples: usize,
+    #[arg(long, help = clip_help("Frames per clip T (≥ 3)", |(f, _)| f.to_string()))]
+    pub frames: Option<usize>,
+    /// Frame width and height in pixels (≥ 8).
+    #[arg(long, default_value_t = 50)]
+    pub size: usize,
+    #[arg(long, help = clip_help("Time between frames in seconds (> 0)", |(_, dt)| seconds(dt)))]
+    pub dt: Option<f64>,
+    /// Angular frequency ω in rad/s (> 0; ω·dt < π) of the oscillator scenes [default: 2].
+    #[arg(long)]
+    pub omega: Option<f64>,
+    /// Decay rate ζ in 1/s of the oscillator scenes (≥ 0, or slightly negative if the object
+    /// stays in frame) [default: 0.04].
+    #[arg(long)]
+    pub zeta: Option<f64>,
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3),
+          help = setting_help())]
+    pub setting: u8,
+    #[arg(long, value_name = "NAME=VALUE,...", help = set_help())]
+    pub set: Option<String>,
+    /// Seed of the random draws (amplitude, phase, noise).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Standard deviation σ of Gaussian pixel noise in [0, 1]; noisy values are clipped to [0, 1].
+    #[arg(long, default_value_t = 0.0)]
+    pub noise: f64,
+    /// Overwrite the dataset files in a non-empty DIR.
+    #[arg(long)]
+    pub force: bool,
+    /// Worker threads (default: all cores). Output does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// `--scenario`'s values with their help, from the registry.
+fn scene_parser() -> impl TypedValueParser<Value = SceneRef> {
+    let values: Vec<PossibleValue> = SCENES
+        .iter()
+        .map(|s| PossibleValue::new(s.name()).help(s.help()))
+        .collect();
+    PossibleValuesParser::new(values)
+        .map(|name| SceneRef::by_name(&name).expect("a possible value names a scene"))
+}
+
+fn clip_help(what: &str, show: impl Fn((usize, f64)) -> String) -> String {
+    let each: Vec<String> = SCENES
+        .iter()
+        .map(|s| format!("{} {}", s.name(), show(s.default_clip())))
+        .collect();
+    format!(
+        "{what} [default: the scene's (appendix Table 5's for Delfys75): {}]",
+        each.join(", ")
+    )
+}
+
+/// `dt` as a person writes it: 0.2, or 1/30 for a frame rate.
+fn seconds(dt: f64) -> String {
+    let rate = 1.0 / dt;
+    if dt < 1.0 && (rate - rate.round()).abs() < 1e-9 {
+        format!("1/{}", rate.round())
+    } else {
+        format!("{dt}")
+    }
+}
+
+fn setting_help() -> String {
+    let each: Vec<String> = SCENES
+        .iter()
+        .filter(|s| s.accepts_set())
+        .filter_map(|s| {
+            let (a, b, c) = (s.params(1), s.params(2), s.params(3));
+            let key = a.keys().find(|k| a[*k] != b[*k] || b[*k] != c[*k])?;
+            Some(format!(
+                "{} {key} = {}/{}/{}",
+                s.name(),
+                a[key],
+                b[key],
+                c[key]
+            ))
+        })
+        .collect();
+    format!(
+        "Delfys75 scenes: the column of appendix Table 4 ({})",
+        each.join("; ")
+    )
+}
+
+fn set_help() -> String {
+    let each: Vec<String> = SCENES
+        .iter()
+        .filter(|s| s.accepts_set())
+        .map(|s| {
+            let keys: Vec<String> = s.params(1).into_keys().collect();
+            format!("{}: {}", s.name(), keys.join(", "))
+        })
+        .collect();
+    format!(
+        "Delfys75 scenes: override parameters, NAME=VALUE[,NAME=VALUE] (SI units). {}",
+        each.join("; ")
+    )
+}
+
+impl GenArgs {
+    /// The configuration these arguments describe (validated).
+    pub fn into_config(self) -> Result<GenConfig, ConfigError> {
+        let scene = self.scenario;
+        let mut cfg = GenConfig::new(scene, self.out);
+        cfg.params = scene.params(self.setting);
+        for (flag, name, value) in [
+            ("--omega", "omega", self.omega),
+            ("--zeta", "zeta", self.zeta),
+        ] {
+            let Some(v) = value else { continue };
+            if !cfg.params.contains_key(name) {
+                return Err(invalid(
+                    flag,
+                    scene.name(),
+                    format!(
+                        "applies to the intensity, position and scale scenes only; set the {} parameters with --set",
+                        scene.model_name()
+                    ),
+                ));
+            }
+            cfg.params.insert(name.into(), v);
+        }
+        if let Some(text) = &self.set {
+            if !scene.accepts_set() {
+                return Err(invalid(
+                    "--set",
+                    text,
+                    "applies to the Delfys75 scenes only; use --omega and --zeta",
+                ));
+            }
+            let pairs = parse_name_values(text).map_err(|e| invalid("--set", text, e))?;
+            for (k, v) in pairs {
+                if !cfg.params.contains_key(&k) {
+                    let names: Vec<&str> = cfg.params.keys().map(String::as_str).collect();
+                    return Err(invalid(
+                        "--set",
+                        format!("{k}={v}"),
+                        format!(
+                            "{} has no parameter '{k}'; its parameters are {}",
+                            scene.model_name(),
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                cfg.params.insert(k, v);
+            }
+        }
+        cfg.samples = self.samples;
+        cfg.frames = self.frames.unwrap_or(cfg.frames);
+        cfg.size = self.size;
+        cfg.dt = self.dt.unwrap_or(cfg.dt);
+        cfg.seed = self.seed;
+        cfg.noise = self.noise;
+        cfg.force = self.force;
+        cfg.validate()
+    }
+
+    /// Parses `gen` arguments (without the program name) into a validated configuration: what
+    /// `reproduce` and the tests use to make datasets as a user would.
+    pub fn config_from(args: &[&str]) -> anyhow::Result<GenConfig> {
+        let args = GenArgs::try_parse_from(std::iter::once("gen").chain(args.iter().copied()))
+            .map_err(|e| {
+                anyhow::anyhow!("{}", physvid_shared::cli::one_line(&e.render().to_string()))
+            })?;
+        Ok(args.into_config()?)
+    }
+}

@@ -1,0 +1,145 @@
+//! The scenes `gen` renders: the `Scene` trait and `SCENES`, the one list of them (the
+//! `--scenario` values and their help are generated from it). A scene knows its dynamics (the
+//! trajectory of the physical quantity z each clip shows), its picture, its parameters and the
+//! calibration a user would measure. Two families share most of their code: the damped
+//! oscillator's disc scenes (`disc.rs`: intensity, position, scale) and the Delfys75 systems
+//! (`delfys.rs`: pendulum, torricelli, sliding-block, led, free-fall). Adding a scene = a file
+//! implementing `DiscPicture` or `DelfysSystem` and a line in `SCENES`.
+
+mod delfys;
+mod disc;
+pub mod free_fall;
+pub mod intensity;
+pub mod led;
+pub mod pendulum;
+pub mod position;
+pub mod scale;
+pub mod sliding_block;
+pub mod torricelli;
+
+use crate::error::ConfigError;
+use crate::render::Canvas;
+use physvid_shared::{Calibration, SampleTruth};
+use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
+
+pub use delfys::{Delfys, DelfysSystem, SystemInfo, G, REFERENCE_FRACTIONS};
+pub use disc::{DiscPicture, DiscScene, PictureInfo};
+
+/// Parameters of a scene by name (SI units): the oscillator's omega and zeta, or a Delfys75
+/// system's Table 4 values after `--setting` and `--set`.
+pub type Params = BTreeMap<String, f64>;
+
+/// Parameters from name/value pairs.
+pub fn params(pairs: &[(&str, f64)]) -> Params {
+    pairs.iter().map(|(k, v)| (k.to_string(), *v)).collect()
+}
+
+/// A scene: how a clip's physical quantity evolves and how it is drawn.
+pub trait Scene: Sync {
+    /// The `--scenario` value.
+    fn name(&self) -> &'static str;
+    /// One line for `--help`.
+    fn help(&self) -> &'static str;
+    /// The `estimate --model` that fits it (meta.json's `model.name`).
+    fn model_name(&self) -> &'static str;
+    /// Frames per clip and dt (s) when the flags do not say.
+    fn default_clip(&self) -> (usize, f64);
+    /// Parameters for `--setting` (1, 2 or 3; the disc scenes have one).
+    fn params(&self, setting: u8) -> Params;
+    /// Whether `--set NAME=VALUE` changes the parameters (otherwise they have flags of their own).
+    fn accepts_set(&self) -> bool;
+    /// Checks the parameters against physics and the clip; errors name the flag to change.
+    fn validate(&self, p: &Params, frames: usize, dt: f64) -> Result<(), ConfigError>;
+    /// Draws one clip from `rng`: its ground truth and the physical quantity at each frame.
+    fn sample(
+        &self,
+        p: &Params,
+        rng: &mut ChaCha8Rng,
+        frames: usize,
+        dt: f64,
+    ) -> (SampleTruth, Vec<f64>);
+    /// Draws the scene for quantity `z` into `out` (size² grey values in [0, 1]).
+    fn render(&self, p: &Params, z: f64, size: usize, canvas: &mut Canvas, out: &mut [f32]);
+    /// meta.json's `latent_mapping`: what z is and how it shows, in words.
+    fn mapping_text(&self) -> &'static str;
+    /// meta.json's `sampling`: how each clip's draws are made, in words.
+    fn sampling_text(&self) -> &'static str;
+    /// meta.json's `model.parameters`: the true values `estimate` is to recover (SI).
+    fn model_parameters(&self, p: &Params) -> Params;
+    /// What a user would measure in the scene (empty for the disc scenes).
+    fn calibration(&self, p: &Params, size: usize, latents: &[Vec<f64>]) -> Calibration;
+    /// The (virtual) camera's frame rate written to meta.json, if the scene has a camera.
+    fn fps(&self, dt: f64) -> Option<f64>;
+    /// Whether the recording starts at a release from rest (then meta.json gets each clip's
+    /// start time since it).
+    fn released_from_rest(&self) -> bool;
+}
+
+/// Every scene, in the order `--help` lists them.
+pub static SCENES: &[&dyn Scene] = &[
+    &DiscScene(intensity::Intensity),
+    &DiscScene(position::Position),
+    &DiscScene(scale::Scale),
+    &Delfys(pendulum::Pendulum),
+    &Delfys(torricelli::Torricelli),
+    &Delfys(sliding_block::SlidingBlock),
+    &Delfys(led::Led),
+    &Delfys(free_fall::FreeFall),
+];
+
+/// A scene of [`SCENES`], compared and printed by name.
+#[derive(Clone, Copy)]
+pub struct SceneRef(pub &'static dyn Scene);
+
+impl SceneRef {
+    /// The scene called `name`.
+    pub fn by_name(name: &str) -> Option<SceneRef> {
+        SCENES
+            .iter()
+            .find(|s| s.name() == name)
+            .map(|s| SceneRef(*s))
+    }
+}
+
+impl std::ops::Deref for SceneRef {
+    type Target = dyn Scene;
+    fn deref(&self) -> &(dyn Scene + 'static) {
+        self.0
+    }
+}
+
+impl PartialEq for SceneRef {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl std::fmt::Debug for SceneRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::fmt::Display for SceneRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_found() {
+        for s in SCENES {
+            assert_eq!(SceneRef::by_name(s.name()).unwrap().name(), s.name());
+        }
+        let mut names: Vec<_> = SCENES.iter().map(|s| s.name()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), SCENES.len());
+        assert!(SceneRef::by_name("wobble").is_none());
+    }
+}

@@ -1,0 +1,95 @@
+//! Writing a generated dataset: `generate_to_disk` streams pieces of samples to a writer thread
+//! while the next piece renders, then writes `meta.json` (`dataset_meta`) and the preview.
+
+use crate::config::GenConfig;
+use crate::generate::{generate_samples, Generated};
+use physvid_shared::contact_sheet::{contact_sheet, encode_png};
+use physvid_shared::meta::{GeneratorInfo, FORMAT_NAME, FORMAT_VERSION};
+use physvid_shared::{DatasetError, DatasetFiles, DatasetMeta, DatasetWriter, ModelSpec};
+
+/// Version written into `meta.json`.
+pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Samples rendered per piece handed to the writer thread.
+const SAMPLES_PER_PIECE: usize = 64;
+
+/// The metadata of a generated dataset.
+pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
+    let scene = cfg.scene;
+    DatasetMeta {
+        format: FORMAT_NAME.into(),
+        format_version: FORMAT_VERSION,
+        generator: GeneratorInfo {
+            name: "gen".into(),
+            version: GENERATOR_VERSION.into(),
+        },
+        scenario: scene.name().into(),
+        model: ModelSpec {
+            name: scene.model_name().into(),
+            parameters: scene.model_parameters(&cfg.params),
+        },
+        dt: cfg.dt,
+        shape: cfg.shape(),
+        seed: cfg.seed,
+        noise: cfg.noise,
+        latent_mapping: scene.mapping_text().into(),
+        calibration: scene.calibration(&cfg.params, cfg.size, &g.latents),
+        fps: scene.fps(cfg.dt),
+        clip_start_times: scene
+            .released_from_rest()
+            .then(|| g.samples.iter().map(|s| s.0["start_time"]).collect()),
+        sampling: scene.sampling_text().into(),
+        samples: g.samples.clone(),
+        latents: g.latents.clone(),
+    }
+}
+
+/// The preview PNG: up to four clips × all frames, magnified 2×, from the frames of the first
+/// clips (at least four, or all of them).
+pub fn preview_png(cfg: &GenConfig, first_frames: &[f32]) -> Vec<u8> {
+    let rows: Vec<usize> = (0..cfg.samples.min(4)).collect();
+    encode_png(&contact_sheet(first_frames, cfg.shape(), &rows, 2))
+}
+
+/// Renders and writes the dataset, streaming: while the next piece of samples renders (rayon),
+/// a writer thread appends the previous one to `frames.npy` and flushes it to the device, so
+/// writing overlaps rendering and memory holds only a few pieces. Returns the written paths.
+pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
+    let mut writer = DatasetWriter::create(&cfg.out, cfg.shape(), cfg.force)?;
+    // Ground truth of every sample; only the preview's clips keep their frames in memory.
+    let mut truth = Generated {
+        frames: Vec::new(),
+        samples: Vec::with_capacity(cfg.samples),
+        latents: Vec::with_capacity(cfg.samples),
+    };
+    let mut preview_frames = Vec::new();
+    let preview_samples = cfg.samples.min(4);
+    let written: Result<DatasetWriter, DatasetError> = std::thread::scope(|s| {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f32>>(1);
+        let handle = s.spawn(move || {
+            for piece in rx {
+                writer.write_frames(&piece)?;
+            }
+            Ok(writer)
+        });
+        for start in (0..cfg.samples).step_by(SAMPLES_PER_PIECE) {
+            let end = (start + SAMPLES_PER_PIECE).min(cfg.samples);
+            let g = generate_samples(cfg, start..end);
+            if start == 0 {
+                let per_sample = cfg.frames * cfg.size * cfg.size;
+                preview_frames = g.frames[..preview_samples * per_sample].to_vec();
+            }
+            truth.samples.extend(g.samples);
+            truth.latents.extend(g.latents);
+            if tx.send(g.frames).is_err() {
+                break; // The writer failed; its error comes back from join.
+            }
+        }
+        drop(tx);
+        handle.join().expect("writer thread does not panic")
+    });
+    let writer = written?;
+    let meta = dataset_meta(cfg, &truth);
+    let png = preview_png(cfg, &preview_frames);
+    Ok(writer.finish(&meta, &png)?)
+}

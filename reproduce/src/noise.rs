@@ -1,0 +1,80 @@
+//! Accuracy as Gaussian pixel noise rises (σ = 0 … 0.4 grey levels, `gen --noise`), per scene,
+//! each estimate an ensemble of independently seeded trainings (`estimate --ensemble K`).
+
+use crate::runner::{DataSpec, Runner};
+use crate::table::{Cell, Table};
+
+pub fn make(r: &Runner) -> anyhow::Result<Table> {
+    let (scenes, sigmas, k): (&[&str], &[f64], usize) = if r.quick() {
+        (&["intensity"], &[0.0, 0.1, 0.4], 2)
+    } else {
+        (
+            &["intensity", "position", "scale"],
+            &[0.0, 0.05, 0.1, 0.2, 0.4],
+            3,
+        )
+    };
+    let mut t = Table::new(
+        "noise",
+        "Accuracy against pixel noise",
+        &[
+            ("data", "scenario"),
+            ("noise σ", "noise"),
+            ("rollout start", "rollout_start"),
+            ("γ0 mean", "gamma0_mean"),
+            ("γ0 std", "gamma0_std"),
+            ("γ0 error", "gamma0_rel_error"),
+            ("γ1 mean", "gamma1_mean"),
+            ("γ1 std", "gamma1_std"),
+            ("γ1 error", "gamma1_rel_error"),
+            ("latent R²", "latent_r2"),
+            ("wall s", "wall_s"),
+        ],
+    );
+    let starts = ["fit", "frames"];
+    r.begin("noise", scenes.len() * sigmas.len() * starts.len());
+    let ks = k.to_string();
+    for &scene in scenes {
+        for &sigma in sigmas {
+            let mut spec = DataSpec::new(scene, r.quick());
+            spec.noise = sigma;
+            let data = r.dataset(&spec)?;
+            for start in starts {
+                let rep = r.estimate(&data, &["--ensemble", &ks, "--rollout-start", start])?;
+                let e = rep.ensemble.as_ref();
+                let get = |name: &str| e.and_then(|e| e.values.iter().find(|v| v.name == name));
+                let (g0, g1) = (get("gamma0"), get("gamma1"));
+                let rel = |v: Option<&estimator::report::ensemble::EnsembleValue>| {
+                    v.and_then(|v| v.truth.map(|t| (v.mean - t) / t))
+                };
+                t.push(vec![
+                    Cell::text(scene),
+                    Cell::num(Some(sigma), 2),
+                    Cell::text(start),
+                    Cell::num(g0.map(|v| v.mean), 4),
+                    Cell::num(g0.map(|v| v.std), 4),
+                    Cell::rel(rel(g0)),
+                    Cell::num(g1.map(|v| v.mean), 4),
+                    Cell::num(g1.map(|v| v.std), 4),
+                    Cell::rel(rel(g1)),
+                    Cell::num(rep.latent_vs_truth.map(|f| f.r2), 4),
+                    Cell::num(Some(rep.wall_time_s), 1),
+                ]);
+            }
+            r.discard(&data);
+        }
+    }
+    let spec = DataSpec::new(scenes[0], r.quick());
+    t.note(format!(
+        "Data: `{} --noise SIGMA` for each scene (N(0, σ²) added to every pixel, clipped to [0, 1]).",
+        spec.command()
+    ));
+    t.note(format!(
+        "Runs: `estimate DATA --ensemble {k} --rollout-start fit|frames` (seeds 0–{}; fit: ours, \
+         the clip's least-squares initial state; frames: the paper's, its first two encoded \
+         frames): mean and sample std over the members; error: of the mean; latent R² of the \
+         seed-0 member; wall: the whole ensemble. Truth γ0 = 4.0016, γ1 = 0.08.",
+        k - 1
+    ));
+    Ok(t)
+}

@@ -1,0 +1,153 @@
+//! `Table`: one reproduced table, its cells formatted for TABLE.md and raw for TABLE.csv, and
+//! the atomic writing of both.
+
+use physvid_shared::write_atomic;
+use std::path::{Path, PathBuf};
+
+/// One cell: text, a number shown with fixed decimals, or a relative error shown in percent.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    Text(String),
+    Num(f64, usize),
+    /// A relative error (fraction); Markdown shows it as a signed percentage.
+    Rel(f64),
+    Empty,
+}
+
+impl Cell {
+    pub fn text(s: impl Into<String>) -> Cell {
+        Cell::Text(s.into())
+    }
+
+    /// `v` with `decimals`, or empty for `None`.
+    pub fn num(v: Option<f64>, decimals: usize) -> Cell {
+        v.map_or(Cell::Empty, |v| Cell::Num(v, decimals))
+    }
+
+    pub fn rel(v: Option<f64>) -> Cell {
+        v.map_or(Cell::Empty, Cell::Rel)
+    }
+
+    fn markdown(&self) -> String {
+        match self {
+            Cell::Text(s) => s.clone(),
+            Cell::Num(v, d) => format!("{v:.d$}", d = *d),
+            Cell::Rel(v) => format!("{:+.2} %", v * 100.0),
+            Cell::Empty => "–".into(),
+        }
+    }
+
+    fn csv(&self) -> String {
+        match self {
+            Cell::Text(s) if s.contains([',', '"']) => format!("\"{}\"", s.replace('"', "\"\"")),
+            Cell::Text(s) => s.clone(),
+            Cell::Num(v, _) | Cell::Rel(v) => format!("{v}"),
+            Cell::Empty => String::new(),
+        }
+    }
+}
+
+/// A reproduced table with what made it.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// File stem: `table3` → table3.md, table3.csv.
+    pub name: &'static str,
+    pub title: String,
+    /// (Markdown header, CSV header) per column.
+    pub columns: Vec<(String, String)>,
+    pub rows: Vec<Vec<Cell>>,
+    /// Lines under the table: the data, the flags, what the columns mean, the findings.
+    pub notes: Vec<String>,
+    /// The command that regenerates it.
+    pub command: String,
+    pub wall_s: f64,
+}
+
+impl Table {
+    pub fn new(name: &'static str, title: impl Into<String>, columns: &[(&str, &str)]) -> Table {
+        Table {
+            name,
+            title: title.into(),
+            columns: columns
+                .iter()
+                .map(|(m, c)| (m.to_string(), c.to_string()))
+                .collect(),
+            rows: Vec::new(),
+            notes: Vec::new(),
+            command: String::new(),
+            wall_s: 0.0,
+        }
+    }
+
+    pub fn push(&mut self, row: Vec<Cell>) {
+        assert_eq!(row.len(), self.columns.len(), "row width of {}", self.name);
+        self.rows.push(row);
+    }
+
+    pub fn note(&mut self, line: impl Into<String>) {
+        self.notes.push(line.into());
+    }
+
+    pub fn markdown(&self) -> String {
+        let mut s = format!("### {}\n\n", self.title);
+        let header: Vec<&str> = self.columns.iter().map(|c| c.0.as_str()).collect();
+        s += &format!("| {} |\n", header.join(" | "));
+        s += &format!("|{}\n", "---|".repeat(header.len()));
+        for row in &self.rows {
+            let cells: Vec<String> = row.iter().map(Cell::markdown).collect();
+            s += &format!("| {} |\n", cells.join(" | "));
+        }
+        s += "\n";
+        for n in &self.notes {
+            s += &format!("{n}\n");
+        }
+        s += &format!("\nMade by `{}` in {:.0} s.\n", self.command, self.wall_s);
+        s
+    }
+
+    pub fn csv(&self) -> String {
+        let header: Vec<&str> = self.columns.iter().map(|c| c.1.as_str()).collect();
+        let mut s = header.join(",") + "\n";
+        for row in &self.rows {
+            let cells: Vec<String> = row.iter().map(Cell::csv).collect();
+            s += &(cells.join(",") + "\n");
+        }
+        s
+    }
+
+    /// Writes `<dir>/<name>.md` and `<dir>/<name>.csv` (each via a temporary file and a rename).
+    pub fn write(&self, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+        let md = dir.join(format!("{}.md", self.name));
+        let csv = dir.join(format!("{}.csv", self.name));
+        write_atomic(&csv, self.csv().as_bytes())?;
+        write_atomic(&md, self.markdown().as_bytes())?;
+        Ok(vec![md, csv])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn markdown_and_csv_hold_the_same_rows() {
+        let mut t = Table::new(
+            "t",
+            "A table",
+            &[("what", "what"), ("γ0", "gamma0"), ("error", "rel_error")],
+        );
+        t.push(vec![
+            Cell::text("a, b"),
+            Cell::num(Some(4.00161), 3),
+            Cell::rel(Some(-0.0123)),
+        ]);
+        t.push(vec![Cell::text("c"), Cell::num(None, 3), Cell::Empty]);
+        let md = t.markdown();
+        assert!(md.contains("| a, b | 4.002 | -1.23 % |"), "{md}");
+        assert!(md.contains("| c | – | – |"), "{md}");
+        assert_eq!(
+            t.csv(),
+            "what,gamma0,rel_error\n\"a, b\",4.00161,-0.0123\nc,,\n"
+        );
+    }
+}

@@ -1,0 +1,199 @@
+//! End-to-end tests of `reproduce --quick`: each table regenerates from nothing, writes both
+//! files, and shows the paper's qualitative findings (MSE only collapses; the exact block is
+//! within 1 % at every dt while Euler's γ0 falls with dt); same seed, same numbers; bad flags
+//! get one line and exit code 2.
+
+use physvid_testkit::{stderr, TestCommand};
+use std::collections::HashMap;
+use std::path::Path;
+
+fn reproduce() -> TestCommand {
+    TestCommand::new(env!("CARGO_BIN_EXE_reproduce"))
+}
+
+/// Runs `reproduce TABLE --quick` into `out` on two threads.
+fn reproduce_quick(table: &str, out: &Path) {
+    let o = reproduce()
+        .args([
+            table,
+            "--quick",
+            "--quiet",
+            "--threads",
+            "2",
+            "--device",
+            "cpu",
+        ])
+        .out(out)
+        .output();
+    assert!(o.status.success(), "reproduce {table}: {}", stderr(&o));
+}
+
+/// The rows of `<out>/<table>.csv` as column → text maps.
+fn read_csv(out: &Path, table: &str) -> Vec<HashMap<String, String>> {
+    let text = std::fs::read_to_string(out.join(format!("{table}.csv"))).expect("csv written");
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &HashMap<String, String>, col: &str) -> f64 {
+    row[col]
+        .parse()
+        .unwrap_or_else(|_| panic!("{col} = '{}' is not a number", row[col]))
+}
+
+fn markdown(out: &Path, table: &str) -> String {
+    std::fs::read_to_string(out.join(format!("{table}.md"))).expect("md written")
+}
+
+#[test]
+fn table3_mse_only_collapses_and_mse_kl_recovers_gamma0() {
+    let tmp = tempfile::tempdir().unwrap();
+    reproduce_quick("table3", tmp.path());
+    let rows = read_csv(tmp.path(), "table3");
+    assert_eq!(rows.len(), 4);
+    let row = |loss: &str, integ: &str| {
+        rows.iter()
+            .find(|r| r["loss"] == loss && r["integrator"] == integ)
+            .unwrap_or_else(|| panic!("no row {loss} {integ}"))
+    };
+    for integ in ["exact", "euler"] {
+        let (kl, mse) = (row("mse+kl", integ), row("mse", integ));
+        assert!(
+            num(mse, "latent_std") < 0.3 * num(kl, "latent_std"),
+            "{integ}: MSE-only latent std {} vs {}",
+            mse["latent_std"],
+            kl["latent_std"]
+        );
+        assert!(
+            num(mse, "gamma0_rel_error").abs() > 0.1 || num(mse, "gamma1_rel_error").abs() > 0.5,
+            "{integ}: MSE only should miss the truth: {mse:?}"
+        );
+        assert_eq!(num(kl, "gamma0_paper"), 3.99);
+        assert_eq!(num(mse, "gamma1_paper"), 6.6);
+    }
+    assert!(num(row("mse+kl", "exact"), "gamma0_rel_error").abs() < 0.01);
+    let md = markdown(tmp.path(), "table3");
+    assert!(md.contains("| γ0 paper |"), "{md}");
+    assert!(md.contains("Made by `reproduce table3 --quick`"), "{md}");
+}
+
+#[test]
+fn table6_exact_is_within_1_percent_at_every_dt_and_euler_gamma0_falls_with_dt() {
+    let tmp = tempfile::tempdir().unwrap();
+    reproduce_quick("table6", tmp.path());
+    let rows = read_csv(tmp.path(), "table6");
+    // Intensity γ1 and γ0, Torricelli k, pendulum L: 3 dt × 2 integrators each.
+    assert_eq!(rows.len(), 24);
+    let gamma0: Vec<_> = rows
+        .iter()
+        .filter(|r| r["scenario"] == "intensity" && r["parameter"] == "γ0")
+        .collect();
+    let mut euler = Vec::new();
+    for r in &gamma0 {
+        match r["integrator"].as_str() {
+            "exact" => assert!(
+                num(r, "rel_error").abs() < 0.01,
+                "exact γ0 at dt {}: {}",
+                r["dt"],
+                r["estimate"]
+            ),
+            _ => {
+                // The paper's block lands on the value the Euler step needs (paper-notes).
+                let fixed = num(r, "euler_fixed_point");
+                assert!((num(r, "estimate") - fixed).abs() < 0.01 * fixed, "{r:?}");
+                euler.push((num(r, "dt"), num(r, "estimate")));
+            }
+        }
+    }
+    euler.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(euler.len(), 3);
+    assert!(
+        euler[0].1 > euler[1].1 && euler[1].1 > euler[2].1,
+        "Euler γ0 should fall with dt: {euler:?}"
+    );
+    assert!(euler[2].1 < 0.9 * 4.0016, "{euler:?}");
+    let md = markdown(tmp.path(), "table6");
+    assert!(md.contains("Euler fixed point"), "{md}");
+}
+
+#[test]
+fn the_other_tables_write_their_rows() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (table, rows_expected) in [("init", 12), ("losses", 6), ("noise", 6), ("coverage", 4)] {
+        reproduce_quick(table, tmp.path());
+        let rows = read_csv(tmp.path(), table);
+        assert_eq!(rows.len(), rows_expected, "{table}");
+        assert!(markdown(tmp.path(), table).contains(&format!("reproduce {table} --quick")));
+    }
+    // Our loss on the clean intensity set, and the noise-free row of the noise table.
+    let losses = read_csv(tmp.path(), "losses");
+    let ours = losses
+        .iter()
+        .find(|r| r["scenario"] == "intensity" && r["loss"] == "mse+kl")
+        .unwrap();
+    assert!(num(ours, "gamma0_rel_error").abs() < 0.01, "{ours:?}");
+    let noise = read_csv(tmp.path(), "noise");
+    assert_eq!(num(&noise[0], "noise"), 0.0);
+    assert!(
+        num(&noise[0], "gamma0_rel_error").abs() < 0.01,
+        "{:?}",
+        noise[0]
+    );
+    // Our two starts find the truth on intensity from every start.
+    let init = read_csv(tmp.path(), "init");
+    for r in init
+        .iter()
+        .filter(|r| r["scenario"] == "intensity" && r["mode"].starts_with("ours"))
+    {
+        assert_eq!(num(r, "successes"), 1.0, "{r:?}");
+    }
+    let coverage = read_csv(tmp.path(), "coverage");
+    assert_eq!(coverage[3]["data_seed"], "covered");
+}
+
+#[test]
+fn same_command_gives_the_same_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let strip = |out: &Path| -> Vec<Vec<String>> {
+        read_csv(out, "losses")
+            .into_iter()
+            .map(|mut r| {
+                r.remove("wall_s");
+                let mut v: Vec<String> = r.into_iter().map(|(k, v)| format!("{k}={v}")).collect();
+                v.sort();
+                v
+            })
+            .collect()
+    };
+    reproduce_quick("losses", &tmp.path().join("a"));
+    reproduce_quick("losses", &tmp.path().join("b"));
+    assert_eq!(strip(&tmp.path().join("a")), strip(&tmp.path().join("b")));
+}
+
+#[test]
+fn reproduce_bad_input_gets_a_one_line_error_and_exit_code_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("a-file");
+    std::fs::write(&file, b"x").unwrap();
+    reproduce().arg("table9").bad_input("table9");
+    reproduce().arg("table3").out(&file).bad_input("is a file");
+    reproduce()
+        .args(["table3", "--threads", "0"])
+        .bad_input("--threads 0");
+    let o = reproduce().arg("--help").ok();
+    let help = String::from_utf8_lossy(&o.stdout);
+    for word in [
+        "table3", "table6", "init", "losses", "noise", "coverage", "all", "--quick", "--out",
+    ] {
+        assert!(help.contains(word), "--help lacks {word}");
+    }
+}

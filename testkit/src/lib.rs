@@ -1,0 +1,96 @@
+//! Test support shared by the end-to-end tests of `gen`, `estimate` and `reproduce`:
+//! `TestCommand`, a small builder for running a real binary and asserting on its outcome (as
+//! ripgrep's tests/util.rs does). Each crate's tests find their binary with
+//! `env!("CARGO_BIN_EXE_…")` and add their own helpers.
+
+use std::ffi::{OsStr, OsString};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// An invocation of a binary being built.
+#[derive(Debug, Clone)]
+pub struct TestCommand {
+    bin: PathBuf,
+    args: Vec<OsString>,
+    env: Vec<(OsString, OsString)>,
+}
+
+impl TestCommand {
+    /// `bin` with no arguments yet.
+    pub fn new(bin: impl Into<PathBuf>) -> TestCommand {
+        TestCommand {
+            bin: bin.into(),
+            args: Vec::new(),
+            env: Vec::new(),
+        }
+    }
+
+    pub fn arg(mut self, a: impl AsRef<OsStr>) -> TestCommand {
+        self.args.push(a.as_ref().to_owned());
+        self
+    }
+
+    pub fn args<S: AsRef<OsStr>>(mut self, a: impl IntoIterator<Item = S>) -> TestCommand {
+        self.args
+            .extend(a.into_iter().map(|s| s.as_ref().to_owned()));
+        self
+    }
+
+    /// `--out DIR`.
+    pub fn out(self, dir: &Path) -> TestCommand {
+        self.arg("--out").arg(dir)
+    }
+
+    /// `--quiet`.
+    pub fn quiet(self) -> TestCommand {
+        self.arg("--quiet")
+    }
+
+    /// Sets an environment variable for the run.
+    pub fn env(mut self, k: impl AsRef<OsStr>, v: impl AsRef<OsStr>) -> TestCommand {
+        self.env
+            .push((k.as_ref().to_owned(), v.as_ref().to_owned()));
+        self
+    }
+
+    /// Runs the command and returns its output.
+    pub fn output(&self) -> Output {
+        Command::new(&self.bin)
+            .args(&self.args)
+            .envs(self.env.iter().map(|(k, v)| (k, v)))
+            .output()
+            .unwrap_or_else(|e| panic!("{} does not run: {e}", self.bin.display()))
+    }
+
+    /// Runs and asserts success.
+    pub fn ok(&self) -> Output {
+        let o = self.output();
+        assert!(o.status.success(), "{:?}: {}", self.args, stderr(&o));
+        o
+    }
+
+    /// Runs and asserts the bad-input contract: exit code 2 and one line on stderr that
+    /// contains `needle`.
+    pub fn bad_input(&self, needle: &str) {
+        let o = self.output();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{:?}: {err}", self.args);
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{:?}: not one line: {err}",
+            self.args
+        );
+        assert!(err.contains(needle), "{:?}: {err}", self.args);
+    }
+}
+
+/// Stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
