@@ -1,6 +1,5 @@
-//! Links libtorch so `reproduce` runs without LD_LIBRARY_PATH (see estimator/build.rs, which
-//! also records libtorch's version): an rpath to libtorch's directory and
-//! `-Wl,--no-as-needed -ltorch`, which keeps libtorch_cuda loaded when a GPU is present.
+//! Links libtorch so `reproduce` runs without LD_LIBRARY_PATH: an rpath to libtorch's directory
+//! (libtorch_cuda is opened at run time when a GPU is present; see estimator/build.rs).
 
 fn main() {
     let os = std::env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
@@ -8,8 +7,6 @@ fn main() {
         if let Some(lib) = std::env::var_os("DEP_TCH_LIBTORCH_LIB") {
             println!("cargo:rustc-link-arg=-Wl,-rpath={}", lib.to_string_lossy());
         }
-        println!("cargo:rustc-link-arg=-Wl,--no-as-needed");
-        println!("cargo:rustc-link-arg=-ltorch");
     }
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-env-changed=LIBTORCH");

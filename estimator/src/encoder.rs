@@ -61,6 +61,6 @@ impl Encoder {
     /// Latents of clips `x` [B, T, D] → [B, T], all B·T frames in one pass.
     pub fn encode(&self, x: &Tensor) -> Tensor {
         let (b, t, d) = x.size3().expect("clips are [B, T, D]");
-        self.seq.forward(&x.view([b * t, d])).view([b, t])
+        self.seq.forward(&x.reshape([b * t, d])).view([b, t])
     }
 }

@@ -6,7 +6,7 @@ use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::loss::LossKind;
-use crate::physics::{BlockOptions, PhysicsBlock};
+use crate::physics::{BlockOptions, Clips, PhysicsBlock};
 use tch::nn;
 use tch::{Device, Kind, Tensor};
 
@@ -69,13 +69,20 @@ impl Network {
                 start: cfg.rollout_start,
             },
         );
-        Network {
+        let network = Network {
             enc_vs,
             phys_vs,
             encoder,
             block,
             reference,
-        }
+        };
+        network.prepare();
+        network
+    }
+
+    /// The block's once-per-epoch bookkeeping (see [`PhysicsBlock::prepare`]).
+    pub fn prepare(&self) {
+        self.block.prepare();
     }
 
     /// The encoder's and the block's variable stores (for their optimisers).
@@ -83,14 +90,14 @@ impl Network {
         (&self.enc_vs, &self.phys_vs)
     }
 
-    /// Encodes clips [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
-    pub fn forward(&self, x: &Tensor, start: Option<&Tensor>, steps: i64) -> (Tensor, Tensor) {
+    /// Encodes clips `x` [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
+    pub fn forward(&self, x: &Tensor, clips: Clips, steps: i64) -> (Tensor, Tensor) {
         if let Some(r) = &self.reference {
             let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
             self.block.calibrate(&z_ref, &r.values);
         }
         let z = self.encoder.encode(x);
-        let z_hat = self.block.rollout(&z, start, steps);
+        let z_hat = self.block.rollout(&z, clips, steps);
         (z, z_hat)
     }
 
@@ -99,6 +106,16 @@ impl Network {
         (kind == LossKind::ResidualFloor)
             .then(|| self.block.residual(z))
             .flatten()
+    }
+
+    /// The block's per-epoch refinement on latents `z` (see [`PhysicsBlock::refine`]).
+    pub fn refine(&self, z: &Tensor, clips: Clips) -> bool {
+        self.block.refine(z, clips)
+    }
+
+    /// The block's extra loss term for latents `z`, if any.
+    pub fn auxiliary_loss(&self, z: &Tensor) -> Option<Tensor> {
+        self.block.auxiliary_loss(z)
     }
 
     /// The block's parameter values, those solved per batch solved over `latents` [B, T].
@@ -129,6 +146,7 @@ impl Network {
                 t.copy_(s);
             }
         });
+        self.prepare();
     }
 }
 

@@ -1,27 +1,16 @@
 //! `run`: loads the data, resolves the configuration, picks the device, trains (the ensemble's
 //! members too), and hands the report to `output` and the terminal.
 
-use crate::cli::{DeviceChoice, EstimateArgs};
+use crate::cli::EstimateArgs;
 use crate::config::RunConfig;
 use crate::data::{load_clips, ClipData};
-use crate::error::EstimateError;
+use crate::device::select_device;
 use crate::output::write_outputs;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
 use crate::train::fit;
 use std::time::Instant;
-use tch::Device;
-
-/// Resolves `--device`.
-pub fn select_device(choice: DeviceChoice) -> Result<Device, EstimateError> {
-    match choice {
-        DeviceChoice::Cpu => Ok(Device::Cpu),
-        DeviceChoice::Auto => Ok(Device::cuda_if_available()),
-        DeviceChoice::Cuda if tch::Cuda::is_available() => Ok(Device::Cuda(0)),
-        DeviceChoice::Cuda => Err(EstimateError::NoCuda),
-    }
-}
 
 /// An estimation's report with the clips it was trained on.
 pub struct Estimation {
@@ -55,8 +44,9 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
 pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     tch::set_num_threads(args.training.thread_count() as i32);
-    let device = select_device(args.training.device)?;
-    let data = load_clips(args, device)?;
+    let (device, device_warning) = select_device(args.training.device)?;
+    let mut data = load_clips(args, device)?;
+    data.warnings.extend(device_warning);
     let cfg = &RunConfig::resolve(args, &data)?;
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short

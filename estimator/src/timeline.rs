@@ -4,6 +4,7 @@
 use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
 use crate::network::{to_rows, Network};
+use crate::physics::Clips;
 use tch::{Device, Tensor};
 
 /// The encoded latent over a whole recording with the physics rollouts of back-to-back clips.
@@ -20,14 +21,8 @@ pub struct Timeline {
     pub rollouts: Vec<(usize, Vec<f32>)>,
 }
 
-/// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
-/// clip span apart.
-pub fn timeline(
-    model: &Network,
-    data: &ClipData,
-    summary: &RecordingSummary,
-    frames: &Tensor,
-) -> Timeline {
+/// The latent of every frame of a recording ([1, F, D] standardised frames), encoded in pieces.
+pub fn encode_recording(model: &Network, frames: &Tensor) -> Vec<f32> {
     tch::no_grad(|| {
         let f = frames.size()[1];
         let mut latents = Vec::with_capacity(f as usize);
@@ -37,6 +32,20 @@ pub fn timeline(
                 Vec::<f32>::try_from(&z.view([-1]).to_device(Device::Cpu)).unwrap_or_default(),
             );
         }
+        latents
+    })
+}
+
+/// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
+/// clip span apart.
+pub fn timeline(
+    model: &Network,
+    data: &ClipData,
+    summary: &RecordingSummary,
+    frames: &Tensor,
+) -> Timeline {
+    tch::no_grad(|| {
+        let latents = encode_recording(model, frames);
         let t = data.frames_per_clip as usize;
         let span = (t - 1) * summary.stride;
         let mut rollouts = Vec::new();
@@ -55,7 +64,11 @@ pub fn timeline(
                 Tensor::from_slice(&[(start as f64 / summary.fps) as f32])
                     .to_device(frames.device())
             });
-            let (_, z_hat) = model.forward(&x, t0.as_ref(), data.frames_per_clip);
+            let clips = Clips {
+                start: t0.as_ref(),
+                ids: None,
+            };
+            let (_, z_hat) = model.forward(&x, clips, data.frames_per_clip);
             rollouts.push((start, to_rows(&z_hat).remove(0)));
         }
         Timeline {

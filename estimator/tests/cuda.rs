@@ -8,14 +8,14 @@ use clap::Parser;
 use estimator::cli::DeviceChoice;
 use estimator::config::RunConfig;
 use estimator::data::load_clips;
-use estimator::run::select_device;
+use estimator::device::select_device;
 use estimator::train::train;
 use estimator::EstimateArgs;
 
 #[test]
 fn trains_on_the_gpu_and_recovers_the_parameters() {
     assert!(tch::Cuda::is_available(), "cuda-tests needs a CUDA GPU");
-    let device = select_device(DeviceChoice::Auto).unwrap();
+    let (device, _) = select_device(DeviceChoice::Auto).unwrap();
     assert!(device.is_cuda());
     let tmp = tempfile::tempdir().unwrap();
     let data_dir = util::gen_dataset(

@@ -30,7 +30,11 @@ fn recovers_gamma0_and_gamma1_on_a_small_intensity_set() {
     let (g0, g1) = (estimate_of(&r, "gamma0"), estimate_of(&r, "gamma1"));
     assert!((g0 / 4.0016 - 1.0).abs() < 0.01, "gamma0 {g0}");
     assert!((g1 / 0.08 - 1.0).abs() < 0.10, "gamma1 {g1}");
-    assert_eq!(r["stop"]["kind"], "early-stop", "the early stop fires");
+    let stop = r["stop"]["kind"].as_str().unwrap();
+    assert!(
+        stop == "converged" || stop == "early-stop",
+        "a stopping rule fires, not --epochs: {stop}"
+    );
     assert!(!r["latent_collapsed"].as_bool().unwrap());
     for f in [
         "report.json",

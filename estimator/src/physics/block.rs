@@ -47,22 +47,46 @@ pub struct BlockOptions {
     pub start: RolloutStart,
 }
 
+/// What is known about the clips of a batch besides their frames.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Clips<'a> {
+    /// Each clip's start time since the release (s) [B], where the data gives it.
+    pub start: Option<&'a Tensor>,
+    /// Each clip's index in the data (training clips first), when the batch holds the data's
+    /// clips: a block may keep state per clip across epochs (the shooting fit's warm start).
+    pub ids: Option<&'a [usize]>,
+}
+
 /// A differentiable model of the latent's dynamics with learnable parameters.
 pub trait PhysicsBlock {
     /// Frames the rollout starts from (1 for first-order models, 2 for second-order ones).
     fn order(&self) -> i64;
-    /// Rolls the latent out over `steps` frames of `z` [B, T]; `start` [B] is each clip's start
-    /// time since the release (s) where the data gives it.
-    fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor;
+    /// Rolls the latent out over `steps` frames of `z` [B, T] of the batch `clips`.
+    fn rollout(&self, z: &Tensor, clips: Clips, steps: i64) -> Tensor;
     /// Current parameter values, in the order of the model's parameters. Values a block solves
     /// in closed form for each batch (the LED's resting latent) are solved over `latents`
     /// [B, T], the encoded validation clips, so the reported value never depends on which batch
     /// ran last.
     fn values(&self, latents: &Tensor) -> Vec<f64>;
+    /// Host-side bookkeeping between optimisation steps, called once per epoch and after a
+    /// checkpoint is restored (never inside a step): a block may read its parameters here to
+    /// choose how the coming steps compute (the oscillator's closed form).
+    fn prepare(&self) {}
     /// Blocks that read a physical quantity off the latent during training (the pendulum's
     /// angle) take the map from reference frames of known value: `latents` and `values` [R].
     /// Called before every forward pass when the block was built with `calibrated`.
     fn calibrate(&self, _latents: &Tensor, _values: &Tensor) {}
+    /// Solves parameters that gradient descent only creeps towards, on the encoded training
+    /// latents `z` [N, T] with the encoder held; called once, on the kept checkpoint. Returns
+    /// whether any changed.
+    fn refine(&self, _z: &Tensor, _clips: Clips) -> bool {
+        false
+    }
+    /// An extra term the block adds to the MSE+KL training loss, if any (the oscillator's
+    /// encoder-only forecast).
+    fn auxiliary_loss(&self, _z: &Tensor) -> Option<Tensor> {
+        None
+    }
     /// The ODE residual at the inner frames of `z` [B, T], [B, T − 2], by central differences,
     /// for `--loss residual+floor`; `None` for blocks that do not offer it.
     fn residual(&self, _z: &Tensor) -> Option<Tensor> {

@@ -2,7 +2,7 @@
 //! μ·cos α)) and free fall (h'' = g), two models that share `ConstantAccelerationBlock` and
 //! differ in what their SI answers are.
 
-use super::block::{frame_index, BlockOptions, PhysicsBlock};
+use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
 use crate::calibration::{needs_reference, Calibration, DerivedValue};
 use tch::nn;
@@ -135,10 +135,10 @@ impl PhysicsBlock for ConstantAccelerationBlock {
             2
         }
     }
-    fn rollout(&self, z: &Tensor, start: Option<&Tensor>, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, clips: Clips, steps: i64) -> Tensor {
         let k = frame_index(steps, z);
         let z0 = z.narrow(1, 0, 1);
-        match start.filter(|_| self.timed) {
+        match clips.start.filter(|_| self.timed) {
             Some(t0) => {
                 let frames_since_release = (t0 / self.dt).unsqueeze(1);
                 &z0 + &self.per_frame * (frames_since_release * &k + &k * &k * 0.5)
@@ -172,7 +172,14 @@ mod tests {
             .collect();
         let z = Tensor::from_slice(&z).view([2, 6]);
         let t0 = Tensor::from_slice(&[0.1f32, 0.5]);
-        let err = (b.rollout(&z, Some(&t0), 6) - &z)
+        let err = (b.rollout(
+            &z,
+            Clips {
+                start: Some(&t0),
+                ids: None,
+            },
+            6,
+        ) - &z)
             .abs()
             .max()
             .double_value(&[]);
@@ -181,13 +188,20 @@ mod tests {
         // timed one cannot.
         let bent = z.sqrt();
         let flat = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, false);
-        let err = (flat.rollout(&bent, None, 6) - &bent)
+        let err = (flat.rollout(&bent, Clips::default(), 6) - &bent)
             .abs()
             .max()
             .double_value(&[]);
         assert!(err < 1e-6, "{err}");
         let timed_zero = ConstantAccelerationBlock::new(&vs.root(), &[0.0], dt, true);
-        let err = (timed_zero.rollout(&bent, Some(&t0), 6) - &bent)
+        let err = (timed_zero.rollout(
+            &bent,
+            Clips {
+                start: Some(&t0),
+                ids: None,
+            },
+            6,
+        ) - &bent)
             .abs()
             .max()
             .double_value(&[]);

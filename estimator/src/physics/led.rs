@@ -1,6 +1,6 @@
 //! The LED I' = −γ·I (Delfys75): the model and its exact first-order block.
 
-use super::block::{frame_index, BlockOptions, Integrator, PhysicsBlock};
+use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
 use crate::calibration::{Calibration, DerivedValue};
 use crate::encoder::EncoderKind;
@@ -19,7 +19,7 @@ const INFO: ModelInfo = ModelInfo {
         "I' = −γ·I (gamma, offset)",
         &[
             ParamSpec::new("gamma", 1.0, true),
-            ParamSpec::new("offset", -2.0, false),
+            ParamSpec::offset("offset", -2.0),
         ],
         (20, 1.0 / 60.0),
     )
@@ -92,7 +92,7 @@ impl PhysicsBlock for ExponentialDecayBlock {
     fn order(&self) -> i64 {
         1
     }
-    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _clips: Clips, steps: i64) -> Tensor {
         let decay = self.decay(z, steps);
         let offset = Self::offset(z, &decay, steps);
         let z0 = z.narrow(1, 0, 1);

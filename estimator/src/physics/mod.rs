@@ -7,13 +7,14 @@ pub mod block;
 pub mod constant_acceleration;
 pub mod led;
 pub mod model;
+pub mod ode;
 pub mod oscillator;
 pub mod pendulum;
 pub mod torricelli;
 mod two_step;
 
-pub use block::{BlockOptions, Integrator, PhysicsBlock, RolloutStart};
-pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec};
+pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
+pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec, Settles};
 
 /// Every model, in the order `--help` lists them.
 pub static MODELS: &[&dyn Model] = &[

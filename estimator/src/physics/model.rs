@@ -4,6 +4,7 @@
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
 use crate::calibration::{Calibration, DerivedValue};
 use crate::encoder::EncoderKind;
+use crate::peaks::PeakDecay;
 use tch::{nn, Tensor};
 
 /// One learnable parameter of a block.
@@ -14,6 +15,21 @@ pub struct ParamSpec {
     pub start: f64,
     /// Learned as a logarithm, so it stays > 0 and must start > 0.
     pub positive: bool,
+    /// How the early stop judges that it has converged.
+    pub settles: Settles,
+}
+
+/// How a parameter's convergence is judged (see `train::Trainer`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Settles {
+    /// Relative to its own value.
+    Relative,
+    /// An offset in latent units, often near 0: against the latent's spread (1, which the KL
+    /// term holds).
+    LatentOffset,
+    /// Not judged: a map from latent to physical units refitted from reference frames at every
+    /// step, which moves with the encoder while the physical parameters hold the answer.
+    Map,
 }
 
 impl ParamSpec {
@@ -23,6 +39,23 @@ impl ParamSpec {
             name,
             start,
             positive,
+            settles: Settles::Relative,
+        }
+    }
+
+    /// An offset in latent units (see [`Settles::LatentOffset`]).
+    pub const fn offset(name: &'static str, start: f64) -> ParamSpec {
+        ParamSpec {
+            settles: Settles::LatentOffset,
+            ..ParamSpec::new(name, start, false)
+        }
+    }
+
+    /// A parameter of the latent-to-physical map (see [`Settles::Map`]).
+    pub const fn map(name: &'static str, start: f64, positive: bool) -> ParamSpec {
+        ParamSpec {
+            settles: Settles::Map,
+            ..ParamSpec::new(name, start, positive)
         }
     }
 }
@@ -97,6 +130,17 @@ pub trait Model: Sync {
     /// The reported values from the block's parameters and the calibration (the latent at the
     /// reference frames, in order).
     fn derive(&self, params: &[f64], cal: &Calibration, reference_latents: &[f64]) -> Derived;
+    /// Frames of the first stage of a horizon curriculum when starting from `init` at `dt`, if
+    /// the model wants one: over many swings the loss has a minimum per basin of phase, so
+    /// training starts on the clips' first frames and doubles the horizon (`train::Trainer`).
+    fn first_horizon(&self, _init: &[f64], _dt: f64) -> Option<usize> {
+        None
+    }
+    /// A classical measurement of one of the answers on a recording's encoded latent
+    /// (`latents`, one per recording frame, `dt` apart), to check the learned value against.
+    fn cross_check(&self, _params: &[f64], _latents: &[f64], _dt: f64) -> Option<PeakDecay> {
+        None
+    }
     /// Warnings about the data: `timed` says whether the clips' start times are known.
     fn data_warnings(&self, _timed: bool) -> Vec<String> {
         Vec::new()

@@ -7,12 +7,14 @@
 //! state that best fits the whole clip: a velocity from two encoded frames multiplies encoder
 //! errors about five-fold over a period, and the fit buys them down with too much damping.
 
-use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::ode::{ObservationMap, OdeSystem, ShootingBlock};
 use crate::calibration::{Calibration, DerivedValue};
+use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
 use tch::nn;
-use tch::{Kind, Tensor};
+use tch::Tensor;
 
 /// The pendulum of Delfys75 (appendix A.6).
 pub struct Pendulum;
@@ -25,9 +27,9 @@ const INFO: ModelInfo = ModelInfo {
         "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",
         &[
             ParamSpec::new("g_over_l", 10.0, true),
-            ParamSpec::new("damping", 0.1, false),
-            ParamSpec::new("angle_scale", 10.0, true),
-            ParamSpec::new("angle_offset", 0.0, false),
+            ParamSpec::new("damping", 0.1, true),
+            ParamSpec::map("angle_scale", 10.0, true),
+            ParamSpec::map("angle_offset", 0.0, false),
         ],
         (20, 0.1),
     )
@@ -54,11 +56,21 @@ impl Model for Pendulum {
         let Some(g) = spectral_start(train, dt, integrator) else {
             return Vec::new();
         };
-        let damping = g[1].max(0.0);
+        let damping = g[1].max(1e-3);
         vec![
             vec![g[0], damping, init[2], init[3]],
             vec![g[0] / 4.0, damping / 2.0, init[2], init[3]],
         ]
+    }
+    /// The damping from the decay of the swing peaks (appendix A.6's procedure), around the
+    /// angle offset.
+    fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
+        peaks::cross_check("damping", params[1], latents, dt, params[3])
+    }
+    /// One and a half swings at the start's g/L, at least four frames.
+    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        let frames_per_swing = std::f64::consts::TAU / (init[0].sqrt() * dt);
+        Some((1.5 * frames_per_swing).ceil().max(4.0) as usize)
     }
     fn derive(&self, params: &[f64], cal: &Calibration, _reference: &[f64]) -> Derived {
         let mut warnings = Vec::new();
@@ -84,154 +96,93 @@ impl Model for Pendulum {
 
 /// Longest RK4 sub-step (s): at ω ≤ 5 rad/s its relative phase error is below 1e-4.
 const MAX_SUBSTEP: f64 = 0.05;
-const NEWTON_STEPS: usize = 3;
-const GAUSS_NEWTON_STEPS: usize = 2;
+/// Levenberg–Marquardt iterations of the final refinement of g/L and ζ.
+const REFINE_ITERATIONS: usize = 10;
+/// Most RK4 sub-steps per frame (a dt of 50 s).
+const MAX_SUBSTEPS: usize = 1000;
 
+/// θ' = ω, ω' = −(g/L)·sin θ − ζ·ω, with parameters (g/L, ζ).
+pub struct PendulumSystem;
+
+impl OdeSystem for PendulumSystem {
+    fn states(&self) -> usize {
+        2
+    }
+    fn params(&self) -> usize {
+        2
+    }
+    fn eval(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        _t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], &mut [f64])>,
+    ) {
+        let (sin, cos) = x[0].sin_cos();
+        f[0] = x[1];
+        f[1] = -p[0] * sin - p[1] * x[1];
+        if let Some((jx, jp)) = jac {
+            jx.copy_from_slice(&[0.0, 1.0, -p[0] * cos, -p[1]]);
+            jp.copy_from_slice(&[0.0, 0.0, -sin, -x[1]]);
+        }
+    }
+    /// θ0 from the first frame, ω0 from the first three (second-order one-sided difference).
+    fn guess(&self, obs: &[f64], _observed: &[usize], dt: f64) -> Vec<f64> {
+        let omega = if obs.len() >= 3 {
+            (-3.0 * obs[0] + 4.0 * obs[1] - obs[2]) / (2.0 * dt)
+        } else {
+            (obs[1] - obs[0]) / dt
+        };
+        vec![obs[0], omega]
+    }
+}
+
+/// The pendulum's block: RK4 shooting (`ode::ShootingBlock`) for the exact integrator, the
+/// paper's Euler step from the first two frames otherwise, both reading θ = (z − c)/s.
 pub struct PendulumBlock {
-    log_w2: Tensor,
-    damping: Tensor,
-    /// The angle's scale s: learned (as its logarithm's exponential) or calibrated (a buffer).
-    angle: AngleMap,
-    offset: Tensor,
+    shooting: ShootingBlock,
     integrator: Integrator,
     dt: f64,
-    substeps: usize,
 }
 
 impl PendulumBlock {
     /// `init` = [g/L, damping, angle scale s, angle offset c]; with `opts.calibrated`, s and c
     /// come from [`PhysicsBlock::calibrate`] instead of being learned.
     pub fn new(path: &nn::Path, init: &[f64], opts: BlockOptions) -> Self {
-        let BlockOptions { integrator, dt, .. } = opts;
-        let (angle, offset) = if opts.calibrated {
-            let buffer = |name: &str, v: f64| {
-                let mut t = path.zeros_no_train(name, &[]);
-                let _ = tch::no_grad(|| t.fill_(v));
-                t
-            };
-            (
-                AngleMap::Calibrated(buffer("angle_scale", init[2])),
-                buffer("angle_offset", init[3]),
-            )
-        } else {
-            (
-                AngleMap::Learned(path.var("log_angle_scale", &[], nn::Init::Const(init[2].ln()))),
-                path.var("angle_offset", &[], nn::Init::Const(init[3])),
-            )
-        };
+        let map = ObservationMap::new(&(path / "angle"), 1, init[2], init[3], opts.calibrated);
+        let substeps = ((opts.dt / MAX_SUBSTEP).ceil() as usize).clamp(1, MAX_SUBSTEPS);
+        let shooting = ShootingBlock::new(
+            path,
+            Box::new(PendulumSystem),
+            &INFO.parameters[..2],
+            &init[..2],
+            map,
+            vec![0],
+            opts.dt,
+            substeps,
+        );
         PendulumBlock {
-            log_w2: path.var("log_g_over_l", &[], nn::Init::Const(init[0].ln())),
-            damping: path.var("damping", &[], nn::Init::Const(init[1])),
-            angle,
-            offset,
-            integrator,
-            dt,
-            substeps: (dt / MAX_SUBSTEP).ceil().max(1.0) as usize,
+            shooting,
+            integrator: opts.integrator,
+            dt: opts.dt,
         }
     }
 
-    /// One frame of RK4 from (θ, ω) [B] each.
-    fn step(&self, th: &Tensor, om: &Tensor, w2: &Tensor, zeta: &Tensor) -> (Tensor, Tensor) {
-        let h = self.dt / self.substeps as f64;
-        let f = |t: &Tensor, o: &Tensor| (o.shallow_clone(), -(t.sin() * w2) - o * zeta);
-        let (mut th, mut om) = (th.shallow_clone(), om.shallow_clone());
-        for _ in 0..self.substeps {
-            let (a1, b1) = f(&th, &om);
-            let (a2, b2) = f(&(&th + &a1 * (h / 2.0)), &(&om + &b1 * (h / 2.0)));
-            let (a3, b3) = f(&(&th + &a2 * (h / 2.0)), &(&om + &b2 * (h / 2.0)));
-            let (a4, b4) = f(&(&th + &a3 * h), &(&om + &b3 * h));
-            th = &th + (a1 + a2 * 2.0 + a3 * 2.0 + a4) * (h / 6.0);
-            om = &om + (b1 + b2 * 2.0 + b3 * 2.0 + b4) * (h / 6.0);
+    /// The paper's step: θ[t+1] = θ[t] + Δ − dt·(ζ·Δ + dt·(g/L)·sin θ[t]), Δ = θ[t] − θ[t−1],
+    /// from the first two frames, [B, T] in and out.
+    fn euler(&self, theta: &Tensor, steps: i64) -> Tensor {
+        let p = self.shooting.physical();
+        let (w2, zeta) = (p.get(0), p.get(1));
+        let mut out = vec![theta.select(1, 0), theta.select(1, 1)];
+        for t in 2..steps as usize {
+            let d = &out[t - 1] - &out[t - 2];
+            let next = &out[t - 1] + &d - (&d * &zeta + out[t - 1].sin() * &w2 * self.dt) * self.dt;
+            out.push(next);
         }
-        (th, om)
-    }
-
-    /// θ at frames 0..steps from (θ0, ω0) [B]: [B, steps].
-    fn trajectory(
-        &self,
-        th0: &Tensor,
-        om0: &Tensor,
-        w2: &Tensor,
-        zeta: &Tensor,
-        steps: i64,
-    ) -> Tensor {
-        let mut out = vec![th0.shallow_clone()];
-        let (mut th, mut om) = (th0.shallow_clone(), om0.shallow_clone());
-        for _ in 1..steps {
-            (th, om) = self.step(&th, &om, w2, zeta);
-            out.push(th.shallow_clone());
-        }
+        out.truncate(steps as usize);
         Tensor::stack(&out, 1)
     }
-
-    /// The initial state (θ0, ω0) [B] whose trajectory best fits `theta` [B, T] (least squares
-    /// over every frame), and the trajectory's sensitivities to it [B, T] each, all without
-    /// autograd: Newton shooting through the first two frames, then Gauss–Newton.
-    fn fit_initial_state(&self, theta: &Tensor, w2: &Tensor, zeta: &Tensor) -> [Tensor; 4] {
-        tch::no_grad(|| {
-            let steps = theta.size()[1];
-            let (w2, zeta) = (w2.detach(), zeta.detach());
-            let theta = theta.detach();
-            let (th0, th1) = (theta.select(1, 0), theta.select(1, 1));
-            let delta = 1e-3;
-            let mut om = (&th1 - &th0) / self.dt;
-            for _ in 0..NEWTON_STEPS {
-                let (a, _) = self.step(&th0, &om, &w2, &zeta);
-                let (b, _) = self.step(&th0, &(&om + delta), &w2, &zeta);
-                let slope = ((&b - &a) / delta).clamp_min(1e-3 * self.dt);
-                om = &om - (a - &th1) / slope;
-            }
-            let mut th = th0;
-            let b = th.size()[0];
-            let (mut j0, mut j1) = (Tensor::zeros_like(&theta), Tensor::zeros_like(&theta));
-            for _ in 0..GAUSS_NEWTON_STEPS {
-                // The base trajectory and the two perturbed ones in one batch.
-                let all = self.trajectory(
-                    &Tensor::cat(&[&th, &(&th + delta), &th], 0),
-                    &Tensor::cat(&[&om, &om, &(&om + delta)], 0),
-                    &w2,
-                    &zeta,
-                    steps,
-                );
-                let base = all.narrow(0, 0, b);
-                j0 = (all.narrow(0, b, b) - &base) / delta;
-                j1 = (all.narrow(0, 2 * b, b) - &base) / delta;
-                let (d_th, d_om) = gauss_newton_step(&j0, &j1, &(base - &theta));
-                th = &th + d_th;
-                om = &om + d_om;
-            }
-            [th, om, j0, j1]
-        })
-    }
-}
-
-/// How the block reads the angle's scale.
-enum AngleMap {
-    /// log s, trained with the other parameters.
-    Learned(Tensor),
-    /// s (signed), fitted to reference frames.
-    Calibrated(Tensor),
-}
-
-impl AngleMap {
-    fn scale(&self) -> Tensor {
-        match self {
-            AngleMap::Learned(log_s) => log_s.exp(),
-            AngleMap::Calibrated(s) => s.shallow_clone(),
-        }
-    }
-}
-
-/// The Gauss–Newton step (Δθ0, Δω0) [B] that best cancels the residual r [B, T] given the
-/// trajectory's sensitivities j0 = ∂θ/∂θ0 and j1 = ∂θ/∂ω0 [B, T].
-fn gauss_newton_step(j0: &Tensor, j1: &Tensor, r: &Tensor) -> (Tensor, Tensor) {
-    let dot = |a: &Tensor, b: &Tensor| (a * b).sum_dim_intlist(1, false, Kind::Float);
-    let (a, b, c) = (dot(j0, j0), dot(j0, j1), dot(j1, j1));
-    let (g0, g1) = (dot(j0, r), dot(j1, r));
-    let det = (&a * &c - &b * &b).clamp_min(1e-12);
-    let d_th = -(&c * &g0 - &b * &g1) / &det;
-    let d_om = -(&a * &g1 - &b * &g0) / det;
-    (d_th, d_om)
 }
 
 impl PhysicsBlock for PendulumBlock {
@@ -239,67 +190,39 @@ impl PhysicsBlock for PendulumBlock {
         2
     }
 
-    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
-        let scale = self.angle.scale();
-        let w2 = self.log_w2.exp();
-        let theta = (z.narrow(1, 0, steps) - &self.offset) / &scale;
+    fn rollout(&self, z: &Tensor, clips: Clips, steps: i64) -> Tensor {
+        let theta = self
+            .shooting
+            .to_observed(&z.narrow(1, 0, steps).unsqueeze(-1));
         let out = match self.integrator {
-            Integrator::Exact => {
-                // The trajectory through the best-fitting initial state: fitted without
-                // autograd, then one differentiable Gauss–Newton step from it, taken to first
-                // order (θ + j0·Δθ0 + j1·Δω0), which carries the exact first-order gradient
-                // (implicit function theorem) for one differentiable trajectory.
-                let [th0, om0, j0, j1] = self.fit_initial_state(&theta, &w2, &self.damping);
-                let base = self.trajectory(&th0, &om0, &w2, &self.damping, steps);
-                let (d_th, d_om) = gauss_newton_step(&j0, &j1, &(&base - &theta));
-                base + j0 * d_th.unsqueeze(1) + j1 * d_om.unsqueeze(1)
-            }
-            Integrator::Euler => {
-                // The paper's step: θ[t+1] = θ[t] + Δ − dt·(ζ·Δ + dt·(g/L)·sin θ[t]), Δ = θ[t] − θ[t−1].
-                let mut out = vec![theta.select(1, 0), theta.select(1, 1)];
-                for t in 2..steps as usize {
-                    let d = &out[t - 1] - &out[t - 2];
-                    let next = &out[t - 1] + &d
-                        - (&d * &self.damping + out[t - 1].sin() * &w2 * self.dt) * self.dt;
-                    out.push(next);
-                }
-                out.truncate(steps as usize);
-                Tensor::stack(&out, 1)
-            }
+            Integrator::Exact => self.shooting.observed_rollout(&theta, clips),
+            Integrator::Euler => self.euler(&theta.squeeze_dim(-1), steps).unsqueeze(-1),
         };
-        out * scale + &self.offset
+        self.shooting.from_observed(&out).squeeze_dim(-1)
     }
 
     fn values(&self, _latents: &Tensor) -> Vec<f64> {
-        vec![
-            self.log_w2.double_value(&[]).exp(),
-            self.damping.double_value(&[]),
-            self.angle.scale().double_value(&[]),
-            self.offset.double_value(&[]),
-        ]
+        self.shooting.values()
+    }
+
+    /// g/L and ζ solved on the training latents (exact integrator only).
+    fn refine(&self, z: &Tensor, clips: Clips) -> bool {
+        self.integrator == Integrator::Exact
+            && self
+                .shooting
+                .refine(&z.unsqueeze(-1), clips, REFINE_ITERATIONS)
     }
 
     fn calibrate(&self, latents: &Tensor, values: &Tensor) {
-        let AngleMap::Calibrated(scale) = &self.angle else {
-            return;
-        };
-        // z = s·θ + c by least squares over the reference frames.
-        tch::no_grad(|| {
-            let (z, th) = (latents.detach().view([-1]), values.view([-1]));
-            let (zm, tm) = (z.mean(Kind::Float), th.mean(Kind::Float));
-            let s = ((&z - &zm) * (&th - &tm)).sum(Kind::Float)
-                / (&th - &tm).square().sum(Kind::Float).clamp_min(1e-12);
-            let s = s.sign() * s.abs().clamp_min(1e-6);
-            let c = zm - &s * tm;
-            scale.shallow_clone().copy_(&s);
-            self.offset.shallow_clone().copy_(&c);
-        });
+        self.shooting.calibrate(latents, values);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::RolloutStart;
+    use tch::Kind;
 
     #[test]
     fn rollout_matches_a_fine_reference_at_large_angles() {
@@ -310,7 +233,7 @@ mod tests {
             dt,
             timed: false,
             calibrated: false,
-            start: super::super::block::RolloutStart::Fit,
+            start: RolloutStart::Fit,
         };
         let b = PendulumBlock::new(&vs.root(), &[w2, zeta, 2.0, 0.3], opts);
         // Reference: gen's own trajectory (RK4, 64 sub-steps per frame) from a 60° release.
@@ -324,8 +247,92 @@ mod tests {
         );
         let z: Vec<f32> = truth.iter().map(|t| (2.0 * t + 0.3) as f32).collect();
         let zt = Tensor::from_slice(&z).view([1, 12]);
-        let r = b.rollout(&zt, None, 12);
+        let r = b.rollout(&zt, Clips::default(), 12);
         let err = (r - &zt).abs().max().double_value(&[]) / 2.0;
         assert!(err < 2e-3, "max angle error {err} rad");
+    }
+
+    #[test]
+    fn gradients_match_finite_differences() {
+        // Latents near (not on) a trajectory of the block's parameters, so the fit's correction
+        // is exercised too (the surrogate is the first-order derivative: exact as the residual
+        // vanishes).
+        let (dt, steps) = (0.1, 15);
+        let truth =
+            generator::scenes::pendulum::pendulum_trajectory(10.0, 0.1, 0.8, 0.3, steps, dt);
+        let z: Vec<f64> = truth
+            .iter()
+            .enumerate()
+            .map(|(k, t)| 1.5 * t + 0.2 + 1e-3 * ((k * 7 % 5) as f64 - 2.0))
+            .collect();
+        let opts = BlockOptions {
+            integrator: Integrator::Exact,
+            dt,
+            timed: false,
+            calibrated: false,
+            start: RolloutStart::Fit,
+        };
+        let loss = |init: &[f64], z: &[f64], grad: bool| {
+            let vs = nn::VarStore::new(tch::Device::Cpu);
+            let b = PendulumBlock::new(&vs.root(), init, opts);
+            let zt = Tensor::from_slice(z)
+                .to_kind(Kind::Float)
+                .view([1, steps as i64]);
+            let zt = if grad { zt.set_requires_grad(true) } else { zt };
+            let w = Tensor::from_slice(
+                &(0..steps)
+                    .map(|k| (k as f32 * 0.37).sin())
+                    .collect::<Vec<_>>(),
+            );
+            let l = (b.rollout(&zt, Clips::default(), steps as i64).squeeze() * w).sum(Kind::Float);
+            if grad {
+                l.backward();
+                let mut g: Vec<f64> = vs
+                    .variables()
+                    .into_iter()
+                    .collect::<std::collections::BTreeMap<_, _>>()
+                    .into_values()
+                    .map(|t| t.grad().double_value(&[]))
+                    .collect();
+                g.extend(
+                    Vec::<f64>::try_from(&zt.grad().to_kind(Kind::Double).view([-1])).unwrap(),
+                );
+                (l.double_value(&[]), g)
+            } else {
+                (l.double_value(&[]), Vec::new())
+            }
+        };
+        let init = [10.0, 0.1, 1.5, 0.2];
+        let (_, g) = loss(&init, &z, true);
+        // Variables sorted by name: angle.log_scale, angle.offset, log_damping, log_g_over_l.
+        let eps = 1e-3;
+        let log_moves: [(usize, usize); 4] = [(3, 0), (2, 1), (0, 2), (1, 3)];
+        for (grad_index, param) in log_moves {
+            let (mut a, mut b) = (init, init);
+            if param == 3 {
+                a[3] += eps;
+                b[3] -= eps;
+            } else {
+                a[param] *= (eps).exp();
+                b[param] *= (-eps).exp();
+            }
+            let fd = (loss(&a, &z, false).0 - loss(&b, &z, false).0) / (2.0 * eps);
+            let an = g[grad_index];
+            assert!(
+                (fd - an).abs() < 1e-2 * (1.0 + an.abs()),
+                "param {param}: fd {fd} vs {an}"
+            );
+        }
+        for k in [0usize, 6, 14] {
+            let (mut a, mut b) = (z.clone(), z.clone());
+            a[k] += eps;
+            b[k] -= eps;
+            let fd = (loss(&init, &a, false).0 - loss(&init, &b, false).0) / (2.0 * eps);
+            let an = g[4 + k];
+            assert!(
+                (fd - an).abs() < 1e-2 * (1.0 + an.abs()),
+                "latent {k}: fd {fd} vs {an}"
+            );
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! Torricelli's tank h' = −k·√h (Delfys75): the model and its exact first-order block.
 
-use super::block::{frame_index, BlockOptions, Integrator, PhysicsBlock};
+use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
 use crate::calibration::{needs_reference, Calibration, DerivedValue};
 use crate::encoder::EncoderKind;
@@ -19,7 +19,7 @@ const INFO: ModelInfo = ModelInfo {
         "h' = −k·√h (k_latent, base)",
         &[
             ParamSpec::new("k_latent", 0.1, true),
-            ParamSpec::new("base", -3.0, false),
+            ParamSpec::offset("base", -3.0),
         ],
         (20, 1.0),
     )
@@ -74,7 +74,7 @@ impl PhysicsBlock for TorricelliBlock {
     fn order(&self) -> i64 {
         1
     }
-    fn rollout(&self, z: &Tensor, _start: Option<&Tensor>, steps: i64) -> Tensor {
+    fn rollout(&self, z: &Tensor, _clips: Clips, steps: i64) -> Tensor {
         // σ: the level falls, so u = σ(z − base) must fall over each clip (on the device).
         let trend = (z.select(1, steps - 1) - z.select(1, 0)).mean(Kind::Float);
         let sigma = trend.le(0.0).to_kind(Kind::Float) * 2.0 - 1.0;

@@ -10,6 +10,7 @@ use crate::calibration::Calibration;
 use crate::config::RunConfig;
 use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
+use crate::peaks::PeakDecay;
 use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
 use ensemble::Ensemble;
 use parameters::ParameterResult;
@@ -84,6 +85,10 @@ pub struct Report {
     /// With ground truth: how well an affine map of the true latent explains the encoded one
     /// over the validation clips (the method's premise; its sign and scale are arbitrary).
     pub latent_vs_truth: Option<AffineFit>,
+    /// For a recording: a classical measurement of an answer on the encoded latent (the
+    /// pendulum's damping from its swing peaks, appendix A.6), beside the learned value.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cross_check: Option<PeakDecay>,
     pub wall_time_s: f64,
     /// `--ensemble K`: the spread of each value over K seeds (the fields above are seed
     /// --seed's).
@@ -158,7 +163,7 @@ impl Report {
                  may not have converged (raise --epochs)",
                 cfg.epochs
             )),
-            StopReason::EarlyStop { .. } => {}
+            StopReason::EarlyStop { .. } | StopReason::Converged { .. } => {}
         }
         Report {
             tool: "estimate".into(),
@@ -191,6 +196,10 @@ impl Report {
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
             latent_vs_truth: latent_fit(data, &outcome.val_latents),
+            cross_check: outcome.timeline.as_ref().and_then(|t| {
+                let latents: Vec<f64> = t.latents.iter().map(|&v| v as f64).collect();
+                model.cross_check(&outcome.parameters, &latents, t.frame_dt)
+            }),
             wall_time_s: wall.as_secs_f64(),
             ensemble: None,
             warnings,

@@ -30,6 +30,22 @@ impl Report {
                 p.name, p.estimate, p.units, truth, err
             );
         }
+        if let Some(c) = &self.cross_check {
+            s += &format!(
+                "cross-check: {} from the decay of {} swing peaks (appendix A.6): {:.4} ± {:.4} \
+                 (learned {:.4}: {})\n",
+                c.name,
+                c.peaks.len(),
+                c.estimate,
+                c.std_error,
+                c.learned,
+                if c.agrees {
+                    "within 2 standard errors"
+                } else {
+                    "outside 2 standard errors"
+                }
+            );
+        }
         s.trim_end().to_string()
     }
 
@@ -37,13 +53,13 @@ impl Report {
     pub fn metrics_csv(&self) -> String {
         let names: Vec<&str> = self.block_parameters.iter().map(String::as_str).collect();
         let mut s = format!(
-            "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s\n",
+            "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s,frames\n",
             names.join(",")
         );
         for r in &self.history {
             let params: Vec<String> = r.parameters.iter().map(|v| format!("{v}")).collect();
             s += &format!(
-                "{},{},{},{},{},{},{},{},{},{:.4}\n",
+                "{},{},{},{},{},{},{},{},{},{:.4},{}\n",
                 r.epoch,
                 r.train_loss,
                 r.val_loss,
@@ -53,7 +69,8 @@ impl Report {
                 params.join(","),
                 r.lr,
                 r.lr_phys,
-                r.elapsed_s
+                r.elapsed_s,
+                r.frames
             );
         }
         s

@@ -41,8 +41,13 @@ pub fn fit(
     let mut probes = Vec::new();
     let mut chosen: Option<(usize, Trainer)> = None;
     let start = Instant::now();
+    // One curriculum for every start, so that their probe scores compare.
+    let horizon = starts
+        .iter()
+        .filter_map(|s| cfg.model.first_horizon(s, data.dt))
+        .min();
     for (i, init) in starts.iter().enumerate() {
-        let mut t = Trainer::new(cfg, data, device, init, start)?;
+        let mut t = Trainer::new(cfg, data, device, init, horizon, start)?;
         if starts.len() > 1 {
             while t.stop.is_none() && t.history.len() < PROBE_EPOCHS {
                 t.epoch(&mut |_| {});

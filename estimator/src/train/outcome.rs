@@ -23,6 +23,9 @@ pub struct EpochRecord {
     pub lr_phys: f64,
     /// Seconds since training started (the first start's probe included).
     pub elapsed_s: f64,
+    /// Frames per clip the epoch trained on (fewer than the clip's while a horizon curriculum
+    /// runs).
+    pub frames: i64,
 }
 
 /// Why training ended.
@@ -32,6 +35,11 @@ pub enum StopReason {
     /// The validation metric stopped improving for `patience` epochs.
     EarlyStop {
         patience: usize,
+    },
+    /// Every parameter stayed within a relative band of `spread` for `window` epochs.
+    Converged {
+        window: usize,
+        spread: f64,
     },
     MaxEpochs,
     /// The loss became NaN or infinite; the parameters are those of the best epoch before it.

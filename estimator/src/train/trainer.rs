@@ -7,8 +7,9 @@ use super::outcome::{EpochRecord, StopReason, TrainOutcome};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
-use crate::loss::loss;
+use crate::loss::{loss, LossKind};
 use crate::network::{to_rows, Network};
+use crate::physics::{Clips, Settles};
 use crate::timeline::timeline;
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
@@ -16,6 +17,11 @@ use tch::{Device, Kind, Tensor};
 
 /// Relative improvement the validation metric must make to count as better.
 const MIN_IMPROVEMENT: f64 = 1e-3;
+
+/// The parameters have converged when each stayed within this fraction of its value (offsets:
+/// of the latent's spread; maps refitted from references are not judged) over a window of half
+/// the patience, and the run is at least two windows long.
+pub const CONVERGED_SPREAD: f64 = 4e-3;
 
 /// A network in training with its optimisers, schedule and history: one start of
 /// [`super::fit`].
@@ -34,17 +40,27 @@ pub struct Trainer<'a> {
     since_best: usize,
     pub stop: Option<StopReason>,
     start: Instant,
+    /// Frames per clip trained on (the horizon curriculum: see [`Trainer::advance`]).
+    horizon: i64,
+    /// The first epoch at the current horizon.
+    stage_start: usize,
 }
 
+/// A curriculum stage whose validation error falls below this has fitted its horizon.
+const STAGE_FITTED: f64 = 1e-2;
+
 impl<'a> Trainer<'a> {
-    /// Builds the network with weights seeded by `cfg.seed` and physics parameters at `init`.
+    /// Builds the network with weights seeded by `cfg.seed` and physics parameters at `init`;
+    /// training starts on the clips' first `horizon` frames (all when `None`).
     pub fn new(
         cfg: &'a RunConfig,
         data: &'a ClipData,
         device: Device,
         init: &[f64],
+        horizon: Option<usize>,
         start: Instant,
     ) -> Result<Trainer<'a>, EstimateError> {
+        let full = data.frames_per_clip;
         let network = Network::new(cfg, data, device, init);
         let (enc_vs, phys_vs) = network.stores();
         let opt_enc = nn::Adam::default().build(enc_vs, cfg.lr)?;
@@ -64,6 +80,8 @@ impl<'a> Trainer<'a> {
             since_best: 0,
             stop: None,
             start,
+            horizon: horizon.map_or(full, |h| (h as i64).clamp(3, full)),
+            stage_start: 1,
         })
     }
 
@@ -79,36 +97,65 @@ impl<'a> Trainer<'a> {
     /// Runs one epoch (training, validation, checkpoint, schedule); sets `stop` when done.
     pub fn epoch(&mut self, on_epoch: &mut dyn FnMut(&EpochRecord)) {
         let (cfg, data, network) = (self.cfg, self.data, &self.network);
+        network.prepare();
         let epoch = self.history.len() + 1;
-        let steps = data.frames_per_clip;
+        let steps = self.horizon;
+        let first = |x: Tensor| {
+            if steps < x.size()[1] {
+                x.narrow(1, 0, steps)
+            } else {
+                x
+            }
+        };
         let n_train = data.n_train();
         let batch = (cfg.batch_size as i64).min(n_train);
-        let perm = Tensor::randperm(n_train, (Kind::Int64, Device::Cpu)).to_device(self.device);
-        let mut total = 0.0;
+        let perm = Tensor::randperm(n_train, (Kind::Int64, Device::Cpu));
+        let order: Vec<usize> = Vec::<i64>::try_from(&perm)
+            .expect("an index tensor")
+            .into_iter()
+            .map(|i| i as usize)
+            .collect();
+        let perm = perm.to_device(self.device);
+        // The losses stay on the device; one read per epoch (a NaN step spoils the parameters,
+        // and the epoch's check then restores the last good checkpoint).
+        let mut total = Tensor::zeros([], (Kind::Double, self.device));
         let mut batches = 0usize;
-        let mut finite = true;
         for s in (0..n_train).step_by(batch as usize) {
-            let idx = perm.narrow(0, s, batch.min(n_train - s));
-            let x = data.train.index_select(0, &idx);
+            let len = batch.min(n_train - s);
+            let idx = perm.narrow(0, s, len);
+            let x = first(data.train.index_select(0, &idx));
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
-            let (z, z_hat) = network.forward(&x, start.as_ref(), steps);
+            let ids = &order[s as usize..(s + len) as usize];
+            let clips = Clips {
+                start: start.as_ref(),
+                ids: Some(ids),
+            };
+            let (z, z_hat) = network.forward(&x, clips, steps);
             let residual = network.residual(cfg.loss, &z);
-            let (l, _) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
+            let (mut l, _) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
+            if cfg.loss == LossKind::MseKl {
+                if let Some(extra) = network.auxiliary_loss(&z) {
+                    l += extra;
+                }
+            }
             self.opt_enc.zero_grad();
             self.opt_phys.zero_grad();
             l.backward();
-            let lv = l.double_value(&[]);
-            if !lv.is_finite() {
-                finite = false;
-                break;
-            }
             self.opt_enc.step();
             self.opt_phys.step();
-            total += lv;
+            total += l.detach().to_kind(Kind::Double);
             batches += 1;
         }
+        let total = total.double_value(&[]);
+        let finite = total.is_finite();
+        let val_ids: Vec<usize> = (n_train as usize..data.shape[0]).collect();
         let (val_loss, val_mse, latent_std, parameters) = tch::no_grad(|| {
-            let (z, z_hat) = network.forward(&data.val, data.val_start.as_ref(), steps);
+            let val = first(data.val.shallow_clone());
+            let clips = Clips {
+                start: data.val_start.as_ref(),
+                ids: Some(&val_ids),
+            };
+            let (z, z_hat) = network.forward(&val, clips, steps);
             let residual = network.residual(cfg.loss, &z);
             let (l, mse) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
             (
@@ -134,6 +181,7 @@ impl<'a> Trainer<'a> {
             lr: self.lr,
             lr_phys: self.lr_phys,
             elapsed_s: self.start.elapsed().as_secs_f64(),
+            frames: steps,
         };
         on_epoch(&rec);
         self.history.push(rec);
@@ -142,6 +190,50 @@ impl<'a> Trainer<'a> {
             self.since_best = 0;
         } else {
             self.since_best += 1;
+        }
+        if self.horizon < data.frames_per_clip {
+            self.advance(epoch);
+        } else {
+            self.schedule(epoch);
+        }
+    }
+
+    /// The block's refinement (see `PhysicsBlock::refine`) on the training clips encoded by
+    /// the kept encoder.
+    fn refine(&self) {
+        let data = self.data;
+        let z = tch::no_grad(|| self.network.encoder.encode(&data.train));
+        let ids: Vec<usize> = (0..data.n_train() as usize).collect();
+        let clips = Clips {
+            start: data.train_start.as_ref(),
+            ids: Some(&ids),
+        };
+        if self.network.refine(&z, clips) {
+            self.network.prepare();
+        }
+    }
+
+    /// A curriculum stage ends when its horizon is fitted (validation error below
+    /// [`STAGE_FITTED`], no better for two epochs) or stalled (a third of the patience without
+    /// a better epoch); the next trains on twice the frames, its checkpoints judged afresh.
+    fn advance(&mut self, epoch: usize) {
+        let stalled = self.since_best >= (self.cfg.patience / 3).max(2);
+        let fitted = self.best.0 < STAGE_FITTED && self.since_best >= 2;
+        if stalled || fitted {
+            self.horizon = (2 * self.horizon).min(self.data.frames_per_clip);
+            self.best = (f64::INFINITY, 0, self.network.snapshot());
+            self.since_best = 0;
+            self.stage_start = epoch + 1;
+        }
+        if epoch >= self.cfg.epochs {
+            self.stop = Some(StopReason::MaxEpochs);
+        }
+    }
+
+    /// At the full horizon: learning-rate halving, the early stop and the convergence stop.
+    fn schedule(&mut self, epoch: usize) {
+        let cfg = self.cfg;
+        if self.since_best > 0 {
             let patience = cfg.patience;
             if self.since_best >= patience {
                 self.stop = Some(StopReason::EarlyStop { patience });
@@ -154,9 +246,46 @@ impl<'a> Trainer<'a> {
                 self.opt_phys.set_lr(self.lr_phys);
             }
         }
-        if epoch >= cfg.epochs {
+        if let Some(window) = self.converged() {
+            self.stop = Some(StopReason::Converged {
+                window,
+                spread: CONVERGED_SPREAD,
+            });
+        } else if epoch >= cfg.epochs {
             self.stop = Some(StopReason::MaxEpochs);
         }
+    }
+
+    /// The window over which every parameter has stayed within [`CONVERGED_SPREAD`] of its
+    /// mean, if it has: the answer is known, and more epochs would only polish the last digits
+    /// (the kept checkpoint is still the best validation epoch).
+    fn converged(&self) -> Option<usize> {
+        let w = (self.cfg.patience / 2).max(5);
+        let n = self.history.len();
+        if n + 1 < self.stage_start + 2 * w {
+            return None;
+        }
+        let window = &self.history[n - w..];
+        let params = window[0].parameters.len();
+        let specs = self.cfg.model.parameters();
+        let settles = |i: usize| specs.get(i).map_or(Settles::Relative, |s| s.settles);
+        (0..params)
+            .filter(|&i| settles(i) != Settles::Map)
+            .all(|i| {
+                let v = window.iter().map(|r| r.parameters[i]);
+                let (lo, hi) = v
+                    .clone()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                        (a.min(x), b.max(x))
+                    });
+                let mean = v.sum::<f64>() / w as f64;
+                let scale = match settles(i) {
+                    Settles::LatentOffset => mean.abs().max(1.0),
+                    _ => mean.abs(),
+                };
+                hi - lo <= CONVERGED_SPREAD * scale
+            })
+            .then_some(w)
     }
 
     /// Restores the best epoch's state (the starting state if no epoch was finite: never NaN)
@@ -164,11 +293,17 @@ impl<'a> Trainer<'a> {
     pub fn finish(self) -> TrainOutcome {
         let network = &self.network;
         network.restore(&self.best.2);
+        self.refine();
         let data = self.data;
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {
             let k = data.n_val().min(4);
-            let (z, z_hat) = network.forward(&data.val, data.val_start.as_ref(), steps);
+            let val_ids: Vec<usize> = (data.n_train() as usize..data.shape[0]).collect();
+            let clips = Clips {
+                start: data.val_start.as_ref(),
+                ids: Some(&val_ids),
+            };
+            let (z, z_hat) = network.forward(&data.val, clips, steps);
             (
                 to_rows(&z.narrow(0, 0, k)),
                 to_rows(&z_hat.narrow(0, 0, k)),
@@ -185,7 +320,12 @@ impl<'a> Trainer<'a> {
                 .map(|&(clip, frame, _)| {
                     let (x, i) = data.clip(clip);
                     let start = data.clip_start(clip);
-                    let (z, z_hat) = network.forward(&x.narrow(0, i, 1), start.as_ref(), steps);
+                    let ids = [clip];
+                    let clips = Clips {
+                        start: start.as_ref(),
+                        ids: Some(&ids),
+                    };
+                    let (z, z_hat) = network.forward(&x.narrow(0, i, 1), clips, steps);
                     // The physics rollout at the frame, shifted by the clip's mean residual:
                     // the latent there as the whole clip sees it, not one frame's encoding.
                     let shift = (&z - &z_hat).mean(Kind::Float);

@@ -2,7 +2,9 @@
 //! would make them, and readers for report.json. Each test file uses part of it.
 #![allow(dead_code)]
 
-pub use physvid_testkit::{stderr, TestCommand};
+#[allow(unused_imports)]
+pub use physvid_testkit::stderr;
+pub use physvid_testkit::TestCommand;
 use std::path::{Path, PathBuf};
 
 /// `estimate` invocations.

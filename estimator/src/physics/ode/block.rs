@@ -1,0 +1,243 @@
+//! `ShootingBlock`: a `PhysicsBlock` for any `OdeSystem`. Each clip's latent is read through the
+//! observation map as observed state values, the clip's initial state is fitted on the host
+//! (`shooting.rs`, in parallel over clips), and the rollout handed back to autograd is the
+//! first-order surrogate
+//!
+//! ŷ = ȳ + Jp·(p − p̄) − Jx·(JxᵀJx)⁻¹·Jxᵀ·(ȳ + Jp·(p − p̄) − θ),
+//!
+//! whose value is the fitted trajectory ȳ (the correction vanishes at the least-squares
+//! optimum) and whose gradients are those of the trajectory through the best initial state:
+//! the projection onto the tangent space for the latents θ, (I − P)·Jp for the parameters (the
+//! implicit function theorem, to first order). One batch costs a few tensor operations.
+
+use super::map::ObservationMap;
+use super::rk4::Span;
+use super::shooting::{fit_clip, ClipFit, POOR_FIT};
+use super::OdeSystem;
+use crate::physics::Clips;
+use crate::physics::ParamSpec;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use tch::nn;
+use tch::{Device, Kind, Tensor};
+
+/// A tensor's values on the host, flattened.
+pub(super) fn host(x: &Tensor) -> Vec<f64> {
+    Vec::<f64>::try_from(
+        &x.detach()
+            .to_device(Device::Cpu)
+            .to_kind(Kind::Double)
+            .contiguous()
+            .view([-1]),
+    )
+    .expect("a float tensor")
+}
+
+/// The misfit of a clip of `rows` values above which its fit is retried (see [`POOR_FIT`]),
+/// from the variance of all values of the batch `target`.
+pub(super) fn poor_cost(target: &[f64], rows: usize) -> f64 {
+    let n = target.len().max(1) as f64;
+    let mean = target.iter().sum::<f64>() / n;
+    let variance = target.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
+    POOR_FIT * variance * rows as f64
+}
+
+/// An `OdeSystem` rolled out by shooting from each clip's least-squares initial state.
+pub struct ShootingBlock {
+    pub(super) system: Box<dyn OdeSystem>,
+    /// Learnable parameters, as logarithms where positive.
+    pub(super) raw: Vec<Tensor>,
+    pub(super) positive: Vec<bool>,
+    pub map: ObservationMap,
+    /// The state components the latent coordinates observe.
+    pub(super) observed: Vec<usize>,
+    pub(super) dt: f64,
+    pub(super) substeps: usize,
+    /// Each clip's last fitted initial state, by clip index: the next fit's warm start.
+    pub(super) warm: RefCell<HashMap<usize, Vec<f64>>>,
+}
+
+impl ShootingBlock {
+    /// Registers `specs.len()` parameters (starting at `init`) under `path`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        path: &nn::Path,
+        system: Box<dyn OdeSystem>,
+        specs: &[ParamSpec],
+        init: &[f64],
+        map: ObservationMap,
+        observed: Vec<usize>,
+        dt: f64,
+        substeps: usize,
+    ) -> ShootingBlock {
+        let raw = specs
+            .iter()
+            .zip(init)
+            .map(|(s, &v)| {
+                let (name, v) = if s.positive {
+                    (format!("log_{}", s.name), v.ln())
+                } else {
+                    (s.name.to_string(), v)
+                };
+                path.var(&name, &[], nn::Init::Const(v))
+            })
+            .collect();
+        ShootingBlock {
+            system,
+            raw,
+            positive: specs.iter().map(|s| s.positive).collect(),
+            map,
+            observed,
+            dt,
+            substeps: substeps.max(1),
+            warm: RefCell::new(HashMap::new()),
+        }
+    }
+
+    /// The physical parameters p [m] (exponentials of the logarithms), differentiable.
+    pub fn physical(&self) -> Tensor {
+        let p: Vec<Tensor> = self
+            .raw
+            .iter()
+            .zip(&self.positive)
+            .map(|(r, &pos)| if pos { r.exp() } else { r.shallow_clone() })
+            .collect();
+        Tensor::stack(&p, 0)
+    }
+
+    /// Latents [B, T, D] in observed-state units: (z − c)/s.
+    pub fn to_observed(&self, z: &Tensor) -> Tensor {
+        match self.map.scale_offset() {
+            None => z.shallow_clone(),
+            Some((s, c)) => (z - c) / s,
+        }
+    }
+
+    /// Observed-state values [B, T, D] in latent units: s·y + c.
+    pub fn from_observed(&self, y: &Tensor) -> Tensor {
+        match self.map.scale_offset() {
+            None => y.shallow_clone(),
+            Some((s, c)) => y * s + c,
+        }
+    }
+
+    /// The surrogate rollout in observed-state units of `theta` [B, T, D] of the batch `clips`
+    /// (their first times, 0 when unknown).
+    pub fn observed_rollout(&self, theta: &Tensor, clips: Clips) -> Tensor {
+        let (b, t, d) = theta.size3().expect("[B, T, D]");
+        let (n, m) = (self.system.states() as i64, self.system.params() as i64);
+        let target = host(theta);
+        let p = self.physical();
+        let p_host = host(&p);
+        let fits = self.fit_batch(
+            &target,
+            &p_host,
+            clips,
+            b as usize,
+            t as usize,
+            (t * d) as usize,
+        );
+        let device = theta.device();
+        let gather = |part: fn(&ClipFit) -> &[f64], shape: &[i64]| {
+            let flat: Vec<f32> = fits
+                .iter()
+                .flat_map(|f| part(f).iter().map(|&v| v as f32))
+                .collect();
+            Tensor::from_slice(&flat).view(shape).to_device(device)
+        };
+        let y = gather(|f| &f.y, &[b, t * d]);
+        let jx = gather(|f| &f.jx, &[b, t * d, n]);
+        let jp = gather(|f| &f.jp, &[b, t * d, m]);
+        let ainv = gather(|f| &f.ainv, &[b, n, n]);
+        let dp = (&p - p.detach()).view([m, 1]);
+        let base = y + jp.matmul(&dp).squeeze_dim(-1);
+        let res = (&base - theta.reshape([b, t * d])).unsqueeze(-1);
+        let correction = jx.bmm(&ainv.bmm(&jx.transpose(1, 2).bmm(&res)));
+        (base - correction.squeeze_dim(-1)).view([b, t, d])
+    }
+
+    /// The fits of `b` clips of `frames` frames (`rows` values each) of `target` with
+    /// parameters `p`, warm-started from (and updating) the clips' last fits where the batch
+    /// names its clips. One clip after another: libtorch's OpenMP workers spin between
+    /// operations, and fits spread over threads would compete with them for the cores
+    /// (measured slower).
+    pub(super) fn fit_batch(
+        &self,
+        target: &[f64],
+        p: &[f64],
+        clips: Clips,
+        b: usize,
+        frames: usize,
+        rows: usize,
+    ) -> Vec<ClipFit> {
+        let poor = poor_cost(target, rows);
+        let t0 = clips.start.map(host).unwrap_or_else(|| vec![0.0; b]);
+        let mut warm = self.warm.borrow_mut();
+        (0..b)
+            .map(|i| {
+                let span = Span {
+                    t0: t0[i],
+                    dt: self.dt,
+                    frames,
+                    substeps: self.substeps,
+                };
+                let id = clips.ids.map(|ids| ids[i]);
+                let start = id.and_then(|id| warm.get(&id)).map(Vec::as_slice);
+                let clip = &target[i * rows..(i + 1) * rows];
+                let fit = fit_clip(
+                    self.system.as_ref(),
+                    p,
+                    clip,
+                    span,
+                    &self.observed,
+                    poor,
+                    start,
+                );
+                if let Some(id) = id {
+                    warm.insert(id, fit.x0.clone());
+                }
+                fit
+            })
+            .collect()
+    }
+
+    /// Parameter values: the physical parameters, then s and c per latent coordinate (none
+    /// for the identity map).
+    pub fn values(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = Vec::<f64>::try_from(
+            &self
+                .physical()
+                .detach()
+                .to_device(Device::Cpu)
+                .to_kind(Kind::Double),
+        )
+        .expect("a float tensor");
+        if let Some((s, c)) = self.map.scale_offset() {
+            for t in [s, c] {
+                v.extend(
+                    Vec::<f64>::try_from(&t.detach().to_device(Device::Cpu).to_kind(Kind::Double))
+                        .expect("a float tensor"),
+                );
+            }
+        }
+        v
+    }
+
+    /// Fits s and c of a calibrated map (one latent coordinate) to reference frames: latents
+    /// and known values [R], z = s·x + c by least squares.
+    pub fn calibrate(&self, latents: &Tensor, values: &Tensor) {
+        let ObservationMap::Calibrated { scale, offset } = &self.map else {
+            return;
+        };
+        tch::no_grad(|| {
+            let (z, th) = (latents.detach().view([-1]), values.view([-1]));
+            let (zm, tm) = (z.mean(Kind::Float), th.mean(Kind::Float));
+            let s = ((&z - &zm) * (&th - &tm)).sum(Kind::Float)
+                / (&th - &tm).square().sum(Kind::Float).clamp_min(1e-12);
+            let s = s.sign() * s.abs().clamp_min(1e-6);
+            let c = zm - &s * tm;
+            scale.shallow_clone().copy_(&s.view([1]));
+            offset.shallow_clone().copy_(&c.view([1]));
+        });
+    }
+}

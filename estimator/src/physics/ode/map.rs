@@ -1,0 +1,50 @@
+//! `ObservationMap`: how a shooting block's latent reads the observed state, latent = s·x + c per
+//! coordinate, with s and c fixed, learned, or fitted to reference frames.
+
+use tch::nn;
+use tch::Tensor;
+
+/// How the latent reads the observed state: latent = s·x + c per observed coordinate.
+pub enum ObservationMap {
+    /// s = 1, c = 0: the law itself does not care (a similarity-invariant system).
+    Identity,
+    /// log s and c learned with the other parameters.
+    Learned { log_scale: Tensor, offset: Tensor },
+    /// s and c fitted to reference frames of known value before every step (no gradient).
+    Calibrated { scale: Tensor, offset: Tensor },
+}
+
+impl ObservationMap {
+    /// The map of `d` latent coordinates under `path`, starting at scale `s` and offset `c`.
+    pub fn new(path: &nn::Path, d: i64, s: f64, c: f64, calibrated: bool) -> ObservationMap {
+        if calibrated {
+            let buffer = |name: &str, v: f64| {
+                let mut t = path.zeros_no_train(name, &[d]);
+                let _ = tch::no_grad(|| t.fill_(v));
+                t
+            };
+            ObservationMap::Calibrated {
+                scale: buffer("scale", s),
+                offset: buffer("offset", c),
+            }
+        } else {
+            ObservationMap::Learned {
+                log_scale: path.var("log_scale", &[d], nn::Init::Const(s.ln())),
+                offset: path.var("offset", &[d], nn::Init::Const(c)),
+            }
+        }
+    }
+
+    /// (s, c) as tensors [D], or `None` for the identity.
+    pub(super) fn scale_offset(&self) -> Option<(Tensor, Tensor)> {
+        match self {
+            ObservationMap::Identity => None,
+            ObservationMap::Learned { log_scale, offset } => {
+                Some((log_scale.exp(), offset.shallow_clone()))
+            }
+            ObservationMap::Calibrated { scale, offset } => {
+                Some((scale.shallow_clone(), offset.shallow_clone()))
+            }
+        }
+    }
+}

@@ -1,0 +1,37 @@
+//! The machinery every RK4-integrated model shares (the pendulum, the spring, models from a
+//! file): an `OdeSystem` (dx/dt = f(x, p, t) with its Jacobians) is integrated in plain Rust
+//! on f64 together with its exact sensitivities (`rk4.rs`), each clip's initial state is
+//! fitted to the encoded latents by Levenberg–Marquardt (`shooting.rs`), and `ShootingBlock`
+//! (`block.rs`) hands the result back to autograd as a first-order surrogate: a few tensor
+//! operations whose value is the fitted trajectory and whose gradients are its sensitivities.
+//! Hundreds of tiny tensor operations per batch become one pass over f64 arrays.
+
+pub mod block;
+pub mod map;
+mod refine;
+pub mod rk4;
+pub mod shooting;
+
+pub use block::ShootingBlock;
+pub use map::ObservationMap;
+
+/// dx/dt = f(x, p, t) with learnable parameters p.
+pub trait OdeSystem: Send + Sync {
+    /// State dimension n.
+    fn states(&self) -> usize;
+    /// Parameter count m (the block's physics parameters, in their order).
+    fn params(&self) -> usize;
+    /// f(x, p, t) into `f` [n]; with `jac`, also ∂f/∂x [n×n] and ∂f/∂p [n×m], row-major.
+    fn eval(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], &mut [f64])>,
+    );
+    /// A first guess of the initial state from the observed values `obs` [frames × observed,
+    /// row-major] of state components `observed`, `dt` apart (for example a velocity from
+    /// finite differences).
+    fn guess(&self, obs: &[f64], observed: &[usize], dt: f64) -> Vec<f64>;
+}

@@ -1,0 +1,128 @@
+//! The final refinement of a shooting block's physical parameters with the encoder held:
+//! Levenberg–Marquardt by variable projection over many clips.
+
+use super::block::{host, ShootingBlock};
+use super::shooting::{solve, ClipFit};
+use crate::physics::Clips;
+use tch::Tensor;
+
+impl ShootingBlock {
+    /// Refines the physical parameters on latents `z` [N, T, D] with the encoder held (at the
+    /// end of training):
+    /// Levenberg–Marquardt on the total squared misfit of the clips' best trajectories
+    /// (variable projection: each clip's initial state is re-fitted at every trial, and the
+    /// parameters' Jacobian is projected off the initial state's, (I − P)·Jp). Positive
+    /// parameters step in their logarithm. A small damping changes a 2-s swing by a fraction of
+    /// a percent, so its gradient is weak beside the encoder's and Adam only creeps towards it;
+    /// this solves it. Returns whether the parameters changed.
+    pub fn refine(&self, z: &Tensor, clips: Clips, iterations: usize) -> bool {
+        let (n_clips, t, d) = z.size3().expect("[N, T, D]");
+        let theta = tch::no_grad(|| self.to_observed(z));
+        let target = host(&theta);
+        let rows = (t * d) as usize;
+        let (n, m) = (self.system.states(), self.system.params());
+        let fit_all =
+            |p: &[f64]| self.fit_batch(&target, p, clips, n_clips as usize, t as usize, rows);
+        let total = |fits: &[ClipFit]| fits.iter().map(|f| f.cost).sum::<f64>();
+        let mut p = host(&self.physical());
+        let mut fits = fit_all(&p);
+        let mut cost = total(&fits);
+        let mut lambda = 1e-3;
+        let mut changed = false;
+        for _ in 0..iterations {
+            if !cost.is_finite() {
+                break;
+            }
+            // Normal equations in the step variables (log p for positive parameters).
+            let (mut h, mut g) = (vec![0.0; m * m], vec![0.0; m]);
+            for (i, f) in fits.iter().enumerate() {
+                let clip = &target[i * rows..(i + 1) * rows];
+                let jr = projected_jacobian(f, n, m, &p, &self.positive);
+                for r in 0..rows {
+                    let res = f.y[r] - clip[r];
+                    for a in 0..m {
+                        g[a] += jr[r * m + a] * res;
+                        for b in 0..m {
+                            h[a * m + b] += jr[r * m + a] * jr[r * m + b];
+                        }
+                    }
+                }
+            }
+            let mut accepted = false;
+            for _ in 0..5 {
+                let mut hm = h.clone();
+                for a in 0..m {
+                    hm[a * m + a] += lambda * h[a * m + a] + 1e-12;
+                }
+                let Some(step) = solve(&hm, &g.iter().map(|v| -v).collect::<Vec<_>>(), m) else {
+                    lambda *= 8.0;
+                    continue;
+                };
+                let trial: Vec<f64> = p
+                    .iter()
+                    .zip(&step)
+                    .zip(&self.positive)
+                    .map(|((v, s), &pos)| {
+                        if pos {
+                            v * s.clamp(-0.5, 0.5).exp()
+                        } else {
+                            v + s
+                        }
+                    })
+                    .collect();
+                let trial_fits = fit_all(&trial);
+                let c = total(&trial_fits);
+                if c.is_finite() && c < cost {
+                    (p, fits, cost) = (trial, trial_fits, c);
+                    lambda = (lambda / 3.0).max(1e-9);
+                    accepted = true;
+                    changed = true;
+                    break;
+                }
+                lambda *= 8.0;
+            }
+            if !accepted {
+                break;
+            }
+        }
+        if changed {
+            tch::no_grad(|| {
+                for ((raw, &v), &pos) in self.raw.iter().zip(&p).zip(&self.positive) {
+                    let v = if pos { v.ln() } else { v };
+                    let _ = raw.shallow_clone().fill_(v);
+                }
+            });
+        }
+        changed
+    }
+}
+
+/// (I − Jx·(JxᵀJx)⁻¹·Jxᵀ)·Jp [R × m] of a clip's fit, with the columns of positive parameters
+/// scaled by their value (derivatives with respect to their logarithm).
+fn projected_jacobian(f: &ClipFit, n: usize, m: usize, p: &[f64], positive: &[bool]) -> Vec<f64> {
+    let rows = f.y.len();
+    // Jxᵀ·Jp [n × m], then ainv·(Jxᵀ·Jp).
+    let mut xtp = vec![0.0; n * m];
+    for r in 0..rows {
+        for i in 0..n {
+            for a in 0..m {
+                xtp[i * m + a] += f.jx[r * n + i] * f.jp[r * m + a];
+            }
+        }
+    }
+    let mut coef = vec![0.0; n * m];
+    for i in 0..n {
+        for a in 0..m {
+            coef[i * m + a] = (0..n).map(|j| f.ainv[i * n + j] * xtp[j * m + a]).sum();
+        }
+    }
+    let mut jr = vec![0.0; rows * m];
+    for r in 0..rows {
+        for a in 0..m {
+            let along: f64 = (0..n).map(|i| f.jx[r * n + i] * coef[i * m + a]).sum();
+            let scale = if positive[a] { p[a] } else { 1.0 };
+            jr[r * m + a] = (f.jp[r * m + a] - along) * scale;
+        }
+    }
+    jr
+}
