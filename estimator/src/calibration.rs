@@ -11,6 +11,9 @@ use physvid_shared::AffineFit;
 pub struct Calibration {
     /// (clip, frame, physical value) of reference frames.
     pub reference: Vec<(usize, usize, f64)>,
+    /// (clip, frame, body positions x1, y1, x2, y2, …) of reference frames of a vector latent.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub positions: Vec<(usize, usize, Vec<f64>)>,
     pub incline_deg: Option<f64>,
     pub g: f64,
     /// Where it came from: "flags", "meta.json" or "none".
@@ -25,6 +28,7 @@ impl Calibration {
     /// likewise (g defaults to [`DEFAULT_G`]).
     pub fn resolve(
         reference: &[(usize, usize, f64)],
+        positions: &[(usize, usize, Vec<f64>)],
         incline_deg: Option<f64>,
         g: Option<f64>,
         meta: Option<&physvid_shared::Calibration>,
@@ -37,19 +41,54 @@ impl Calibration {
                     .collect()
             })
             .unwrap_or_default();
-        let (reference, source) = if !reference.is_empty() {
-            (reference.to_vec(), "flags")
-        } else if !meta_refs.is_empty() {
-            (meta_refs, "meta.json")
+        let meta_positions: Vec<(usize, usize, Vec<f64>)> = meta
+            .map(|m| {
+                m.reference_positions
+                    .iter()
+                    .map(|p| (p.clip, p.frame, p.positions.clone()))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let (reference, positions, source) = if !reference.is_empty() || !positions.is_empty() {
+            (reference.to_vec(), positions.to_vec(), "flags")
+        } else if !meta_refs.is_empty() || !meta_positions.is_empty() {
+            (meta_refs, meta_positions, "meta.json")
         } else {
-            (Vec::new(), "none")
+            (Vec::new(), Vec::new(), "none")
         };
         Calibration {
             reference,
+            positions,
             incline_deg: incline_deg.or_else(|| meta.and_then(|m| m.incline_deg)),
             g: g.or_else(|| meta.and_then(|m| m.g)).unwrap_or(DEFAULT_G),
             source: source.into(),
         }
+    }
+
+    /// Checks the body-position references against a latent of `dims` numbers per frame: each
+    /// gives `dims` finite numbers, and one frame is not given two different sets.
+    pub fn check_positions(&self, dims: usize) -> Result<(), String> {
+        let origin = self.origin();
+        for (i, (c, f, p)) in self.positions.iter().enumerate() {
+            if p.len() != dims {
+                return Err(format!(
+                    "{origin} {c}:{f} gives {} numbers; this model's latent has {dims} per frame (x1/y1/x2/y2…)",
+                    p.len()
+                ));
+            }
+            if let Some(v) = p.iter().find(|v| !v.is_finite()) {
+                return Err(format!("{origin} {c}:{f}: {v} is not a finite position"));
+            }
+            if let Some((c2, f2, _)) = self.positions[..i]
+                .iter()
+                .find(|(c2, f2, p2)| c2 == c && f2 == f && p2 != p)
+            {
+                return Err(format!(
+                    "{origin} {c2}:{f2} is given twice with different positions"
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// How a reference point is named in messages: the flag or the file it came from.
@@ -86,6 +125,14 @@ impl Calibration {
 /// (it divides the latent-unit answers).
 fn slope(x: &[f64], y: &[f64]) -> Option<f64> {
     AffineFit::of(x, y).map(|f| f.slope).filter(|s| *s != 0.0)
+}
+
+/// The latent read through the physics at the calibration's reference frames: one number at
+/// each scalar reference, and the whole latent at each body-position reference.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Readings {
+    pub values: Vec<f64>,
+    pub positions: Vec<Vec<f64>>,
 }
 
 /// One reported value.
@@ -148,18 +195,18 @@ mod tests {
             }],
             ..Default::default()
         };
-        let c = Calibration::resolve(&[], None, None, Some(&meta));
+        let c = Calibration::resolve(&[], &[], None, None, Some(&meta));
         assert_eq!(
             (c.reference.clone(), c.g, c.source.as_str()),
             (vec![(1, 2, 0.5)], 9.7, "meta.json")
         );
         assert_eq!(c.incline_deg, Some(25.0));
-        let c = Calibration::resolve(&[(0, 0, 1.0)], Some(10.0), Some(9.8), Some(&meta));
+        let c = Calibration::resolve(&[(0, 0, 1.0)], &[], Some(10.0), Some(9.8), Some(&meta));
         assert_eq!(
             (c.reference, c.g, c.incline_deg),
             (vec![(0, 0, 1.0)], 9.8, Some(10.0))
         );
-        let c = Calibration::resolve(&[], None, None, None);
+        let c = Calibration::resolve(&[], &[], None, None, None);
         assert_eq!((c.g, c.source.as_str()), (DEFAULT_G, "none"));
     }
 }

@@ -63,18 +63,70 @@ impl RunConfig {
                 model.name()
             )));
         }
+        if m.integrator == Integrator::Euler && !model.info().has_euler {
+            return Err(input_error(format!(
+                "--integrator euler: {} has no Euler step (it is integrated by RK4); use --integrator exact",
+                model.name()
+            )));
+        }
+        let encoder = t.encoder.unwrap_or(model.encoder());
+        if !encoder.gives(model.latent_dims()) {
+            return Err(input_error(format!(
+                "--encoder {}: reads body positions, and {} has a latent of {} number(s) per frame; use --encoder small",
+                encoder.name(),
+                model.name(),
+                model.latent_dims()
+            )));
+        }
+        let [n, frames, _, height, width] = data.shape;
+        let (min_side, why) = model.info().min_frame;
+        if height.min(width) < min_side {
+            return Err(input_error(format!(
+                "{}: frames of {width}×{height} px are too small for {} ({why}); need at least {min_side}×{min_side}",
+                args.input.display(),
+                model.name()
+            )));
+        }
         let calibration = Calibration::resolve(
             m.reference_points(),
+            m.reference_positions(),
             m.incline_deg,
             m.g,
             data.meta.as_ref().map(|meta| &meta.calibration),
         );
-        let [n, frames, ..] = data.shape;
-        if let Some(&(c, f, _)) = calibration
+        calibration
+            .check_positions(model.latent_dims())
+            .map_err(input_error)?;
+        if model.latent_dims() > 1 && !calibration.reference.is_empty() {
+            return Err(input_error(format!(
+                "{}: {} needs the bodies' positions at reference frames, CLIP:FRAME=X1/Y1/X2/Y2 (pixels), not one value",
+                calibration.origin(),
+                model.name()
+            )));
+        }
+        if model.latent_dims() == 1 && !calibration.positions.is_empty() {
+            return Err(input_error(format!(
+                "{}: {} takes one value per reference frame, CLIP:FRAME=VALUE, not body positions",
+                calibration.origin(),
+                model.name()
+            )));
+        }
+        if let Some((c, f, p)) = calibration.positions.iter().find(|(_, _, p)| {
+            p.chunks(2).any(|xy| {
+                !(0.0..=width as f64).contains(&xy[0]) || !(0.0..=height as f64).contains(&xy[1])
+            })
+        }) {
+            return Err(input_error(format!(
+                "{} {c}:{f}: {p:?} lies outside the {width}×{height} frame (positions are pixels, x right, y down)",
+                calibration.origin()
+            )));
+        }
+        let frames_at = calibration
             .reference
             .iter()
-            .find(|&&(c, f, _)| c >= n || f >= frames)
-        {
+            .map(|&(c, f, _)| (c, f))
+            .chain(calibration.positions.iter().map(|(c, f, _)| (*c, *f)));
+        if let Some((c, f)) = frames_at.into_iter().find(|&(c, f)| c >= n || f >= frames) {
             return Err(input_error(format!(
                 "{} {c}:{f}: the data has clips 0..{n} and frames 0..{frames}",
                 calibration.origin()
@@ -95,7 +147,7 @@ impl RunConfig {
             rollout_start: m.rollout_start,
             single_start: t.single_start,
             loss: t.loss,
-            encoder: t.encoder.unwrap_or(model.encoder()),
+            encoder,
             seed: t.seed,
             ensemble: t.ensemble,
             device: t.device,

@@ -32,11 +32,18 @@ impl LossKind {
 }
 
 /// KL(N(μ, σ²) ‖ N(0, 1)) = ½(σ² + μ² − 1 − ln σ²), with μ and σ² the mean and (biased)
-/// variance of all latents of the batch over batch × time.
+/// variance of the batch's latents over batch × time; per coordinate, averaged, for a vector
+/// latent [B, T, D].
 pub struct KlToStandardNormal;
 
 impl KlToStandardNormal {
     pub fn of(z: &Tensor) -> Tensor {
+        if z.dim() == 3 {
+            let flat = z.reshape([-1, z.size()[2]]);
+            let mu = flat.mean_dim(0, false, Kind::Float);
+            let var = flat.var_dim(0, false, false) + 1e-8;
+            return ((&var + mu.square() - 1.0 - var.log()) * 0.5).mean(Kind::Float);
+        }
         let mu = z.mean(Kind::Float);
         let var = z.var(false) + 1e-8;
         (&var + mu.square() - 1.0 - var.log()) * 0.5
@@ -56,18 +63,20 @@ impl VarianceFloor {
     }
 }
 
-/// Loss of encoded latents `z` [B, T] against their rollout `z_hat` [B, T]; `residual` is the
+/// Loss of encoded latents `z` [B, T] against their rollout `z_hat` [B, T], the KL term on
+/// `kl_z` (the model's `kl_coordinates` of `z`); `residual` is the
 /// block's ODE residual of `z`, needed by [`LossKind::ResidualFloor`] only. Returns (total,
 /// rollout mse): the rollout MSE is the validation metric whatever the training loss.
 pub fn loss(
     kind: LossKind,
     z: &Tensor,
+    kl_z: &Tensor,
     z_hat: &Tensor,
     residual: Option<&Tensor>,
 ) -> (Tensor, Tensor) {
     let mse = z.mse_loss(z_hat, tch::Reduction::Mean);
     let total = match kind {
-        LossKind::MseKl => &mse + KlToStandardNormal::of(z),
+        LossKind::MseKl => &mse + KlToStandardNormal::of(kl_z),
         LossKind::Mse => mse.shallow_clone(),
         LossKind::ResidualFloor => {
             let r = residual.expect("the residual loss is checked to have a residual");

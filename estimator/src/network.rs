@@ -57,7 +57,14 @@ impl Network {
         tch::manual_seed(cfg.seed as i64);
         let enc_vs = nn::VarStore::new(device);
         let phys_vs = nn::VarStore::new(device);
-        let encoder = Encoder::new(&(enc_vs.root() / "encoder"), data.inputs, cfg.encoder);
+        let [_, _, c, h, w] = data.shape.map(|v| v as i64);
+        let encoder = Encoder::new(
+            &(enc_vs.root() / "encoder"),
+            (c, h, w),
+            cfg.encoder,
+            data.model.latent_dims() as i64,
+            &data.train,
+        );
         let block = data.model.build(
             &(phys_vs.root() / "physics"),
             init,
@@ -150,9 +157,14 @@ impl Network {
     }
 }
 
-/// A [B, T] tensor as rows of f32 on the host.
+/// A [B, T] (or [B, T, D]) tensor as rows of f32 on the host (T·D values each, frame-major).
 pub fn to_rows(t: &Tensor) -> Vec<Vec<f32>> {
-    let t = t.to_device(Device::Cpu).to_kind(Kind::Float).contiguous();
+    let b = t.size()[0];
+    let t = t
+        .to_device(Device::Cpu)
+        .to_kind(Kind::Float)
+        .contiguous()
+        .view([b, -1]);
     let (rows, cols) = t.size2().expect("a matrix");
     let flat = Vec::<f32>::try_from(&t.view([-1])).expect("float tensor");
     (0..rows as usize)

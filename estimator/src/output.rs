@@ -38,7 +38,12 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
     plot(
         out,
         "latents.png",
-        latents_png(report, data.dt, data.frames_per_clip),
+        latents_png(
+            report,
+            data.dt,
+            data.frames_per_clip,
+            data.model.latent_dims(),
+        ),
     )?;
     if let Some(t) = &report.outcome.timeline {
         plot(out, "timeline.png", timeline_png(t))?;

@@ -1,6 +1,7 @@
 //! PNG plots drawn with plotters, returned as bytes (`output.rs` writes them): the parameters
 //! over epochs (ground truth dashed), the encoded latent against the physics rollout for a few
-//! validation clips, and a recording's timeline. One chart set-up serves all three.
+//! validation clips (the bodies' paths in the latent plane for a vector latent), and a
+//! recording's timeline. One chart set-up serves all three.
 
 use crate::report::Report;
 use crate::timeline::Timeline;
@@ -169,7 +170,17 @@ fn trace(
 
 /// `latents.png`: encoded latent (dots) and physics rollout (line) over time for up to four
 /// validation clips.
-pub fn latents_png(report: &Report, dt: f64, frames_per_clip: i64) -> Result<Vec<u8>, String> {
+/// For a vector latent of (x, y) per body (`dims` numbers per frame), the bodies' paths in the
+/// latent plane instead.
+pub fn latents_png(
+    report: &Report,
+    dt: f64,
+    frames_per_clip: i64,
+    dims: usize,
+) -> Result<Vec<u8>, String> {
+    if dims > 1 {
+        return planar_latents_png(report, dims);
+    }
     let z = &report.outcome.example_latents;
     let r = &report.outcome.example_rollouts;
     render_png(PANEL_HEIGHT + 100, |root| {
@@ -232,5 +243,59 @@ pub fn timeline_png(t: &Timeline) -> Result<Vec<u8>, String> {
             )?;
         }
         Ok(())
+    })
+}
+
+/// The planar `latents.png`: each example clip's bodies in the latent plane, encoded (dots,
+/// the first body filled, the others hollow) and rolled out (lines).
+fn planar_latents_png(report: &Report, dims: usize) -> Result<Vec<u8>, String> {
+    let z = &report.outcome.example_latents;
+    let r = &report.outcome.example_rollouts;
+    let coord = |rows: &[Vec<f32>], axis: usize| -> Vec<f64> {
+        rows.iter()
+            .flat_map(|row| row.iter().skip(axis).step_by(2).map(|&v| v as f64))
+            .collect()
+    };
+    let (xs, ys) = (
+        [coord(z, 0), coord(r, 0)].concat(),
+        [coord(z, 1), coord(r, 1)].concat(),
+    );
+    // One scale on both axes: a similarity of the true plane stays one.
+    let (x, y) = (range(xs.into_iter()), range(ys.into_iter()));
+    let half = (x.end - x.start).max(y.end - y.start) / 2.0;
+    let (cx, cy) = ((x.start + x.end) / 2.0, (y.start + y.end) / 2.0);
+    render_png(WIDTH, |root| {
+        let caption = "bodies in the latent plane: encoded (dots) vs physics rollout (lines)";
+        let mut c = chart(
+            &root,
+            caption,
+            (cx - half..cx + half, "latent x"),
+            (cy - half..cy + half, "latent y"),
+        )?;
+        for (k, (zs, rs)) in z.iter().zip(r).enumerate() {
+            let color = Palette99::pick(k).to_rgba();
+            for body in 0..dims / 2 {
+                let path = |row: &[f32]| -> Vec<(f64, f64)> {
+                    row.chunks_exact(dims)
+                        .map(|f| (f[2 * body] as f64, f[2 * body + 1] as f64))
+                        .collect()
+                };
+                c.draw_series(LineSeries::new(path(rs), color.stroke_width(2)))
+                    .map_err(|e| e.to_string())?;
+                let style = if body == 0 {
+                    color.filled()
+                } else {
+                    color.stroke_width(2)
+                };
+                let dots = c
+                    .draw_series(path(zs).into_iter().map(|p| Circle::new(p, 4, style)))
+                    .map_err(|e| e.to_string())?;
+                if body == 0 {
+                    dots.label(format!("clip {k}"))
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+                }
+            }
+        }
+        legend(&mut c)
     })
 }

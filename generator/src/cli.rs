@@ -15,11 +15,13 @@ use std::path::PathBuf;
 /// intensity, position, scale: a damped oscillator z(t) = A·exp(−ζt)·cos(ωt + φ), γ0 = ω² + ζ²,
 /// γ1 = 2ζ; A ~ Uniform[0.5, 1), φ ~ Uniform[0, 2π). pendulum, torricelli, sliding-block, led,
 /// free-fall: the Delfys75 systems with the parameters of appendix Table 4 (--setting 1|2|3,
-/// any value changed with --set), clips starting at random points of the motion.
+/// any value changed with --set), clips starting at random points of the motion. spring: two
+/// digits joined by a spring (appendix A.5), over a cluttered backdrop, in grey or --color.
 ///
-/// Writes DIR/frames.npy (float32 [N, T, 1, H, W], values in [0, 1]), DIR/meta.json (ground
-/// truth: the model and its parameters in SI units, dt, per-sample draws, the latent of every
-/// frame, the calibration a user would measure, and for the sliding block and free fall each clip's
+/// Writes DIR/frames.npy (float32 [N, T, C, H, W], C = 1, or 3 with --color; values in
+/// [0, 1]), DIR/meta.json (ground truth: the model and its parameters in SI units, dt,
+/// per-sample draws, the latent of every frame (both bodies' pixel positions for the spring),
+/// the calibration a user would measure, and for the sliding block and free fall each clip's
 /// start time since the release) and DIR/preview.png. Draws come from seeded
 /// per-sample ChaCha8 streams, so the same flags give byte-identical files on any number of
 /// threads.
@@ -37,9 +39,8 @@ pub struct GenArgs {
     pub samples: usize,
     #[arg(long, help = clip_help("Frames per clip T (≥ 3)", |(f, _)| f.to_string()))]
     pub frames: Option<usize>,
-    /// Frame width and height in pixels (≥ 8).
-    #[arg(long, default_value_t = 50)]
-    pub size: usize,
+    #[arg(long, help = size_help())]
+    pub size: Option<usize>,
     #[arg(long, help = clip_help("Time between frames in seconds (> 0)", |(_, dt)| seconds(dt)))]
     pub dt: Option<f64>,
     /// Angular frequency ω in rad/s (> 0; ω·dt < π) of the oscillator scenes [default: 2].
@@ -63,6 +64,10 @@ pub struct GenArgs {
     /// Overwrite the dataset files in a non-empty DIR.
     #[arg(long)]
     pub force: bool,
+    /// The scene in colour (spring: PAIG's digit one in the red channel, digit two in green,
+    /// over a colour background; frames get C = 3).
+    #[arg(long)]
+    pub color: bool,
     /// Worker threads (default: all cores). Output does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -97,6 +102,17 @@ fn seconds(dt: f64) -> String {
     } else {
         format!("{dt}")
     }
+}
+
+fn size_help() -> String {
+    let each: Vec<String> = SCENES
+        .iter()
+        .map(|s| format!("{} {}", s.name(), s.default_size()))
+        .collect();
+    format!(
+        "Frame width and height in pixels (≥ 8) [default: the scene's: {}]",
+        each.join(", ")
+    )
 }
 
 fn setting_help() -> String {
@@ -186,7 +202,15 @@ impl GenArgs {
         }
         cfg.samples = self.samples;
         cfg.frames = self.frames.unwrap_or(cfg.frames);
-        cfg.size = self.size;
+        cfg.size = self.size.unwrap_or(cfg.size);
+        if self.color && scene.channels(true) == 1 {
+            return Err(invalid(
+                "--color",
+                scene.name(),
+                "the scene has no colour version (the spring has)",
+            ));
+        }
+        cfg.color = self.color;
         cfg.dt = self.dt.unwrap_or(cfg.dt);
         cfg.seed = self.seed;
         cfg.noise = self.noise;

@@ -20,6 +20,8 @@ pub struct GenConfig {
     pub seed: u64,
     pub noise: f64,
     pub force: bool,
+    /// The scene's colour version (the spring: digit one in red, digit two in green).
+    pub color: bool,
     /// The scene's parameters (SI): the oscillator's omega and zeta, or a Delfys75 system's.
     pub params: Params,
 }
@@ -34,11 +36,12 @@ impl GenConfig {
             out: out.into(),
             samples: 500,
             frames,
-            size: 50,
+            size: scene.default_size(),
             dt,
             seed: 0,
             noise: 0.0,
             force: false,
+            color: false,
             params: scene.params(1),
         }
     }
@@ -65,7 +68,8 @@ impl GenConfig {
                 "must be a finite number > 0 (seconds)",
             ));
         }
-        self.scene.validate(&self.params, self.frames, self.dt)?;
+        self.scene
+            .validate(&self.params, self.frames, self.dt, self.size)?;
         if !(self.noise.is_finite() && (0.0..=1.0).contains(&self.noise)) {
             return Err(invalid(
                 "--noise",
@@ -75,7 +79,8 @@ impl GenConfig {
         }
         let bytes = (self.samples as u64)
             .saturating_mul(self.frames as u64)
-            .saturating_mul((self.size * self.size) as u64)
+            .saturating_mul(self.scene.channels(self.color) as u64)
+            .saturating_mul((self.size as u64).saturating_mul(self.size as u64))
             .saturating_mul(4);
         if bytes > MAX_BYTES {
             return Err(invalid(
@@ -95,7 +100,8 @@ impl GenConfig {
 
     /// [N, T, C, H, W].
     pub fn shape(&self) -> [usize; 5] {
-        [self.samples, self.frames, 1, self.size, self.size]
+        let c = self.scene.channels(self.color);
+        [self.samples, self.frames, c, self.size, self.size]
     }
 }
 

@@ -7,7 +7,8 @@ use physvid_shared::SampleTruth;
 use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
 
-/// Rendered frames ([N, T, 1, H, W] row-major) and the ground truth of every sample.
+/// Rendered frames ([N, T, C, H, W] row-major) and the ground truth of every sample (its
+/// latents frame-major, `latent_dims` numbers per frame).
 #[derive(Debug, Clone)]
 pub struct Generated {
     pub frames: Vec<f32>,
@@ -23,8 +24,9 @@ pub fn generate(cfg: &GenConfig) -> Generated {
 
 /// Renders samples `range` of the dataset (identical to the same samples of [`generate`]).
 pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Generated {
-    let pixels = cfg.size * cfg.size;
+    let pixels = cfg.scene.channels(cfg.color) * cfg.size * cfg.size;
     let per_sample = cfg.frames * pixels;
+    let dims = cfg.scene.latent_dims();
     let mut frames = vec![0f32; range.len() * per_sample];
     let scene = cfg.scene;
     let truths: Vec<(SampleTruth, Vec<f64>)> = frames
@@ -34,9 +36,13 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
             || Canvas::new(cfg.size),
             |canvas, (i, clip)| {
                 let mut rng = sample_rng(cfg.seed, range.start + i);
-                let (truth, latents) = scene.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt);
-                for (z, frame) in latents.iter().zip(clip.chunks_exact_mut(pixels)) {
-                    scene.render(&cfg.params, *z, cfg.size, canvas, frame);
+                let (truth, latents) =
+                    scene.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt, cfg.size);
+                for (z, frame) in latents
+                    .chunks_exact(dims)
+                    .zip(clip.chunks_exact_mut(pixels))
+                {
+                    scene.render(&cfg.params, z, cfg.size, canvas, frame);
                 }
                 if cfg.noise > 0.0 {
                     let sigma = cfg.noise as f32;

@@ -40,6 +40,7 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
             .then(|| g.samples.iter().map(|s| s.0["start_time"]).collect()),
         sampling: scene.sampling_text().into(),
         samples: g.samples.clone(),
+        latent_dims: scene.latent_dims(),
         latents: g.latents.clone(),
     }
 }
@@ -76,7 +77,8 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
             let end = (start + SAMPLES_PER_PIECE).min(cfg.samples);
             let g = generate_samples(cfg, start..end);
             if start == 0 {
-                let per_sample = cfg.frames * cfg.size * cfg.size;
+                let [_, t, c, h, w] = cfg.shape();
+                let per_sample = t * c * h * w;
                 preview_frames = g.frames[..preview_samples * per_sample].to_vec();
             }
             truth.samples.extend(g.samples);

@@ -39,7 +39,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 Cell::rel(g0.and_then(|p| p.relative_error)),
                 Cell::num(g1.map(|p| p.estimate), 4),
                 Cell::rel(g1.and_then(|p| p.relative_error)),
-                Cell::num(rep.latent_vs_truth.map(|f| f.r2), 5),
+                Cell::num(rep.latent_vs_truth.as_ref().map(|f| f.r2()), 5),
                 Cell::num(Some(rep.epochs_run as f64), 0),
                 Cell::num(Some(rep.wall_time_s), 1),
             ]);

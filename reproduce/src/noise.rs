@@ -57,7 +57,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                     Cell::num(g1.map(|v| v.mean), 4),
                     Cell::num(g1.map(|v| v.std), 4),
                     Cell::rel(rel(g1)),
-                    Cell::num(rep.latent_vs_truth.map(|f| f.r2), 4),
+                    Cell::num(rep.latent_vs_truth.as_ref().map(|f| f.r2()), 4),
                     Cell::num(Some(rep.wall_time_s), 1),
                 ]);
             }

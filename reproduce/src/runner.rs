@@ -23,6 +23,8 @@ pub struct DataSpec {
     pub setting: u8,
     pub seed: u64,
     pub noise: f64,
+    /// Further `gen` arguments (`--set NAME=VALUE`, `--color`).
+    pub extra: Vec<&'static str>,
 }
 
 impl DataSpec {
@@ -37,6 +39,7 @@ impl DataSpec {
             setting: 1,
             seed: 0,
             noise: 0.0,
+            extra: Vec::new(),
         }
     }
 
@@ -64,6 +67,7 @@ impl DataSpec {
             add("--noise", self.noise.to_string());
         }
         add("--seed", self.seed.to_string());
+        a.extend(self.extra.iter().map(|e| e.to_string()));
         a
     }
 
@@ -105,7 +109,7 @@ impl Runner {
             spec.command()
                 .replace("gen ", "")
                 .replace("--", "")
-                .replace(' ', "_"),
+                .replace([' ', '='], "_"),
         );
         if !dir.join("meta.json").exists() {
             self.bar.set_message(spec.command());

@@ -65,7 +65,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 Cell::num(g1.and_then(|p| p.truth), 4),
                 Cell::rel(g1.and_then(|p| p.relative_error)),
                 Cell::num(rep.history.last().map(|h| h.latent_std), 3),
-                Cell::num(rep.latent_vs_truth.map(|f| f.r2), 4),
+                Cell::num(rep.latent_vs_truth.as_ref().map(|f| f.r2()), 4),
                 Cell::num(Some(rep.epochs_run as f64), 0),
                 Cell::num(Some(rep.wall_time_s), 1),
             ]);

@@ -15,9 +15,9 @@ pub mod npy;
 pub mod recurrence;
 pub mod video;
 
-pub use affine::AffineFit;
+pub use affine::{AffineFit, SimilarityFit};
 pub use atomic::write_atomic;
 pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
 pub use dynamics::DampedOscillator;
 pub use error::DatasetError;
-pub use meta::{Calibration, DatasetMeta, ModelSpec, ReferencePoint, SampleTruth};
+pub use meta::{Calibration, DatasetMeta, ModelSpec, PositionPoint, ReferencePoint, SampleTruth};

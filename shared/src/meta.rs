@@ -69,8 +69,21 @@ pub struct DatasetMeta {
     /// Distributions the per-sample amplitude and phase are drawn from, in words.
     pub sampling: String,
     pub samples: Vec<SampleTruth>,
-    /// Ground-truth z of every sample (outer) and frame (inner).
+    /// Numbers per frame in `latents`: 1 (one physical quantity), or more (the spring: both
+    /// bodies' x, y in pixels). Written only when not 1.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub latent_dims: usize,
+    /// Ground-truth latent of every sample (outer) and frame (inner; `latent_dims` numbers per
+    /// frame, frame-major).
     pub latents: Vec<Vec<f64>>,
+}
+
+fn one() -> usize {
+    1
+}
+
+fn is_one(v: &usize) -> bool {
+    *v == 1
 }
 
 /// One reference frame of the calibration: the physical quantity (angle, level, distance,
@@ -109,6 +122,18 @@ pub struct Calibration {
     pub radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reference_points: Vec<ReferencePoint>,
+    /// Positions of the bodies (x, y per body, in pixels) at reference frames, for latents of
+    /// several numbers per frame (the spring).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reference_positions: Vec<PositionPoint>,
+}
+
+/// Body positions at one reference frame: (x, y) of each body in pixels, x1, y1, x2, y2, ….
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PositionPoint {
+    pub clip: usize,
+    pub frame: usize,
+    pub positions: Vec<f64>,
 }
 
 impl Calibration {

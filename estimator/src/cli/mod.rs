@@ -19,10 +19,11 @@ use std::path::PathBuf;
 
 /// Estimate the physical parameters of a known ODE from video, without labels.
 ///
-/// An MLP (or linear) encoder maps each frame to a latent z, a physics block with learnable
-/// parameters rolls z forward from the start of each clip (its first frame for first-order
-/// models and for falls from rest with known start times, the initial state that best fits the
-/// whole clip for the oscillator and the pendulum), and the loss is MSE(encoded,
+/// An MLP (or linear) encoder maps each frame to a latent z (for the two-body spring, a keypoint
+/// net to both bodies' positions), a physics block with learnable parameters rolls z forward
+/// from the start of each clip (its first frame for first-order models and for falls from rest
+/// with known start times, the initial state that best fits the whole clip for the oscillator,
+/// the pendulum and the spring), and the loss is MSE(encoded,
 /// rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025, arXiv 2410.01376). Reads gen datasets, bare
 /// .npy arrays, videos and image folders. Values are labelled SI or latent units; latent-unit
 /// ones need --reference. Ends with a table of estimates (and ground truth with relative errors

@@ -21,7 +21,8 @@ pub struct ModelArgs {
     pub init: Option<InitValues>,
     /// Calibration for answers in SI units: the physical quantity (level, distance, …; the
     /// pendulum's angle in rad, which then fixes its angle scale) at two or more frames,
-    /// CLIP:FRAME=VALUE[,...] (taken from meta.json for gen data).
+    /// CLIP:FRAME=VALUE[,...]; for the spring, both bodies' pixel positions,
+    /// CLIP:FRAME=X1/Y1/X2/Y2 (taken from meta.json for gen data).
     #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE,...")]
     pub reference: Option<ReferencePoints>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
@@ -72,26 +73,43 @@ fn init_help() -> String {
     )
 }
 
-/// `--reference` values: CLIP:FRAME=VALUE triples.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ReferencePoints(pub Vec<(usize, usize, f64)>);
+/// `--reference` values: CLIP:FRAME=VALUE triples, and CLIP:FRAME=X1/Y1/X2/Y2 body positions.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ReferencePoints {
+    pub values: Vec<(usize, usize, f64)>,
+    pub positions: Vec<(usize, usize, Vec<f64>)>,
+}
 
-/// Parses `--reference 0:0=0.07,12:19=0.01` (clip:frame=physical value).
+/// Parses `--reference 0:0=0.07,12:19=0.01` (clip:frame=physical value) and
+/// `--reference 0:0=20/30/44/33` (clip:frame=positions separated by '/').
 pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
-    text.split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|item| {
-            let bad = || format!("'{item}' is not CLIP:FRAME=VALUE (e.g. 0:0=0.07,3:19=0.01)");
-            let (at, v) = item.split_once('=').ok_or_else(bad)?;
-            let (c, f) = at.split_once(':').ok_or_else(bad)?;
-            Ok((
-                c.trim().parse().map_err(|_| bad())?,
-                f.trim().parse().map_err(|_| bad())?,
-                v.trim().parse().map_err(|_| bad())?,
-            ))
-        })
-        .collect::<Result<Vec<_>, String>>()
-        .map(ReferencePoints)
+    let mut points = ReferencePoints::default();
+    for item in text.split(',').filter(|s| !s.trim().is_empty()) {
+        let bad = || {
+            format!(
+                "'{item}' is not CLIP:FRAME=VALUE or CLIP:FRAME=X1/Y1/X2/Y2 (e.g. 0:0=0.07,3:19=0.01)"
+            )
+        };
+        let (at, v) = item.split_once('=').ok_or_else(bad)?;
+        let (c, f) = at.split_once(':').ok_or_else(bad)?;
+        let (c, f) = (
+            c.trim().parse().map_err(|_| bad())?,
+            f.trim().parse().map_err(|_| bad())?,
+        );
+        let numbers: Vec<f64> = v
+            .split('/')
+            .map(|x| x.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| bad())?;
+        if let Some(x) = numbers.iter().find(|x| !x.is_finite()) {
+            return Err(format!("'{item}': {x} is not a finite number"));
+        }
+        match numbers[..] {
+            [v] => points.values.push((c, f, v)),
+            _ => points.positions.push((c, f, numbers)),
+        }
+    }
+    Ok(points)
 }
 
 /// `--init` values: NAME=VALUE pairs in the order given.
@@ -136,9 +154,14 @@ impl ModelArgs {
         self.init.as_ref().map_or(&[], |i| &i.0)
     }
 
-    /// The `--reference` points (none when the flag is absent).
+    /// The `--reference` values (none when the flag is absent).
     pub fn reference_points(&self) -> &[(usize, usize, f64)] {
-        self.reference.as_ref().map_or(&[], |r| &r.0)
+        self.reference.as_ref().map_or(&[], |r| &r.values)
+    }
+
+    /// The `--reference` body positions (none when the flag is absent).
+    pub fn reference_positions(&self) -> &[(usize, usize, Vec<f64>)] {
+        self.reference.as_ref().map_or(&[], |r| &r.positions)
     }
 }
 
@@ -154,7 +177,14 @@ mod tests {
         );
         assert!(parse_init("gamma0").is_err());
         assert!(parse_init("gamma0=x").is_err());
-        assert_eq!(parse_reference("0:1=0.5").unwrap().0, vec![(0, 1, 0.5)]);
+        assert_eq!(
+            parse_reference("0:1=0.5").unwrap().values,
+            vec![(0, 1, 0.5)]
+        );
+        let p = parse_reference("0:1=0.5,2:3=1/2/3.5/4").unwrap();
+        assert_eq!(p.positions, vec![(2, 3, vec![1.0, 2.0, 3.5, 4.0])]);
         assert!(parse_reference("0=0.5").is_err());
+        assert!(parse_reference("0:1=1/x").is_err());
+        assert!(parse_reference("0:1=nan").is_err());
     }
 }

@@ -82,8 +82,9 @@ fn patience_help() -> String {
 
 fn encoder_help() -> String {
     format!(
-        "Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), or linear (D → 1), \
-         for laws an MLP could bend where brightness or area is affine in the pixels \
+        "Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), linear (D → 1), \
+         for laws an MLP could bend where brightness or area is affine in the pixels, or \
+         keypoints (x, y per body, for vector latents) \
          [default: the model's: {}]",
         per_model(|m| m.encoder().name().to_string())
     )

@@ -4,7 +4,7 @@
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
-use crate::calibration::{needs_reference, Calibration, DerivedValue};
+use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use tch::nn;
 use tch::Tensor;
 
@@ -60,10 +60,10 @@ impl Model for ConstantAcceleration {
     }
     /// The acceleration in SI needs the latent's scale (g for free fall); the block's μ also
     /// the incline's angle.
-    fn derive(&self, params: &[f64], cal: &Calibration, reference: &[f64]) -> Derived {
+    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let mut values = vec![DerivedValue::latent("acceleration_latent", params[0])];
         let mut warnings = Vec::new();
-        let Some(alpha) = cal.latent_scale(reference) else {
+        let Some(alpha) = cal.latent_scale(&readings.values) else {
             let what = if self.incline {
                 "the block's acceleration (and so μ)"
             } else {

@@ -2,7 +2,7 @@
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
-use crate::calibration::{Calibration, DerivedValue};
+use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use tch::nn;
 use tch::{Kind, Tensor};
@@ -37,7 +37,7 @@ impl Model for Led {
             opts.dt,
         ))
     }
-    fn derive(&self, params: &[f64], _cal: &Calibration, _reference: &[f64]) -> Derived {
+    fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         let values = vec![
             DerivedValue::si("gamma", params[0], Some("gamma")),
             DerivedValue::latent("offset", params[1]),

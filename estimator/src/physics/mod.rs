@@ -10,6 +10,7 @@ pub mod model;
 pub mod ode;
 pub mod oscillator;
 pub mod pendulum;
+pub mod spring;
 pub mod torricelli;
 mod two_step;
 
@@ -24,6 +25,7 @@ pub static MODELS: &[&dyn Model] = &[
     &constant_acceleration::SLIDING_BLOCK,
     &led::Led,
     &constant_acceleration::FREE_FALL,
+    &spring::Spring,
 ];
 
 impl ModelRef {

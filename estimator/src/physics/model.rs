@@ -2,7 +2,7 @@
 //! block, extra starts and SI answers), and `ModelRef`, a model of the registry as a value.
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
-use crate::calibration::{Calibration, DerivedValue};
+use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::PeakDecay;
 use tch::{nn, Tensor};
@@ -86,6 +86,12 @@ pub struct ModelInfo {
     pub calibrates_in_training: bool,
     /// The block offers an ODE residual for `--loss residual+floor`.
     pub supports_residual: bool,
+    /// Numbers per frame of the latent (1: one quantity; the spring: x, y of two bodies).
+    pub latent_dims: usize,
+    /// The paper's Euler step exists for the block (`--integrator euler`).
+    pub has_euler: bool,
+    /// The smallest frame side (pixels) that can show the system (0: any), with what needs it.
+    pub min_frame: (usize, &'static str),
 }
 
 impl ModelInfo {
@@ -106,6 +112,9 @@ impl ModelInfo {
             released_from_rest: false,
             calibrates_in_training: false,
             supports_residual: false,
+            latent_dims: 1,
+            has_euler: true,
+            min_frame: (0, ""),
         }
     }
 }
@@ -127,9 +136,9 @@ pub trait Model: Sync {
     ) -> Vec<Vec<f64>> {
         Vec::new()
     }
-    /// The reported values from the block's parameters and the calibration (the latent at the
-    /// reference frames, in order).
-    fn derive(&self, params: &[f64], cal: &Calibration, reference_latents: &[f64]) -> Derived;
+    /// The reported values from the block's parameters, the calibration and the latent read at
+    /// its reference frames.
+    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived;
     /// Frames of the first stage of a horizon curriculum when starting from `init` at `dt`, if
     /// the model wants one: over many swings the loss has a minimum per basin of phase, so
     /// training starts on the clips' first frames and doubles the horizon (`train::Trainer`).
@@ -140,6 +149,12 @@ pub trait Model: Sync {
     /// (`latents`, one per recording frame, `dt` apart), to check the learned value against.
     fn cross_check(&self, _params: &[f64], _latents: &[f64], _dt: f64) -> Option<PeakDecay> {
         None
+    }
+    /// The coordinates of latents `z` [B, T, D] the KL term holds near N(0, 1), one by one:
+    /// the latent itself unless the law has a degenerate solution that a transform of it
+    /// exposes (the spring's rigid pair).
+    fn kl_coordinates(&self, z: &Tensor) -> Tensor {
+        z.shallow_clone()
     }
     /// Warnings about the data: `timed` says whether the clips' start times are known.
     fn data_warnings(&self, _timed: bool) -> Vec<String> {
@@ -172,6 +187,9 @@ pub trait Model: Sync {
     }
     fn supports_residual(&self) -> bool {
         self.info().supports_residual
+    }
+    fn latent_dims(&self) -> usize {
+        self.info().latent_dims
     }
     /// The parameters' names, in order.
     fn parameter_names(&self) -> Vec<&'static str> {

@@ -5,7 +5,7 @@
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
 use super::two_step::{impulse_responses, least_squares_start, safely_complex};
-use crate::calibration::{Calibration, DerivedValue};
+use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
@@ -70,7 +70,7 @@ impl Model for DampedOscillator {
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("gamma1", params[1], latents, dt, 0.0)
     }
-    fn derive(&self, params: &[f64], _cal: &Calibration, _reference: &[f64]) -> Derived {
+    fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         (
             vec![
                 DerivedValue::si("gamma0", params[0], Some("gamma0")),

@@ -10,7 +10,7 @@
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
 use super::ode::{ObservationMap, OdeSystem, ShootingBlock};
-use crate::calibration::{Calibration, DerivedValue};
+use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
 use tch::nn;
@@ -72,7 +72,7 @@ impl Model for Pendulum {
         let frames_per_swing = std::f64::consts::TAU / (init[0].sqrt() * dt);
         Some((1.5 * frames_per_swing).ceil().max(4.0) as usize)
     }
-    fn derive(&self, params: &[f64], cal: &Calibration, _reference: &[f64]) -> Derived {
+    fn derive(&self, params: &[f64], cal: &Calibration, _readings: &Readings) -> Derived {
         let mut warnings = Vec::new();
         if cal.reference.len() < 2 {
             warnings.push(

@@ -2,7 +2,7 @@
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec};
-use crate::calibration::{needs_reference, Calibration, DerivedValue};
+use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use tch::nn;
 use tch::{Kind, Tensor};
@@ -33,13 +33,13 @@ impl Model for Torricelli {
         Box::new(TorricelliBlock::new(path, init, opts.integrator, opts.dt))
     }
     /// k in SI takes the slope of √u against √h over the reference frames.
-    fn derive(&self, params: &[f64], cal: &Calibration, reference: &[f64]) -> Derived {
+    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let mut values = vec![
             DerivedValue::latent("k_latent", params[0]),
             DerivedValue::latent("base", params[1]),
         ];
         let mut warnings = Vec::new();
-        match cal.root_scale(reference, params[1]) {
+        match cal.root_scale(&readings.values, params[1]) {
             Some(q) => values.insert(0, DerivedValue::si("k", params[0] / q.abs(), Some("k"))),
             None => warnings.push(needs_reference("Torricelli's k")),
         }
@@ -109,17 +109,25 @@ impl PhysicsBlock for TorricelliBlock {
 mod tests {
     use super::*;
 
+    fn readings(values: &[f64]) -> Readings {
+        Readings {
+            values: values.to_vec(),
+            positions: Vec::new(),
+        }
+    }
+
     #[test]
     fn scale_from_reference_frames_turns_latent_units_into_si() {
         let cal = Calibration {
             reference: vec![(0, 0, 0.07), (3, 9, 0.01)],
-            incline_deg: None,
             g: 9.81,
             source: "flags".into(),
+            ..Default::default()
         };
         // z = −40·h + 1 → α = −40, the empty tank's latent (base) is 1; k_latent = k·√40.
         let latents = [-40.0 * 0.07 + 1.0, -40.0 * 0.01 + 1.0];
-        let (rows, warnings) = Torricelli.derive(&[0.0128 * 40f64.sqrt(), 1.0], &cal, &latents);
+        let (rows, warnings) =
+            Torricelli.derive(&[0.0128 * 40f64.sqrt(), 1.0], &cal, &readings(&latents));
         assert!(warnings.is_empty());
         assert_eq!(rows[0].name, "k");
         assert!((rows[0].estimate - 0.0128).abs() < 1e-12);
@@ -127,9 +135,10 @@ mod tests {
         // 0.2 with u = −(z − base)), still gives the SI k.
         let (p, q, k) = (0.05f64, 3.0f64, 0.0128);
         let latents = [0.07f64, 0.01].map(|h| 0.2 - (p + q * h.sqrt()).powi(2));
-        let (rows, _) = Torricelli.derive(&[q * k, 0.2], &cal, &latents);
+        let (rows, _) = Torricelli.derive(&[q * k, 0.2], &cal, &readings(&latents));
         assert!((rows[0].estimate - k).abs() < 1e-12, "{}", rows[0].estimate);
-        let (rows, warnings) = Torricelli.derive(&[0.1, 0.2], &Calibration::default(), &[]);
+        let (rows, warnings) =
+            Torricelli.derive(&[0.1, 0.2], &Calibration::default(), &Readings::default());
         assert_eq!(rows[0].units, "latent");
         assert!(warnings[0].contains("--reference"), "{warnings:?}");
     }

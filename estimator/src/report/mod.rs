@@ -5,6 +5,7 @@
 pub mod ensemble;
 pub mod parameters;
 mod text;
+pub mod truth;
 
 use crate::calibration::Calibration;
 use crate::config::RunConfig;
@@ -14,10 +15,10 @@ use crate::peaks::PeakDecay;
 use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
 use ensemble::Ensemble;
 use parameters::ParameterResult;
-use physvid_shared::AffineFit;
 use serde::Serialize;
 use std::time::Duration;
 use tch::Device;
+use truth::LatentVsTruth;
 
 /// libtorch's version, read from the linked installation at build time.
 pub const LIBTORCH_VERSION: &str = env!("PHYSVID_LIBTORCH_VERSION");
@@ -25,21 +26,6 @@ pub const LIBTORCH_VERSION: &str = env!("PHYSVID_LIBTORCH_VERSION");
 /// A latent whose spread falls below this fraction of its largest spread during training has
 /// collapsed towards a constant (the latent's scale is arbitrary, so the test is relative).
 pub const COLLAPSE_FRACTION: f64 = 0.1;
-
-/// Fits the encoded validation latents against the ground truth of the same clips.
-fn latent_fit(data: &ClipData, encoded: &[Vec<f32>]) -> Option<AffineFit> {
-    let meta = data.meta.as_ref()?;
-    let n_train = data.n_train() as usize;
-    let (truth, latent): (Vec<f64>, Vec<f64>) = encoded
-        .iter()
-        .enumerate()
-        .flat_map(|(i, row)| {
-            let truth = &meta.latents[n_train + i];
-            row.iter().zip(truth).map(|(&z, &q)| (q, z as f64))
-        })
-        .unzip();
-    AffineFit::of(&truth, &latent)
-}
 
 /// Where and how long the run went.
 #[derive(Debug, Clone, Copy)]
@@ -84,7 +70,7 @@ pub struct Report {
     pub latent_collapsed: bool,
     /// With ground truth: how well an affine map of the true latent explains the encoded one
     /// over the validation clips (the method's premise; its sign and scale are arbitrary).
-    pub latent_vs_truth: Option<AffineFit>,
+    pub latent_vs_truth: Option<LatentVsTruth>,
     /// For a recording: a classical measurement of an answer on the encoded latent (the
     /// pendulum's damping from its swing peaks, appendix A.6), beside the learned value.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -115,11 +101,8 @@ impl Report {
         } = run;
         let model = cfg.model;
         let calibration = cfg.calibration.clone();
-        let (rows, calibration_warnings) = model.derive(
-            &outcome.parameters,
-            &calibration,
-            &outcome.reference_latents,
-        );
+        let (rows, calibration_warnings) =
+            model.derive(&outcome.parameters, &calibration, &outcome.readings);
         let parameters: Vec<ParameterResult> = rows
             .into_iter()
             .map(|r| ParameterResult::new(r, &data.truth))
@@ -195,7 +178,7 @@ impl Report {
             stop: outcome.stop.clone(),
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
-            latent_vs_truth: latent_fit(data, &outcome.val_latents),
+            latent_vs_truth: LatentVsTruth::of(data, &outcome.val_latents),
             cross_check: outcome.timeline.as_ref().and_then(|t| {
                 let latents: Vec<f64> = t.latents.iter().map(|&v| v as f64).collect();
                 model.cross_check(&outcome.parameters, &latents, t.frame_dt)

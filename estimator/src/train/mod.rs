@@ -2,6 +2,7 @@
 //! lowest validation error and trains it to the end; `outcome` holds what comes out.
 
 pub mod outcome;
+mod readings;
 mod trainer;
 
 pub use outcome::{EpochRecord, StopReason, TrainOutcome};

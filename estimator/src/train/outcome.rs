@@ -1,6 +1,7 @@
 //! What training produces: one `EpochRecord` per epoch, why it stopped (`StopReason`), and the
 //! `TrainOutcome` of the kept checkpoint.
 
+use crate::calibration::Readings;
 use crate::timeline::Timeline;
 use serde::Serialize;
 
@@ -66,9 +67,8 @@ pub struct TrainOutcome {
     /// Encoded latents of every validation clip, [clip][frame].
     #[serde(skip)]
     pub val_latents: Vec<Vec<f32>>,
-    /// The latent at the calibration's reference frames (clip, frame), in order, read through
-    /// the physics.
-    pub reference_latents: Vec<f64>,
+    /// The latent at the calibration's reference frames, read through the physics.
+    pub readings: Readings,
     /// For a recording: the latent of every frame, and the rollouts of clips that tile it.
     #[serde(skip)]
     pub timeline: Option<Timeline>,

@@ -4,6 +4,7 @@
 //! the kept checkpoint.
 
 use super::outcome::{EpochRecord, StopReason, TrainOutcome};
+use super::readings;
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
@@ -132,7 +133,8 @@ impl<'a> Trainer<'a> {
             };
             let (z, z_hat) = network.forward(&x, clips, steps);
             let residual = network.residual(cfg.loss, &z);
-            let (mut l, _) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
+            let kl_z = cfg.model.kl_coordinates(&z);
+            let (mut l, _) = loss(cfg.loss, &z, &kl_z, &z_hat, residual.as_ref());
             if cfg.loss == LossKind::MseKl {
                 if let Some(extra) = network.auxiliary_loss(&z) {
                     l += extra;
@@ -157,7 +159,8 @@ impl<'a> Trainer<'a> {
             };
             let (z, z_hat) = network.forward(&val, clips, steps);
             let residual = network.residual(cfg.loss, &z);
-            let (l, mse) = loss(cfg.loss, &z, &z_hat, residual.as_ref());
+            let kl_z = cfg.model.kl_coordinates(&z);
+            let (l, mse) = loss(cfg.loss, &z, &kl_z, &z_hat, residual.as_ref());
             (
                 l.double_value(&[]),
                 mse.double_value(&[]),
@@ -312,27 +315,7 @@ impl<'a> Trainer<'a> {
                 network.values(&z),
             )
         });
-        let reference_latents = tch::no_grad(|| {
-            self.cfg
-                .calibration
-                .reference
-                .iter()
-                .map(|&(clip, frame, _)| {
-                    let (x, i) = data.clip(clip);
-                    let start = data.clip_start(clip);
-                    let ids = [clip];
-                    let clips = Clips {
-                        start: start.as_ref(),
-                        ids: Some(&ids),
-                    };
-                    let (z, z_hat) = network.forward(&x.narrow(0, i, 1), clips, steps);
-                    // The physics rollout at the frame, shifted by the clip's mean residual:
-                    // the latent there as the whole clip sees it, not one frame's encoding.
-                    let shift = (&z - &z_hat).mean(Kind::Float);
-                    (z_hat.get(0).get(frame as i64) + shift).double_value(&[])
-                })
-                .collect()
-        });
+        let readings = readings::read(network, data, &self.cfg.calibration);
         let timeline = data
             .recording
             .as_ref()
@@ -349,7 +332,7 @@ impl<'a> Trainer<'a> {
             example_latents: examples,
             example_rollouts: rollouts,
             val_latents,
-            reference_latents,
+            readings,
         }
     }
 }

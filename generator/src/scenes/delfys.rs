@@ -131,7 +131,13 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
     fn accepts_set(&self) -> bool {
         true
     }
-    fn validate(&self, p: &Params, frames: usize, dt: f64) -> Result<(), ConfigError> {
+    fn validate(
+        &self,
+        p: &Params,
+        frames: usize,
+        dt: f64,
+        _size: usize,
+    ) -> Result<(), ConfigError> {
         for (k, v) in p {
             if !v.is_finite() {
                 return Err(set_error(format!("{k}={v}"), "must be a finite number"));
@@ -145,12 +151,13 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
         rng: &mut ChaCha8Rng,
         frames: usize,
         dt: f64,
+        _size: usize,
     ) -> (SampleTruth, Vec<f64>) {
         self.0.sample(p, rng, frames, dt)
     }
-    fn render(&self, p: &Params, z: f64, size: usize, canvas: &mut Canvas, out: &mut [f32]) {
+    fn render(&self, p: &Params, z: &[f64], size: usize, canvas: &mut Canvas, out: &mut [f32]) {
         out.fill(0.0);
-        self.0.render(p, z, size, canvas, out);
+        self.0.render(p, z[0], size, canvas, out);
     }
     fn mapping_text(&self) -> &'static str {
         self.0.info().mapping_text

@@ -57,7 +57,13 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
         false
     }
 
-    fn validate(&self, p: &Params, frames: usize, dt: f64) -> Result<(), ConfigError> {
+    fn validate(
+        &self,
+        p: &Params,
+        frames: usize,
+        dt: f64,
+        _size: usize,
+    ) -> Result<(), ConfigError> {
         let (omega, zeta) = (p["omega"], p["zeta"]);
         if !(omega.is_finite() && omega > 0.0) {
             return Err(invalid(
@@ -100,6 +106,7 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
         rng: &mut ChaCha8Rng,
         frames: usize,
         dt: f64,
+        _size: usize,
     ) -> (SampleTruth, Vec<f64>) {
         let model = oscillator(p);
         let (amplitude, phase) = draw_initial_condition(rng);
@@ -110,8 +117,8 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
         (truth, latents)
     }
 
-    fn render(&self, _p: &Params, z: f64, size: usize, canvas: &mut Canvas, out: &mut [f32]) {
-        canvas.render_frame(&self.0.disc(z, size), out);
+    fn render(&self, _p: &Params, z: &[f64], size: usize, canvas: &mut Canvas, out: &mut [f32]) {
+        canvas.render_frame(&self.0.disc(z[0], size), out);
     }
 
     fn mapping_text(&self) -> &'static str {

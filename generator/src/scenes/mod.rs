@@ -3,8 +3,9 @@
 //! trajectory of the physical quantity z each clip shows), its picture, its parameters and the
 //! calibration a user would measure. Two families share most of their code: the damped
 //! oscillator's disc scenes (`disc.rs`: intensity, position, scale) and the Delfys75 systems
-//! (`delfys.rs`: pendulum, torricelli, sliding-block, led, free-fall). Adding a scene = a file
-//! implementing `DiscPicture` or `DelfysSystem` and a line in `SCENES`.
+//! (`delfys.rs`: pendulum, torricelli, sliding-block, led, free-fall); the two-body spring of
+//! appendix A.5 (`spring.rs`) implements `Scene` itself. Adding a scene = a file implementing
+//! `DiscPicture`, `DelfysSystem` or `Scene`, and a line in `SCENES`.
 
 mod delfys;
 mod disc;
@@ -15,6 +16,7 @@ pub mod pendulum;
 pub mod position;
 pub mod scale;
 pub mod sliding_block;
+pub mod spring;
 pub mod torricelli;
 
 use crate::error::ConfigError;
@@ -49,25 +51,42 @@ pub trait Scene: Sync {
     fn params(&self, setting: u8) -> Params;
     /// Whether `--set NAME=VALUE` changes the parameters (otherwise they have flags of their own).
     fn accepts_set(&self) -> bool;
-    /// Checks the parameters against physics and the clip; errors name the flag to change.
-    fn validate(&self, p: &Params, frames: usize, dt: f64) -> Result<(), ConfigError>;
-    /// Draws one clip from `rng`: its ground truth and the physical quantity at each frame.
+    /// Checks the parameters against physics, the clip and the frame; errors name the flag to
+    /// change.
+    fn validate(&self, p: &Params, frames: usize, dt: f64, size: usize) -> Result<(), ConfigError>;
+    /// Numbers per frame of the latent (1: one physical quantity).
+    fn latent_dims(&self) -> usize {
+        1
+    }
+    /// Colour channels of the frames (1: grey; `color` asks for the scene's colour version).
+    fn channels(&self, _color: bool) -> usize {
+        1
+    }
+    /// Frame width and height when `--size` does not say.
+    fn default_size(&self) -> usize {
+        50
+    }
+    /// Draws one clip from `rng` for `size`×`size` frames: its ground truth and the physical
+    /// quantity at each frame (`latent_dims` numbers per frame, frame-major).
     fn sample(
         &self,
         p: &Params,
         rng: &mut ChaCha8Rng,
         frames: usize,
         dt: f64,
+        size: usize,
     ) -> (SampleTruth, Vec<f64>);
-    /// Draws the scene for quantity `z` into `out` (size² grey values in [0, 1]).
-    fn render(&self, p: &Params, z: f64, size: usize, canvas: &mut Canvas, out: &mut [f32]);
+    /// Draws the scene for the frame's latent `z` into `out` (channels × size² values in
+    /// [0, 1], channel-major).
+    fn render(&self, p: &Params, z: &[f64], size: usize, canvas: &mut Canvas, out: &mut [f32]);
     /// meta.json's `latent_mapping`: what z is and how it shows, in words.
     fn mapping_text(&self) -> &'static str;
     /// meta.json's `sampling`: how each clip's draws are made, in words.
     fn sampling_text(&self) -> &'static str;
     /// meta.json's `model.parameters`: the true values `estimate` is to recover (SI).
     fn model_parameters(&self, p: &Params) -> Params;
-    /// What a user would measure in the scene (empty for the disc scenes).
+    /// What a user would measure in the scene (empty for the disc scenes), from every clip's
+    /// latents.
     fn calibration(&self, p: &Params, size: usize, latents: &[Vec<f64>]) -> Calibration;
     /// The (virtual) camera's frame rate written to meta.json, if the scene has a camera.
     fn fps(&self, dt: f64) -> Option<f64>;
@@ -86,6 +105,7 @@ pub static SCENES: &[&dyn Scene] = &[
     &Delfys(sliding_block::SlidingBlock),
     &Delfys(led::Led),
     &Delfys(free_fall::FreeFall),
+    &spring::Spring,
 ];
 
 /// A scene of [`SCENES`], compared and printed by name.

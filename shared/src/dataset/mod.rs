@@ -79,9 +79,18 @@ pub fn validate_meta(
             meta.latents.len()
         )));
     }
-    if let Some((i, l)) = meta.latents.iter().enumerate().find(|(_, l)| l.len() != t) {
+    let dims = meta.latent_dims;
+    if dims == 0 {
+        return Err(bad_meta(meta_path, "latent_dims is 0, must be at least 1"));
+    }
+    if let Some((i, l)) = meta
+        .latents
+        .iter()
+        .enumerate()
+        .find(|(_, l)| l.len() != t * dims)
+    {
         return Err(inconsistent(format!(
-            "latent series {i} has {} values for T = {t} frames",
+            "latent series {i} has {} values for T = {t} frames of {dims} each",
             l.len()
         )));
     }
@@ -197,6 +206,7 @@ mod tests {
             clip_start_times: None,
             sampling: String::new(),
             samples: vec![SampleTruth::from_pairs([("amplitude", 1.0), ("phase", 0.0)]); shape[0]],
+            latent_dims: 1,
             latents: vec![vec![0.0; shape[1]]; shape[0]],
         }
     }

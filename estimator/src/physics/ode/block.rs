@@ -42,6 +42,14 @@ pub(super) fn poor_cost(target: &[f64], rows: usize) -> f64 {
     POOR_FIT * variance * rows as f64
 }
 
+/// A clip whose best trajectory leaves a mean squared misfit above this multiple of the batch's
+/// latent variance has no trajectory near it at these parameters (measured on the spring while
+/// its bodies still overlap: the fits go chaotic where the force's direction flips, and one
+/// such clip drives the batch's loss to 1e5): it is left out of the step (its surrogate is its
+/// own detached latent) rather than fed the gradients of a wild trajectory. Ordinary misfits,
+/// up to the latent's whole variance, carry the gradient that moves the parameters.
+pub const FAILED_FIT: f64 = 100.0;
+
 /// An `OdeSystem` rolled out by shooting from each clip's least-squares initial state.
 pub struct ShootingBlock {
     pub(super) system: Box<dyn OdeSystem>,
@@ -129,14 +137,17 @@ impl ShootingBlock {
         let target = host(theta);
         let p = self.physical();
         let p_host = host(&p);
-        let fits = self.fit_batch(
-            &target,
-            &p_host,
-            clips,
-            b as usize,
-            t as usize,
-            (t * d) as usize,
-        );
+        let rows = (t * d) as usize;
+        let mut fits = self.fit_batch(&target, &p_host, clips, b as usize, t as usize, rows);
+        let failed = poor_cost(&target, rows) * FAILED_FIT / POOR_FIT;
+        for (i, f) in fits.iter_mut().enumerate() {
+            if f.cost.is_nan() || f.cost > failed {
+                f.y.copy_from_slice(&target[i * rows..(i + 1) * rows]);
+                f.jx.fill(0.0);
+                f.jp.fill(0.0);
+                f.ainv.fill(0.0);
+            }
+        }
         let device = theta.device();
         let gather = |part: fn(&ClipFit) -> &[f64], shape: &[i64]| {
             let flat: Vec<f32> = fits

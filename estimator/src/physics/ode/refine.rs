@@ -86,14 +86,57 @@ impl ShootingBlock {
             }
         }
         if changed {
-            tch::no_grad(|| {
-                for ((raw, &v), &pos) in self.raw.iter().zip(&p).zip(&self.positive) {
-                    let v = if pos { v.ln() } else { v };
-                    let _ = raw.shallow_clone().fill_(v);
-                }
-            });
+            self.set_physical(&p);
         }
         changed
+    }
+}
+
+impl ShootingBlock {
+    /// Moves the physical parameters to the best of `candidates` by the total misfit of the
+    /// clips' best trajectories on latents `z` [N, T, D] (each clip fitted afresh, no warm
+    /// start), when it beats the current parameters': a global look before
+    /// [`ShootingBlock::refine`]'s local descent, for costs with a minimum per basin of
+    /// frequency. Returns whether the parameters changed.
+    pub fn scan(&self, z: &Tensor, clips: Clips, candidates: &[Vec<f64>]) -> bool {
+        let (n_clips, t, d) = z.size3().expect("[N, T, D]");
+        let target = host(&tch::no_grad(|| self.to_observed(z)));
+        let rows = (t * d) as usize;
+        let fresh = Clips {
+            start: clips.start,
+            ids: None,
+        };
+        let cost = |p: &[f64]| -> f64 {
+            let fits = self.fit_batch(&target, p, fresh, n_clips as usize, t as usize, rows);
+            let c: f64 = fits.iter().map(|f| f.cost).sum();
+            if c.is_nan() {
+                f64::INFINITY
+            } else {
+                c
+            }
+        };
+        let current = host(&self.physical());
+        let best = candidates
+            .iter()
+            .map(|p| (cost(p), p))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match best {
+            Some((c, p)) if c < cost(&current) => {
+                self.set_physical(p);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Sets the physical parameters to `p` (logarithms for positive ones).
+    fn set_physical(&self, p: &[f64]) {
+        tch::no_grad(|| {
+            for ((raw, &v), &pos) in self.raw.iter().zip(p).zip(&self.positive) {
+                let v = if pos { v.ln() } else { v };
+                let _ = raw.shallow_clone().fill_(v);
+            }
+        });
     }
 }
 
