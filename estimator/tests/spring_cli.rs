@@ -1,27 +1,27 @@
-//! End-to-end tests of `estimate` on the two-body spring: the keypoint encoder starts to find
-//! both bodies on a small set, the report checks the latent against the truth in the plane and
-//! gives the rest length in pixels; what the spring refuses.
+//! End-to-end tests of `estimate` on the two-body spring: k and the rest length in pixels from a
+//! short run on a small set, the latent checked against the truth in the plane; what the spring
+//! refuses.
 
 mod util;
 
-use util::{gen_dataset, read_report, Estimate};
+use util::{estimate_of, gen_dataset, read_report, Estimate};
 
 #[test]
-fn spring_starts_finding_both_bodies_and_reports_the_rest_length_in_pixels() {
+fn spring_finds_k_and_the_rest_length_in_pixels_on_a_small_set() {
+    // 100 clips, 30 epochs of 10 steps (about a minute on 2 cores): measured k +0.07 %,
+    // rest length +0.9 %, relative-vector R² 0.998.
     let tmp = tempfile::tempdir().unwrap();
-    let data = gen_dataset(&tmp.path().join("data"), "spring", &["--samples", "60"]);
+    let data = gen_dataset(&tmp.path().join("data"), "spring", &["--samples", "100"]);
     let out = tmp.path().join("run");
     Estimate::new(&data)
-        .args(["--epochs", "6"])
+        .args(["--epochs", "30", "--batch-size", "8", "--single-start"])
         .out(&out)
         .quiet()
         .ok();
     let r = read_report(&out);
     let fit = &r["latent_vs_truth"];
-    // Six epochs of 48 clips only start the encoder (R² 0.81 measured; a dead or collapsed
-    // split gives about 0); the default set's accuracy is `reproduce spring`'s.
     let r2 = fit["relative"]["r2"].as_f64().expect("a planar fit");
-    assert!(r2 > 0.5, "the relative vector is not found: R² {r2}");
+    assert!(r2 > 0.98, "the relative vector is not found: R² {r2}");
     assert_eq!(fit["bodies"].as_array().unwrap().len(), 2);
     let names: Vec<&str> = r["parameters"]
         .as_array()
@@ -30,15 +30,9 @@ fn spring_starts_finding_both_bodies_and_reports_the_rest_length_in_pixels() {
         .map(|p| p["name"].as_str().unwrap())
         .collect();
     assert_eq!(names, ["k", "rest_length", "rest_length_latent"]);
-    for name in ["k", "rest_length"] {
-        let p = r["parameters"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|p| p["name"] == name)
-            .unwrap();
-        assert!(p["estimate"].as_f64().unwrap() > 0.0, "{name}");
-        assert!(p["truth"].as_f64().is_some(), "{name} has its truth");
+    for (name, truth) in [("k", 2.0), ("rest_length", 24.0)] {
+        let v = estimate_of(&r, name);
+        assert!((v / truth - 1.0).abs() < 0.05, "{name} {v} (truth {truth})");
     }
     assert!(out.join("latents.png").exists());
 }

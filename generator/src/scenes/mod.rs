@@ -17,6 +17,7 @@ pub mod position;
 pub mod scale;
 pub mod sliding_block;
 pub mod spring;
+mod spring_picture;
 pub mod torricelli;
 
 use crate::error::ConfigError;

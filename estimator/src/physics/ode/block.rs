@@ -43,12 +43,39 @@ pub(super) fn poor_cost(target: &[f64], rows: usize) -> f64 {
 }
 
 /// A clip whose best trajectory leaves a mean squared misfit above this multiple of the batch's
-/// latent variance has no trajectory near it at these parameters (measured on the spring while
-/// its bodies still overlap: the fits go chaotic where the force's direction flips, and one
-/// such clip drives the batch's loss to 1e5): it is left out of the step (its surrogate is its
-/// own detached latent) rather than fed the gradients of a wild trajectory. Ordinary misfits,
-/// up to the latent's whole variance, carry the gradient that moves the parameters.
+/// latent variance has no trajectory near it at these parameters (a guard for latents that are
+/// still forming: where the spring's bodies overlap, the force's direction flips and fits can go
+/// wild): it is left out of the step (its surrogate is its own detached latent) rather than fed
+/// the gradients of a wild trajectory. Ordinary misfits, up to the latent's whole variance,
+/// carry the gradient that moves the parameters.
 pub const FAILED_FIT: f64 = 100.0;
+
+/// An orthonormal basis [rows × n] of the columns of `a` [rows × n] (modified Gram–Schmidt,
+/// twice): columns that add less than 1e-9 of the largest column's norm are left zero.
+fn orthonormal_columns(a: &[f64], rows: usize, n: usize) -> Vec<f64> {
+    let largest = (0..n)
+        .map(|j| (0..rows).map(|r| a[r * n + j].powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    let mut q = vec![0.0; rows * n];
+    for j in 0..n {
+        let mut v: Vec<f64> = (0..rows).map(|r| a[r * n + j]).collect();
+        for _ in 0..2 {
+            for i in 0..j {
+                let dot: f64 = (0..rows).map(|r| q[r * n + i] * v[r]).sum();
+                for (r, vr) in v.iter_mut().enumerate() {
+                    *vr -= dot * q[r * n + i];
+                }
+            }
+        }
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > 1e-9 * largest && norm > 0.0 {
+            for (r, vr) in v.iter().enumerate() {
+                q[r * n + j] = vr / norm;
+            }
+        }
+    }
+    q
+}
 
 /// An `OdeSystem` rolled out by shooting from each clip's least-squares initial state.
 pub struct ShootingBlock {
@@ -157,13 +184,22 @@ impl ShootingBlock {
             Tensor::from_slice(&flat).view(shape).to_device(device)
         };
         let y = gather(|f| &f.y, &[b, t * d]);
-        let jx = gather(|f| &f.jx, &[b, t * d, n]);
         let jp = gather(|f| &f.jp, &[b, t * d, m]);
-        let ainv = gather(|f| &f.ainv, &[b, n, n]);
+        // The projection onto the trajectories near y as Q·Qᵀ, Q an orthonormal basis of Jx's
+        // columns made in f64: Jx·(JxᵀJx)⁻¹·Jxᵀ in float32 stops being a projection when JxᵀJx
+        // is ill-conditioned (measured on the spring while its bodies overlap: losses of 1e7).
+        let basis: Vec<f32> = fits
+            .iter()
+            .flat_map(|f| orthonormal_columns(&f.jx, rows, n as usize))
+            .map(|v| v as f32)
+            .collect();
+        let q = Tensor::from_slice(&basis)
+            .view([b, t * d, n])
+            .to_device(device);
         let dp = (&p - p.detach()).view([m, 1]);
         let base = y + jp.matmul(&dp).squeeze_dim(-1);
         let res = (&base - theta.reshape([b, t * d])).unsqueeze(-1);
-        let correction = jx.bmm(&ainv.bmm(&jx.transpose(1, 2).bmm(&res)));
+        let correction = q.bmm(&q.transpose(1, 2).bmm(&res));
         (base - correction.squeeze_dim(-1)).view([b, t, d])
     }
 
