@@ -32,7 +32,7 @@ print(f"{sys.argv[4]}: decode + estimate {total:.1f} s wall (decode {rec['decode
       f"{rec['clips']} clips); g/L {v['g_over_l']:.3f} s^-2, damping {v['damping']:.4f} s^-1")
 c = r.get("cross_check")
 if c:
-    print(f"  peak-decay damping (appendix A.6): {c['estimate']:.4f} ± {c['std_error']:.4f} s^-1 "
+    print(f"  damping from the swing amplitudes' decay (appendix A.6): {c['estimate']:.4f} ± {c['std_error']:.4f} s^-1 "
           f"from {len(c['peaks'])} swings")
 PY
 }

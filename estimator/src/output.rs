@@ -1,5 +1,5 @@
 //! The one place that writes a run's outputs into `--out`: report.json, metrics.csv, the plots
-//! and, for a recording, timeline.png and clips.png. Each file is written under a temporary
+//! and, for a recording, timeline.png, timeline.csv and clips.png. Each file is written under a temporary
 //! name and renamed.
 
 use crate::data::ClipData;
@@ -26,8 +26,8 @@ fn plot(dir: &Path, name: &str, png: Result<Vec<u8>, String>) -> Result<(), Esti
     write(dir, name, &png)
 }
 
-/// Writes report.json, metrics.csv, parameters.png and latents.png (and timeline.png and
-/// clips.png for a recording) into `out`, report.json last.
+/// Writes report.json, metrics.csv, parameters.png and latents.png (and timeline.png,
+/// timeline.csv and clips.png for a recording) into `out`, report.json last.
 pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
     std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
         path: out.to_path_buf(),
@@ -47,6 +47,11 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
     )?;
     if let Some(t) = &report.outcome.timeline {
         plot(out, "timeline.png", timeline_png(t))?;
+        write(
+            out,
+            "timeline.csv",
+            t.csv(data.model.latent_dims()).as_bytes(),
+        )?;
     }
     if let Some(png) = &data.preview_png {
         write(out, "clips.png", png)?;

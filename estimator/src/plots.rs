@@ -213,7 +213,7 @@ pub fn latents_png(
 /// of back-to-back clips over it (coloured, dots at the clip frames).
 pub fn timeline_png(t: &Timeline) -> Result<Vec<u8>, String> {
     render_png(PANEL_HEIGHT + 100, |root| {
-        let end = t.latents.len().max(2) as f64 * t.frame_dt;
+        let end = t.time(t.latents.len().max(2));
         let values = t
             .latents
             .iter()
@@ -221,26 +221,20 @@ pub fn timeline_png(t: &Timeline) -> Result<Vec<u8>, String> {
             .map(|&v| v as f64);
         let caption =
             "encoded latent over the recording (grey) and physics rollouts of clips (colour)";
-        let x = (0.0..end, "time in the recording (s, real time)");
+        let x = (t.start_s..end, "time in the recording (s, real time)");
         let mut c = chart(&root, caption, x, (range(values), "latent z"))?;
         let grey = RGBColor(150, 150, 150).to_rgba();
         c.draw_series(LineSeries::new(
             t.latents
                 .iter()
                 .enumerate()
-                .map(|(i, &v)| (i as f64 * t.frame_dt, v as f64)),
+                .map(|(i, &v)| (t.time(i), v as f64)),
             grey.stroke_width(1),
         ))
         .map_err(|e| e.to_string())?;
         for (k, (start, roll)) in t.rollouts.iter().enumerate() {
             let color = Palette99::pick(k).to_rgba();
-            trace(
-                &mut c,
-                roll,
-                |i| (start + i * t.stride) as f64 * t.frame_dt,
-                color,
-                2,
-            )?;
+            trace(&mut c, roll, |i| t.time(start + i * t.stride), color, 2)?;
         }
         Ok(())
     })

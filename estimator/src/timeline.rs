@@ -12,6 +12,8 @@ use tch::{Device, Tensor};
 pub struct Timeline {
     /// Seconds between recording frames (1 / fps).
     pub frame_dt: f64,
+    /// Time of the first kept frame on the recording's own timeline (`--start`, else 0).
+    pub start_s: f64,
     /// Recording frames between clip frames.
     pub stride: usize,
     /// Latent of every frame.
@@ -19,6 +21,34 @@ pub struct Timeline {
     /// (first recording frame, latent rollout at its clip frames) for clips that tile the
     /// recording.
     pub rollouts: Vec<(usize, Vec<f32>)>,
+}
+
+impl Timeline {
+    /// `timeline.csv`: the time of every kept recording frame (s, on the recording's own
+    /// timeline) and its latent coordinates, for analysis elsewhere.
+    pub fn csv(&self, dims: usize) -> String {
+        let dims = dims.max(1);
+        let head: Vec<String> = (0..dims)
+            .map(|d| {
+                if dims == 1 {
+                    "z".into()
+                } else {
+                    format!("z{d}")
+                }
+            })
+            .collect();
+        let mut s = format!("time_s,{}\n", head.join(","));
+        for (k, row) in self.latents.chunks(dims).enumerate() {
+            let row: Vec<String> = row.iter().map(|v| v.to_string()).collect();
+            s += &format!("{},{}\n", self.time(k), row.join(","));
+        }
+        s
+    }
+
+    /// Time of kept frame `k` on the recording's own timeline (s).
+    pub fn time(&self, k: usize) -> f64 {
+        self.start_s + k as f64 * self.frame_dt
+    }
 }
 
 /// The latent of every frame of a recording ([1, F, D] standardised frames), encoded in pieces.
@@ -73,6 +103,7 @@ pub fn timeline(
         }
         Timeline {
             frame_dt: 1.0 / summary.fps,
+            start_s: summary.start.unwrap_or(0.0),
             stride: summary.stride,
             latents,
             rollouts,

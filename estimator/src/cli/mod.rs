@@ -28,7 +28,7 @@ use std::path::PathBuf;
 /// .npy arrays, videos and image folders. Values are labelled SI or latent units; latent-unit
 /// ones need --reference. Ends with a table of estimates (and ground truth with relative errors
 /// when meta.json gives them) and writes report.json, metrics.csv, parameters.png and
-/// latents.png (and timeline.png for a recording) into --out.
+/// latents.png (and timeline.png and timeline.csv for a recording) into --out.
 #[derive(Debug, Clone, Parser)]
 #[command(name = "estimate", version, allow_negative_numbers = true)]
 pub struct EstimateArgs {

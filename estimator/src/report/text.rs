@@ -32,7 +32,7 @@ impl Report {
         }
         if let Some(c) = &self.cross_check {
             s += &format!(
-                "cross-check: {} from the decay of {} swing peaks (appendix A.6): {:.4} ± {:.4} \
+                "cross-check: {} from the amplitude decay of {} swings (appendix A.6): {:.4} ± {:.4} \
                  (learned {:.4}: {})\n",
                 c.name,
                 c.peaks.len(),

@@ -3,6 +3,7 @@
 
 pub mod outcome;
 mod readings;
+mod refine;
 mod trainer;
 
 pub use outcome::{EpochRecord, StopReason, TrainOutcome};

@@ -4,7 +4,7 @@
 //! the kept checkpoint.
 
 use super::outcome::{EpochRecord, StopReason, TrainOutcome};
-use super::readings;
+use super::{readings, refine};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
@@ -201,21 +201,6 @@ impl<'a> Trainer<'a> {
         }
     }
 
-    /// The block's refinement (see `PhysicsBlock::refine`) on the training clips encoded by
-    /// the kept encoder.
-    fn refine(&self) {
-        let data = self.data;
-        let z = tch::no_grad(|| self.network.encoder.encode(&data.train));
-        let ids: Vec<usize> = (0..data.n_train() as usize).collect();
-        let clips = Clips {
-            start: data.train_start.as_ref(),
-            ids: Some(&ids),
-        };
-        if self.network.refine(&z, clips) {
-            self.network.prepare();
-        }
-    }
-
     /// A curriculum stage ends when its horizon is fitted (validation error below
     /// [`STAGE_FITTED`], no better for two epochs) or stalled (a third of the patience without
     /// a better epoch); the next trains on twice the frames, its checkpoints judged afresh.
@@ -296,7 +281,7 @@ impl<'a> Trainer<'a> {
     pub fn finish(self) -> TrainOutcome {
         let network = &self.network;
         network.restore(&self.best.2);
-        self.refine();
+        refine::refine(network, self.data);
         let data = self.data;
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {
