@@ -10,6 +10,7 @@ pub mod data;
 pub mod device;
 pub mod encoder;
 pub mod error;
+pub mod linalg;
 pub mod loss;
 pub mod network;
 pub mod output;

@@ -99,23 +99,8 @@ fn sinusoid_amplitude(samples: &[f64], first: usize, dt: f64, omega: f64) -> Opt
             }
         }
     }
-    // Cramer's rule on the 3×3 normal equations.
-    let det = |a: &[f64; 9]| {
-        a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6])
-            + a[2] * (a[3] * a[7] - a[4] * a[6])
-    };
-    let d = det(&m);
-    if d.abs() <= 1e-12 * (m[0] * m[4] * m[8]).abs() || !d.is_finite() {
-        return None;
-    }
-    let column = |j: usize| {
-        let mut a = m;
-        for p in 0..3 {
-            a[p * 3 + j] = r[p];
-        }
-        det(&a) / d
-    };
-    Some(column(1).hypot(column(2)))
+    let c = crate::linalg::solve(&m, &r, 3)?;
+    Some(c[1].hypot(c[2]))
 }
 
 /// ζ = −2·slope of ln(peak) against time, with its standard error; `None` with fewer than

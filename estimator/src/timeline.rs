@@ -66,16 +66,16 @@ pub fn encode_recording(model: &Network, frames: &Tensor) -> Vec<f32> {
     })
 }
 
-/// The latent over a recording (encoded in pieces) and the rollouts of clips that tile it, one
-/// clip span apart.
+/// The latent over a recording (`latents`, from [`encode_recording`]) and the rollouts of clips
+/// that tile it, one clip span apart.
 pub fn timeline(
     model: &Network,
     data: &ClipData,
     summary: &RecordingSummary,
     frames: &Tensor,
+    latents: Vec<f32>,
 ) -> Timeline {
     tch::no_grad(|| {
-        let latents = encode_recording(model, frames);
         let t = data.frames_per_clip as usize;
         let span = (t - 1) * summary.stride;
         let mut rollouts = Vec::new();

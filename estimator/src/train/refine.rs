@@ -7,11 +7,11 @@
 use crate::data::ClipData;
 use crate::network::Network;
 use crate::physics::Clips;
-use crate::timeline::encode_recording;
 use tch::Tensor;
 
-/// Refines the block's parameters on the training clips, then on the recording's windows.
-pub fn refine(network: &Network, data: &ClipData) {
+/// Refines the block's parameters on the training clips, then, given the latent of every
+/// frame of a recording (`encode_recording`), on its windows.
+pub fn refine(network: &Network, data: &ClipData, recording_latents: Option<&[f32]>) {
     let z = tch::no_grad(|| network.encoder.encode(&data.train));
     let ids: Vec<usize> = (0..data.n_train() as usize).collect();
     let clips = Clips {
@@ -21,11 +21,10 @@ pub fn refine(network: &Network, data: &ClipData) {
     if network.refine(&z, clips) {
         network.prepare();
     }
-    let Some((summary, frames)) = data.recording.as_ref() else {
+    let (Some((summary, _)), Some(latents)) = (data.recording.as_ref(), recording_latents) else {
         return;
     };
     let dims = data.model.latent_dims().max(1);
-    let latents = encode_recording(network, frames);
     let windows = recording_windows(latents.len() / dims, summary.stride, MAX_WINDOW);
     let Some(first) = windows.first() else {
         return;

@@ -11,7 +11,7 @@ use crate::error::EstimateError;
 use crate::loss::{loss, LossKind};
 use crate::network::{to_rows, Network};
 use crate::physics::{Clips, Settles};
-use crate::timeline::timeline;
+use crate::timeline::{encode_recording, timeline};
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
 use tch::{Device, Kind, Tensor};
@@ -281,7 +281,14 @@ impl<'a> Trainer<'a> {
     pub fn finish(self) -> TrainOutcome {
         let network = &self.network;
         network.restore(&self.best.2);
-        refine::refine(network, self.data);
+        // The encoder is held from here on: the recording's latent serves the refinement and
+        // the timeline.
+        let recording_latents = self
+            .data
+            .recording
+            .as_ref()
+            .map(|(_, frames)| encode_recording(network, frames));
+        refine::refine(network, self.data, recording_latents.as_deref());
         let data = self.data;
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {
@@ -304,7 +311,8 @@ impl<'a> Trainer<'a> {
         let timeline = data
             .recording
             .as_ref()
-            .map(|(summary, frames)| timeline(network, data, summary, frames));
+            .zip(recording_latents)
+            .map(|((summary, frames), latents)| timeline(network, data, summary, frames, latents));
         TrainOutcome {
             timeline,
             parameters,

@@ -2,7 +2,8 @@
 //! Levenberg–Marquardt by variable projection over many clips.
 
 use super::block::{host, ShootingBlock};
-use super::shooting::{solve, ClipFit};
+use super::shooting::ClipFit;
+use crate::linalg::solve;
 use crate::physics::Clips;
 use tch::Tensor;
 

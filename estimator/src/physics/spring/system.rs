@@ -107,32 +107,27 @@ mod tests {
         let (mut f, mut jx, mut jp) = (vec![0.0; 8], vec![0.0; 64], vec![0.0; 16]);
         SpringSystem.eval(&x, &p, 0.0, &mut f, Some((&mut jx, &mut jp)));
         let eps = 1e-6;
-        for j in 0..8 {
-            let (mut a, mut b) = (x, x);
-            a[j] += eps;
-            b[j] -= eps;
-            let (mut fa, mut fb) = (vec![0.0; 8], vec![0.0; 8]);
-            SpringSystem.eval(&a, &p, 0.0, &mut fa, None);
-            SpringSystem.eval(&b, &p, 0.0, &mut fb, None);
-            for i in 0..8 {
-                let fd = (fa[i] - fb[i]) / (2.0 * eps);
-                assert!(
-                    (fd - jx[i * 8 + j]).abs() < 1e-6,
-                    "∂f{i}/∂x{j}: {fd} vs {}",
-                    jx[i * 8 + j]
-                );
+        // Columns 0..8 move the state, 8..10 the parameters.
+        for j in 0..10 {
+            let (mut xa, mut pa, mut xb, mut pb) = (x, p, x, p);
+            if j < 8 {
+                xa[j] += eps;
+                xb[j] -= eps;
+            } else {
+                pa[j - 8] += eps;
+                pb[j - 8] -= eps;
             }
-        }
-        for j in 0..2 {
-            let (mut a, mut b) = (p, p);
-            a[j] += eps;
-            b[j] -= eps;
             let (mut fa, mut fb) = (vec![0.0; 8], vec![0.0; 8]);
-            SpringSystem.eval(&x, &a, 0.0, &mut fa, None);
-            SpringSystem.eval(&x, &b, 0.0, &mut fb, None);
+            SpringSystem.eval(&xa, &pa, 0.0, &mut fa, None);
+            SpringSystem.eval(&xb, &pb, 0.0, &mut fb, None);
             for i in 0..8 {
                 let fd = (fa[i] - fb[i]) / (2.0 * eps);
-                assert!((fd - jp[i * 2 + j]).abs() < 1e-6, "∂f{i}/∂p{j}");
+                let an = if j < 8 {
+                    jx[i * 8 + j]
+                } else {
+                    jp[i * 2 + j - 8]
+                };
+                assert!((fd - an).abs() < 1e-6, "∂f{i}/∂(column {j}): {fd} vs {an}");
             }
         }
     }
