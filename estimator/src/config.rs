@@ -9,7 +9,9 @@ use crate::data::ClipData;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
+use crate::physics::model::DT_RANGE;
 use crate::physics::{Integrator, ModelRef, RolloutStart};
+use physvid_shared::cli::num;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -78,6 +80,7 @@ impl RunConfig {
                 model.latent_dims()
             )));
         }
+        check_dt(model, data)?;
         let [n, frames, _, height, width] = data.shape;
         let (min_side, why) = model.info().min_frame;
         if height.min(width) < min_side {
@@ -185,6 +188,34 @@ pub fn initial_values(model: ModelRef, init: &[(String, f64)]) -> Result<Vec<f64
         values[i] = *v;
     }
     Ok(values)
+}
+
+/// The data's dt against [`DT_RANGE`] and the model's longest, naming where it came from.
+fn check_dt(model: ModelRef, data: &ClipData) -> Result<(), EstimateError> {
+    let dt = data.dt;
+    let source = if data.recording.is_some() {
+        "dt = --stride / fps"
+    } else if data.meta.is_some() {
+        "meta.json's dt"
+    } else {
+        "--dt"
+    };
+    let (lo, hi) = DT_RANGE;
+    if !(lo..=hi).contains(&dt) {
+        return Err(input_error(format!(
+            "{source} {} s: outside {lo:e}–{hi} s (a million frames per second to one a day); give dt in seconds",
+            num(dt)
+        )));
+    }
+    let (max, why) = model.info().max_dt;
+    if dt > max {
+        return Err(input_error(format!(
+            "{source} {} s: {} takes dt ≤ {max} s ({why})",
+            num(dt),
+            model.name()
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

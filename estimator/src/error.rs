@@ -27,6 +27,9 @@ pub enum EstimateError {
     },
     #[error("cannot draw {path}: {reason}")]
     Plot { path: PathBuf, reason: String },
+    /// Training ran but gave no estimate (exit code 3); nothing is written.
+    #[error("no estimate: {0}; nothing written")]
+    NoEstimate(String),
 }
 
 impl EstimateError {
@@ -54,10 +57,12 @@ pub fn exit_with(program: &str, result: anyhow::Result<()>) -> std::process::Exi
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("{program}: error: {e:#}");
-            let bad_input = e
-                .downcast_ref::<EstimateError>()
-                .is_some_and(EstimateError::is_bad_input);
-            std::process::ExitCode::from(if bad_input { 2 } else { 1 })
+            let code = match e.downcast_ref::<EstimateError>() {
+                Some(e) if e.is_bad_input() => 2,
+                Some(EstimateError::NoEstimate(_)) => 3,
+                _ => 1,
+            };
+            std::process::ExitCode::from(code)
         }
     }
 }

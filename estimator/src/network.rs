@@ -115,7 +115,7 @@ impl Network {
             .flatten()
     }
 
-    /// The block's per-epoch refinement on latents `z` (see [`PhysicsBlock::refine`]).
+    /// The block's final refinement on latents `z` (see [`PhysicsBlock::refine`]).
     pub fn refine(&self, z: &Tensor, clips: Clips) -> bool {
         self.block.refine(z, clips)
     }

@@ -26,6 +26,17 @@ fn plot(dir: &Path, name: &str, png: Result<Vec<u8>, String>) -> Result<(), Esti
     write(dir, name, &png)
 }
 
+/// Every file a run may write, report.json first: removed before a run writes its own.
+const OUTPUTS: [&str; 7] = [
+    "report.json",
+    "metrics.csv",
+    "parameters.png",
+    "latents.png",
+    "timeline.png",
+    "timeline.csv",
+    "clips.png",
+];
+
 /// Writes report.json, metrics.csv, parameters.png and latents.png (and timeline.png,
 /// timeline.csv and clips.png for a recording) into `out`, report.json last.
 pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
@@ -33,6 +44,14 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
         path: out.to_path_buf(),
         source,
     })?;
+    // The directory becomes wholly this run's: an earlier run's report.json goes first (a
+    // directory with a report.json is complete), then what this run will not write again.
+    for name in OUTPUTS {
+        let path = out.join(name);
+        if path.is_file() {
+            std::fs::remove_file(&path).map_err(|source| EstimateError::Write { path, source })?;
+        }
+    }
     write(out, "metrics.csv", report.metrics_csv().as_bytes())?;
     plot(out, "parameters.png", parameters_png(report))?;
     plot(

@@ -5,11 +5,12 @@ use crate::cli::EstimateArgs;
 use crate::config::RunConfig;
 use crate::data::{load_clips, ClipData};
 use crate::device::select_device;
+use crate::error::EstimateError;
 use crate::output::write_outputs;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
-use crate::train::fit;
+use crate::train::{fit, StopReason, TrainOutcome};
 use std::time::Instant;
 
 /// An estimation's report with the clips it was trained on.
@@ -61,6 +62,9 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         progress.epoch(rec, &names)
     })?;
     progress.finish();
+    if let Some(why) = failure(&outcome) {
+        return Err(EstimateError::NoEstimate(why).into());
+    }
     let chosen = probes
         .iter()
         .find(|p| p.chosen)
@@ -72,7 +76,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         wall: start.elapsed(),
     };
     // Further members of an ensemble: the same clips and starts, seeds --seed+1 … --seed+K−1.
-    let mut members = Vec::new();
+    let (mut members, mut failed) = (Vec::new(), Vec::new());
     for i in 1..cfg.ensemble {
         let member = cfg.with_seed(cfg.seed + i as u64);
         if !cfg.quiet {
@@ -84,13 +88,62 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
             );
         }
         let (o, _) = fit(&member, &data, device, &starts, &mut |_| {})?;
-        members.push(Report::new(&member, &data, info(start), &chosen, o).parameters);
+        match failure(&o) {
+            Some(why) => failed.push(format!("seed {}: {why}", member.seed)),
+            None => members.push((
+                member.seed,
+                Report::new(&member, &data, info(start), &chosen, o).parameters,
+            )),
+        }
     }
     let mut report = Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
+    if let Some(p) = report.parameters.iter().find(|p| !p.estimate.is_finite()) {
+        return Err(EstimateError::NoEstimate(format!(
+            "{} came out {} (the data cannot give it at this dt and calibration)",
+            p.name, p.estimate
+        ))
+        .into());
+    }
     if cfg.ensemble > 1 {
-        members.insert(0, report.parameters.clone());
-        let seeds = (0..cfg.ensemble as u64).map(|i| cfg.seed + i).collect();
-        report.ensemble = Some(summarise(seeds, &members));
+        members.insert(0, (cfg.seed, report.parameters.clone()));
+        if !failed.is_empty() {
+            report.warnings.push(format!(
+                "ensemble: {} of {} members gave no estimate and are left out of the spread ({})",
+                failed.len(),
+                cfg.ensemble,
+                failed.join("; ")
+            ));
+        }
+        if members.len() >= 2 {
+            let (seeds, params): (Vec<u64>, Vec<_>) = members.into_iter().unzip();
+            report.ensemble = Some(summarise(seeds, &params));
+        } else {
+            report.warnings.push(
+                "ensemble: fewer than two members gave an estimate: no spread is reported"
+                    .to_string(),
+            );
+        }
     }
     Ok(Estimation { report, data })
+}
+
+/// Why a training run gave no estimate, if it did not: no epoch with a finite validation
+/// error (the kept values would be the starting ones), or a parameter that is not finite.
+fn failure(outcome: &TrainOutcome) -> Option<String> {
+    if outcome.best_epoch == 0 {
+        let when = match outcome.stop {
+            StopReason::NonFiniteLoss { epoch } => {
+                format!("the loss was not finite at epoch {epoch}")
+            }
+            _ => "no epoch had a finite validation error".to_string(),
+        };
+        return Some(format!(
+            "training diverged ({when}); lower --lr / --lr-phys, start elsewhere with --init, or check dt"
+        ));
+    }
+    outcome
+        .parameters
+        .iter()
+        .any(|p| !p.is_finite())
+        .then(|| "a parameter came out infinite or NaN; start elsewhere with --init".to_string())
 }

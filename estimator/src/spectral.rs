@@ -45,25 +45,41 @@ fn spectral_mode(train: &Tensor, dt: f64) -> Option<(f64, f64)> {
     if t < 4 {
         return None;
     }
-    let frames = train.reshape([n * t, d]).to_kind(Kind::Double);
+    let frames = train.reshape([n * t, d]);
     let take = PCA_FRAMES.min(n * t);
     let idx = Tensor::arange(take, (Kind::Int64, Device::Cpu))
         .multiply_scalar((n * t) as f64 / take as f64)
         .to_kind(Kind::Int64)
         .to_device(train.device());
-    let sample = frames.index_select(0, &idx);
+    let sample = frames.index_select(0, &idx).to_kind(Kind::Double);
     let sample = &sample - sample.mean_dim(0, true, Kind::Double);
-    let (_, sv, v) = sample.svd(true, true);
-    let k = COMPONENTS.min(v.size()[1]).min(take - 1);
-    // Keep components with real variance (relative to the first).
-    let sv = Vec::<f64>::try_from(&sv.to_device(Device::Cpu)).ok()?;
-    let k = (0..k as usize)
-        .take_while(|&i| sv[i] > 1e-6 * sv[0])
+    // The principal directions from the sample's Gram matrix [take, take] (a frame has
+    // thousands of pixels, the sample hundreds of frames): eigenvalues σ², directions Sᵀu/σ.
+    let (evals, u) = sample.matmul(&sample.tr()).linalg_eigh("L");
+    let evals = Vec::<f64>::try_from(&evals.to_device(Device::Cpu)).ok()?;
+    let top = evals.last().copied().filter(|&e| e > 0.0)?;
+    // Keep components with real variance (relative to the first), largest first.
+    let k = evals
+        .iter()
+        .rev()
+        .take(COMPONENTS as usize)
+        .take_while(|&&e| e.sqrt() > 1e-6 * top.sqrt())
         .count() as i64;
     if k == 0 {
         return None;
     }
-    let y = frames.matmul(&v.narrow(1, 0, k)).view([n, t, k]);
+    let order = Tensor::arange_start_step(take - 1, take - 1 - k, -1, (Kind::Int64, Device::Cpu))
+        .to_device(train.device());
+    let sigma = Tensor::from_slice(&evals[(take - k) as usize..])
+        .flip([0])
+        .sqrt()
+        .to_device(train.device());
+    let v = sample.tr().matmul(&u.index_select(1, &order)) / sigma.unsqueeze(0);
+    // Projected in single precision (the frames' own), the few components then in double.
+    let y = frames
+        .matmul(&v.to_kind(train.kind()))
+        .to_kind(Kind::Double)
+        .view([n, t, k]);
     // Regress y[t+1] on [y[t], y[t−1], 1] over every window of every clip.
     let next = y.narrow(1, 2, t - 2).reshape([-1, k]);
     let now = y.narrow(1, 1, t - 2).reshape([-1, k]);

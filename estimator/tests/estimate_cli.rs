@@ -141,32 +141,6 @@ fn help_describes_every_flag() {
 }
 
 #[test]
-fn a_nan_loss_stops_with_the_last_good_parameters_and_says_so() {
-    let tmp = tempfile::tempdir().unwrap();
-    let data = gen_dataset(
-        &tmp.path().join("data"),
-        "intensity",
-        &["--samples", "40", "--size", "16"],
-    );
-    let out = tmp.path().join("run");
-    let o = Estimate::new(&data)
-        .out(&out)
-        .args(["--lr", "1e6", "--lr-phys", "1e6", "--epochs", "20"])
-        .args(["--single-start"])
-        .quiet()
-        .ok();
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        !stdout.to_lowercase().contains("nan") && !stdout.contains("inf"),
-        "{stdout}"
-    );
-    assert!(stderr(&o).contains("NaN or infinite"), "{}", stderr(&o));
-    let r = read_report(&out);
-    assert_eq!(r["stop"]["kind"], "non-finite-loss");
-    assert!(estimate_of(&r, "gamma0").is_finite() && estimate_of(&r, "gamma1").is_finite());
-}
-
-#[test]
 fn an_ensemble_reports_the_spread_over_seeds() {
     let tmp = tempfile::tempdir().unwrap();
     let data = small_set(&tmp.path().join("data"), "intensity");

@@ -4,7 +4,7 @@
 mod util;
 
 use std::path::Path;
-use util::{gen_dataset, read_report, stderr, Estimate};
+use util::{f32_bytes, gen_dataset, read_report, stderr, write_npy, Estimate};
 
 #[test]
 fn bare_npy_needs_dt_and_model_and_then_works() {
@@ -39,23 +39,6 @@ fn bare_npy_needs_dt_and_model_and_then_works() {
         r["parameters"][0]["truth"].is_null(),
         "no ground truth without metadata"
     );
-}
-
-fn write_npy(path: &Path, descr: &str, shape: &str, data: &[u8]) {
-    let mut dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
-    while (10 + dict.len() + 1) % 64 != 0 {
-        dict.push(' ');
-    }
-    dict.push('\n');
-    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-    bytes.extend_from_slice(&(dict.len() as u16).to_le_bytes());
-    bytes.extend_from_slice(dict.as_bytes());
-    bytes.extend_from_slice(data);
-    std::fs::write(path, bytes).unwrap();
-}
-
-fn f32_bytes(values: &[f32]) -> Vec<u8> {
-    values.iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
 /// A copy of dataset `data` in `dir` whose meta.json has `from` replaced by `to`.

@@ -68,8 +68,8 @@ pub struct GenArgs {
     /// over a colour background; frames get C = 3).
     #[arg(long)]
     pub color: bool,
-    /// Worker threads (default: all cores). Output does not depend on it.
-    #[arg(long)]
+    /// Worker threads, 1 to 256 (default: all cores). Output does not depend on it.
+    #[arg(long, value_parser = physvid_shared::cli::thread_count)]
     pub threads: Option<usize>,
 }
 

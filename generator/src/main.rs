@@ -11,10 +11,6 @@ fn main() -> ExitCode {
         Err(e) => return physvid_shared::cli::exit_on_clap_error(e),
     };
     if let Some(n) = args.threads {
-        if n == 0 {
-            eprintln!("gen: error: --threads 0: must be at least 1");
-            return ExitCode::from(2);
-        }
         rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()

@@ -78,6 +78,11 @@ fn bad_input_gets_a_one_line_error_naming_the_flag_and_exit_code_2() {
     scale().args(["--size", "4"]).bad_input("--size");
     scale().args(["--frames", "2"]).bad_input("--frames");
     scale().args(["--samples", "0"]).bad_input("--samples");
+    for n in ["0", "100000"] {
+        scale()
+            .args(["--threads", n])
+            .bad_input("must be from 1 to 256");
+    }
     for dt in ["0", "-0.1", "inf", "NaN"] {
         scale().args(["--dt", dt]).bad_input("--dt");
     }

@@ -107,8 +107,8 @@ struct Cli {
     /// Where to train.
     #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
     device: DeviceChoice,
-    /// CPU threads for libtorch (default: all cores).
-    #[arg(long)]
+    /// CPU threads for libtorch, 1 to 256 (default: all cores).
+    #[arg(long, value_parser = physvid_shared::cli::thread_count)]
     threads: Option<usize>,
     /// Render datasets here and keep them (default: a temporary directory, removed after).
     #[arg(long, value_name = "DIR")]
@@ -120,9 +120,6 @@ struct Cli {
 
 impl Cli {
     fn validate(self) -> Result<Cli, EstimateError> {
-        if self.threads == Some(0) {
-            return Err(input_error("--threads 0: must be at least 1"));
-        }
         if self.out.is_file() {
             return Err(input_error(format!(
                 "--out {}: is a file; give a directory (created if missing)",

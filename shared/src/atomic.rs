@@ -29,6 +29,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DatasetError> {
     })
 }
 
+/// Checks, before any work, that `dir` is or can become a writable directory: it is one, or
+/// does not exist and its nearest existing ancestor is one. Names the path and the fault.
+pub fn check_output_dir(flag: &str, dir: &Path) -> Result<(), String> {
+    let shown = dir.display();
+    if dir.symlink_metadata().is_ok() && dir.metadata().is_err() {
+        return Err(format!(
+            "{flag} {shown}: a symbolic link to nothing; remove it or choose another directory"
+        ));
+    }
+    let existing = dir
+        .ancestors()
+        .find(|p| p.exists())
+        .unwrap_or(Path::new("."));
+    let existing = if existing.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        existing
+    };
+    if !existing.is_dir() {
+        return Err(if existing == dir {
+            format!("{flag} {shown}: exists and is not a directory; choose a directory")
+        } else {
+            format!(
+                "{flag} {shown}: {} is a file, not a directory; choose another path",
+                existing.display()
+            )
+        });
+    }
+    // Writable: a probe file created and removed (permissions alone miss read-only mounts).
+    let probe = existing.join(format!(".physvid-probe-{}", std::process::id()));
+    match std::fs::File::create(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) => Err(format!(
+            "{flag} {shown}: cannot write in {} ({e}); choose a writable directory",
+            existing.display()
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -44,5 +86,27 @@ mod tests {
         write_atomic(&p, b"{}").unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"{}");
         assert!(!partial_path(&p).exists());
+    }
+
+    #[test]
+    fn output_directories_are_checked_before_work() {
+        let tmp = tempfile::tempdir().unwrap();
+        let file = tmp.path().join("f");
+        std::fs::write(&file, b"x").unwrap();
+        assert!(check_output_dir("--out", &tmp.path().join("new/run")).is_ok());
+        assert!(check_output_dir("--out", tmp.path()).is_ok());
+        let e = check_output_dir("--out", &file).unwrap_err();
+        assert!(e.contains("not a directory"), "{e}");
+        let e = check_output_dir("--out", &file.join("run")).unwrap_err();
+        assert!(e.contains("is a file"), "{e}");
+        #[cfg(unix)]
+        {
+            let link = tmp.path().join("dangling");
+            std::os::unix::fs::symlink(tmp.path().join("nowhere"), &link).unwrap();
+            let e = check_output_dir("--out", &link).unwrap_err();
+            assert!(e.contains("symbolic link"), "{e}");
+            let e = check_output_dir("--out", Path::new("/proc/x")).unwrap_err();
+            assert!(e.contains("cannot write"), "{e}");
+        }
     }
 }

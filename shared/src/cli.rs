@@ -30,6 +30,33 @@ pub fn parse_name_values(text: &str) -> Result<Vec<(String, f64)>, String> {
         .collect()
 }
 
+/// A number for a message: plain when moderate, in scientific notation when huge or tiny
+/// (1e300 is not printed as 301 digits).
+pub fn num(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The most worker threads `--threads` takes: beyond a few per core threads only add
+/// overhead, and tens of thousands exhaust the stack and the OpenMP runtime.
+pub const MAX_THREADS: usize = 256;
+
+/// `--threads`' parser: a whole number from 1 to [`MAX_THREADS`].
+pub fn thread_count(text: &str) -> Result<usize, String> {
+    let n: usize = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a whole number"))?;
+    if (1..=MAX_THREADS).contains(&n) {
+        Ok(n)
+    } else {
+        Err(format!("{n}: must be from 1 to {MAX_THREADS}"))
+    }
+}
+
 /// Prints help or version (exit 0), or the parse error as one line (exit 2).
 pub fn exit_on_clap_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
@@ -57,6 +84,22 @@ mod tests {
             .unwrap_err()
             .contains("NAME=VALUE"));
         assert!(super::parse_name_values("a=x").unwrap_err().contains("'x'"));
+    }
+
+    #[test]
+    fn numbers_in_messages_stay_short() {
+        assert_eq!(super::num(0.2), "0.2");
+        assert_eq!(super::num(1e300), "1e300");
+        assert_eq!(super::num(-1e-30), "-1e-30");
+        assert_eq!(super::num(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn thread_counts_are_bounded() {
+        assert_eq!(super::thread_count("3"), Ok(3));
+        for bad in ["0", "257", "100000", "-1", "x"] {
+            assert!(super::thread_count(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

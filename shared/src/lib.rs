@@ -16,7 +16,7 @@ pub mod recurrence;
 pub mod video;
 
 pub use affine::{AffineFit, SimilarityFit};
-pub use atomic::write_atomic;
+pub use atomic::{check_output_dir, write_atomic};
 pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
 pub use dynamics::DampedOscillator;
 pub use error::DatasetError;

@@ -64,6 +64,7 @@ impl EstimateArgs {
         self.model.validate()?;
         self.training.validate()?;
         self.recording.validate()?;
+        physvid_shared::check_output_dir("--out", &self.output.out).map_err(input_error)?;
         Ok(self)
     }
 }
@@ -74,7 +75,8 @@ pub(crate) fn positive(flag: &str, v: f64) -> Result<(), EstimateError> {
         Ok(())
     } else {
         Err(input_error(format!(
-            "{flag} {v}: must be a finite number > 0"
+            "{flag} {}: must be a finite number > 0",
+            physvid_shared::cli::num(v)
         )))
     }
 }

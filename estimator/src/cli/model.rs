@@ -123,6 +123,12 @@ pub fn parse_init(text: &str) -> Result<InitValues, String> {
         .map_err(|e| format!("{e} (e.g. gamma0=10,gamma1=0.5)"))
 }
 
+/// The largest `--init` magnitude: squared (γ1², the pendulum's ω) it stays within single
+/// precision.
+const MAX_INIT: f64 = 1e15;
+
+use physvid_shared::cli::num;
+
 impl ModelArgs {
     /// Checks the flags that do not depend on the data.
     pub fn validate(&self) -> Result<(), EstimateError> {
@@ -140,9 +146,10 @@ impl ModelArgs {
             }
         }
         for (name, v) in self.init_pairs() {
-            if !v.is_finite() {
+            if !(v.is_finite() && v.abs() <= MAX_INIT) {
                 return Err(input_error(format!(
-                    "--init {name}={v}: must be a finite number"
+                    "--init {name}={}: must be a finite number within ±{MAX_INIT:e} (training is in single precision)",
+                    num(*v)
                 )));
             }
         }

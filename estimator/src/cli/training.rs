@@ -57,8 +57,8 @@ pub struct TrainingArgs {
     /// Where to train.
     #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
     pub device: DeviceChoice,
-    /// CPU threads for libtorch (default: all cores).
-    #[arg(long)]
+    /// CPU threads for libtorch, 1 to 256 (default: all cores).
+    #[arg(long, value_parser = physvid_shared::cli::thread_count)]
     pub threads: Option<usize>,
 }
 
@@ -111,10 +111,15 @@ impl TrainingArgs {
         if self.batch_size == 0 {
             return Err(input_error("--batch-size 0: must be at least 1"));
         }
-        positive("--lr", self.lr)?;
-        positive("--lr-phys", self.lr_phys)?;
-        if self.threads == Some(0) {
-            return Err(input_error("--threads 0: must be at least 1"));
+        for (flag, lr) in [("--lr", self.lr), ("--lr-phys", self.lr_phys)] {
+            positive(flag, lr)?;
+            // Adam moves each weight by about lr per step: beyond 1 every step overshoots.
+            if lr > 1.0 {
+                return Err(input_error(format!(
+                    "{flag} {}: must be at most 1 (Adam moves each weight by about this much per step)",
+                    physvid_shared::cli::num(lr)
+                )));
+            }
         }
         Ok(())
     }

@@ -13,6 +13,7 @@ pub mod pendulum;
 pub mod spring;
 pub mod torricelli;
 mod two_step;
+mod two_step_solve;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec, Settles};

@@ -77,6 +77,10 @@ pub struct ModelInfo {
     pub encoder: EncoderKind,
     /// Early-stop patience (epochs without improvement).
     pub patience: usize,
+    /// The convergence stop's band: training ends when every parameter stayed within this
+    /// fraction of its value (offsets: of the latent's spread; maps refitted from references
+    /// are not judged) over a window of half the patience.
+    pub converged_spread: f64,
     /// Appendix Table 5's frames per clip and dt (s) for a recording of this system.
     pub table5_clip: (usize, f64),
     /// Motion from rest at the start of the recording: clip start times since the release pin
@@ -92,7 +96,14 @@ pub struct ModelInfo {
     pub has_euler: bool,
     /// The smallest frame side (pixels) that can show the system (0: any), with what needs it.
     pub min_frame: (usize, &'static str),
+    /// The longest dt (s) the block can integrate (∞: any within [`DT_RANGE`]), with why.
+    pub max_dt: (f64, &'static str),
 }
+
+/// The frame intervals any model accepts (s): from a million frames per second to one frame
+/// a day. Outside them no camera filmed the clip, and single precision loses the dynamics
+/// (dt² of 1e-300 is zero; 1e308 overflows).
+pub const DT_RANGE: (f64, f64) = (1e-6, 86_400.0);
 
 impl ModelInfo {
     /// A model with the defaults most share: the small encoder, patience 30, no special needs.
@@ -108,6 +119,7 @@ impl ModelInfo {
             parameters,
             encoder: EncoderKind::Small,
             patience: 30,
+            converged_spread: 4e-3,
             table5_clip,
             released_from_rest: false,
             calibrates_in_training: false,
@@ -115,6 +127,7 @@ impl ModelInfo {
             latent_dims: 1,
             has_euler: true,
             min_frame: (0, ""),
+            max_dt: (f64::INFINITY, ""),
         }
     }
 }

@@ -22,6 +22,10 @@ pub struct Pendulum;
 /// The calibrated answers need the latent affine to a few parts in 10⁴: patience 30.
 const INFO: ModelInfo = ModelInfo {
     calibrates_in_training: true,
+    max_dt: (
+        10.0,
+        "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
+    ),
     ..ModelInfo::new(
         "pendulum",
         "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",

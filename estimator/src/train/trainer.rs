@@ -19,11 +19,6 @@ use tch::{Device, Kind, Tensor};
 /// Relative improvement the validation metric must make to count as better.
 const MIN_IMPROVEMENT: f64 = 1e-3;
 
-/// The parameters have converged when each stayed within this fraction of its value (offsets:
-/// of the latent's spread; maps refitted from references are not judged) over a window of half
-/// the patience, and the run is at least two windows long.
-pub const CONVERGED_SPREAD: f64 = 4e-3;
-
 /// A network in training with its optimisers, schedule and history: one start of
 /// [`super::fit`].
 pub struct Trainer<'a> {
@@ -237,16 +232,16 @@ impl<'a> Trainer<'a> {
         if let Some(window) = self.converged() {
             self.stop = Some(StopReason::Converged {
                 window,
-                spread: CONVERGED_SPREAD,
+                spread: self.cfg.model.info().converged_spread,
             });
         } else if epoch >= cfg.epochs {
             self.stop = Some(StopReason::MaxEpochs);
         }
     }
 
-    /// The window over which every parameter has stayed within [`CONVERGED_SPREAD`] of its
-    /// mean, if it has: the answer is known, and more epochs would only polish the last digits
-    /// (the kept checkpoint is still the best validation epoch).
+    /// The window over which every parameter has stayed within the model's `converged_spread`
+    /// of its mean, if it has: the answer is known, and more epochs would only polish the last
+    /// digits (the kept checkpoint is still the best validation epoch).
     fn converged(&self) -> Option<usize> {
         let w = (self.cfg.patience / 2).max(5);
         let n = self.history.len();
@@ -271,7 +266,7 @@ impl<'a> Trainer<'a> {
                     Settles::LatentOffset => mean.abs().max(1.0),
                     _ => mean.abs(),
                 };
-                hi - lo <= CONVERGED_SPREAD * scale
+                hi - lo <= self.cfg.model.info().converged_spread * scale
             })
             .then_some(w)
     }
@@ -288,7 +283,10 @@ impl<'a> Trainer<'a> {
             .recording
             .as_ref()
             .map(|(_, frames)| encode_recording(network, frames));
-        refine::refine(network, self.data, recording_latents.as_deref());
+        // The refinement solves the rollout's fit: not the residual loss's objective.
+        if self.cfg.loss != LossKind::ResidualFloor {
+            refine::refine(network, self.data, recording_latents.as_deref());
+        }
         let data = self.data;
         let steps = data.frames_per_clip;
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {

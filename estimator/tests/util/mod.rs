@@ -55,3 +55,22 @@ pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
         .and_then(|p| p["estimate"].as_f64())
         .unwrap_or_else(|| panic!("no estimate for {name}"))
 }
+
+/// Writes a version-1 `.npy` file with header `descr` and `shape` and raw `data`.
+pub fn write_npy(path: &Path, descr: &str, shape: &str, data: &[u8]) {
+    let mut dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    while (10 + dict.len() + 1) % 64 != 0 {
+        dict.push(' ');
+    }
+    dict.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(dict.as_bytes());
+    bytes.extend_from_slice(data);
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// Little-endian bytes of `values`.
+pub fn f32_bytes(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
