@@ -5,7 +5,7 @@
 mod util;
 
 use std::path::Path;
-use util::{f32_bytes, gen_dataset, stderr, write_npy, Estimate};
+use util::{f32_bytes, gen_dataset, stderr, write_npy, Estimate, TestCommand};
 
 /// A bare `.npy` of 12 clips × 20 frames of 8×8 deterministic noise.
 fn noise_npy(dir: &Path) -> String {
@@ -15,6 +15,18 @@ fn noise_npy(dir: &Path) -> String {
         .collect();
     write_npy(&path, "<f4", "(12, 20, 1, 8, 8)", &f32_bytes(&values));
     path.display().to_string()
+}
+
+/// `estimate NPY` as a damped oscillator at dt 0.2 for `epochs` epochs.
+fn oscillator(npy: &str, epochs: &str) -> TestCommand {
+    Estimate::new(npy).args([
+        "--model",
+        "damped-oscillator",
+        "--dt",
+        "0.2",
+        "--epochs",
+        epochs,
+    ])
 }
 
 #[test]
@@ -74,15 +86,7 @@ fn a_diverged_training_exits_3_and_writes_nothing() {
     let tmp = tempfile::tempdir().unwrap();
     let npy = noise_npy(tmp.path());
     let out = tmp.path().join("run");
-    let o = Estimate::new(&npy)
-        .args([
-            "--model",
-            "damped-oscillator",
-            "--dt",
-            "0.2",
-            "--epochs",
-            "3",
-        ])
+    let o = oscillator(&npy, "3")
         .args(["--single-start", "--init", "gamma1=1e14"])
         .out(&out)
         .quiet()
@@ -99,19 +103,7 @@ fn a_diverged_training_exits_3_and_writes_nothing() {
 fn out_is_checked_before_training_and_an_old_run_is_replaced_wholly() {
     let tmp = tempfile::tempdir().unwrap();
     let npy = noise_npy(tmp.path());
-    let run = |out: &Path| {
-        Estimate::new(&npy)
-            .args([
-                "--model",
-                "damped-oscillator",
-                "--dt",
-                "0.2",
-                "--epochs",
-                "2",
-            ])
-            .out(out)
-            .quiet()
-    };
+    let run = |out: &Path| oscillator(&npy, "2").out(out).quiet();
     let file = tmp.path().join("a-file");
     std::fs::write(&file, b"x").unwrap();
     run(&file).bad_input("exists and is not a directory");

@@ -283,8 +283,9 @@ impl<'a> Trainer<'a> {
             .recording
             .as_ref()
             .map(|(_, frames)| encode_recording(network, frames));
-        // The refinement solves the rollout's fit: not the residual loss's objective.
-        if self.cfg.loss != LossKind::ResidualFloor {
+        // The refinement solves the rollout's fit with a latent the KL term keeps spread: not
+        // the residual loss's objective, nor the MSE-only ablation's (whose latent collapses).
+        if self.cfg.loss == LossKind::MseKl {
             refine::refine(network, self.data, recording_latents.as_deref());
         }
         let data = self.data;
