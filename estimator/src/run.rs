@@ -10,7 +10,7 @@ use crate::output::write_outputs;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
-use crate::train::{fit, StopReason, TrainOutcome};
+use crate::train::{fit, StopReason};
 use std::time::Instant;
 
 /// An estimation's report with the clips it was trained on.
@@ -62,9 +62,6 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         progress.epoch(rec, &names)
     })?;
     progress.finish();
-    if let Some(why) = failure(&outcome) {
-        return Err(EstimateError::NoEstimate(why).into());
-    }
     let chosen = probes
         .iter()
         .find(|p| p.chosen)
@@ -75,6 +72,10 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         threads: cfg.threads,
         wall: start.elapsed(),
     };
+    let mut report = Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
+    if let Some(why) = failure(&report) {
+        return Err(EstimateError::NoEstimate(why).into());
+    }
     // Further members of an ensemble: the same clips and starts, seeds --seed+1 … --seed+K−1.
     let (mut members, mut failed) = (Vec::new(), Vec::new());
     for i in 1..cfg.ensemble {
@@ -88,21 +89,11 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
             );
         }
         let (o, _) = fit(&member, &data, device, &starts, &mut |_| {})?;
-        match failure(&o) {
+        let r = Report::new(&member, &data, info(start), &chosen, o);
+        match failure(&r) {
             Some(why) => failed.push(format!("seed {}: {why}", member.seed)),
-            None => members.push((
-                member.seed,
-                Report::new(&member, &data, info(start), &chosen, o).parameters,
-            )),
+            None => members.push((member.seed, r.parameters)),
         }
-    }
-    let mut report = Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
-    if let Some(p) = report.parameters.iter().find(|p| !p.estimate.is_finite()) {
-        return Err(EstimateError::NoEstimate(format!(
-            "{} came out {} (the data cannot give it at this dt and calibration)",
-            p.name, p.estimate
-        ))
-        .into());
     }
     if cfg.ensemble > 1 {
         members.insert(0, (cfg.seed, report.parameters.clone()));
@@ -127,9 +118,11 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     Ok(Estimation { report, data })
 }
 
-/// Why a training run gave no estimate, if it did not: no epoch with a finite validation
-/// error (the kept values would be the starting ones), or a parameter that is not finite.
-fn failure(outcome: &TrainOutcome) -> Option<String> {
+/// Why a run gave no estimate, if it did not: no epoch with a finite validation error (the
+/// kept values would be the starting ones), or an estimate (learned or derived in SI) that is
+/// not finite.
+fn failure(report: &Report) -> Option<String> {
+    let outcome = &report.outcome;
     if outcome.best_epoch == 0 {
         let when = match outcome.stop {
             StopReason::NonFiniteLoss { epoch } => {
@@ -141,9 +134,17 @@ fn failure(outcome: &TrainOutcome) -> Option<String> {
             "training diverged ({when}); lower --lr / --lr-phys, start elsewhere with --init, or check dt"
         ));
     }
-    outcome
+    if outcome.parameters.iter().any(|p| !p.is_finite()) {
+        return Some("a parameter came out infinite or NaN; start elsewhere with --init".into());
+    }
+    report
         .parameters
         .iter()
-        .any(|p| !p.is_finite())
-        .then(|| "a parameter came out infinite or NaN; start elsewhere with --init".to_string())
+        .find(|p| !p.estimate.is_finite())
+        .map(|p| {
+            format!(
+                "{} came out {} (the data cannot give it at this dt and calibration)",
+                p.name, p.estimate
+            )
+        })
 }

@@ -106,7 +106,7 @@ fn out_is_checked_before_training_and_an_old_run_is_replaced_wholly() {
     let run = |out: &Path| oscillator(&npy, "2").out(out).quiet();
     let file = tmp.path().join("a-file");
     std::fs::write(&file, b"x").unwrap();
-    run(&file).bad_input("exists and is not a directory");
+    run(&file).bad_input("is a file or device, not a directory");
     run(&file.join("run")).bad_input("is a file, not a directory");
     run(Path::new("/dev/null")).bad_input("not a directory");
     run(Path::new("/proc/x")).bad_input("cannot write in /proc");

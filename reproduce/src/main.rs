@@ -120,11 +120,9 @@ struct Cli {
 
 impl Cli {
     fn validate(self) -> Result<Cli, EstimateError> {
-        if self.out.is_file() {
-            return Err(input_error(format!(
-                "--out {}: is a file; give a directory (created if missing)",
-                self.out.display()
-            )));
+        physvid_shared::check_output_dir("--out", &self.out).map_err(input_error)?;
+        if let Some(scratch) = &self.scratch {
+            physvid_shared::check_output_dir("--scratch", scratch).map_err(input_error)?;
         }
         Ok(self)
     }

@@ -49,7 +49,7 @@ pub fn check_output_dir(flag: &str, dir: &Path) -> Result<(), String> {
     };
     if !existing.is_dir() {
         return Err(if existing == dir {
-            format!("{flag} {shown}: exists and is not a directory; choose a directory")
+            format!("{flag} {shown}: is a file or device, not a directory; choose a directory (created if missing)")
         } else {
             format!(
                 "{flag} {shown}: {} is a file, not a directory; choose another path",

@@ -6,6 +6,7 @@ use crate::calibration::DEFAULT_G;
 use crate::error::{input_error, EstimateError};
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use physvid_shared::cli::num;
 
 /// The governing equation and how it is integrated and calibrated.
 #[derive(Debug, Clone, clap::Args)]
@@ -126,8 +127,6 @@ pub fn parse_init(text: &str) -> Result<InitValues, String> {
 /// The largest `--init` magnitude: squared (γ1², the pendulum's ω) it stays within single
 /// precision.
 const MAX_INIT: f64 = 1e15;
-
-use physvid_shared::cli::num;
 
 impl ModelArgs {
     /// Checks the flags that do not depend on the data.

@@ -32,7 +32,6 @@ fn responses(a: f64, b: f64, steps: usize) -> (Vec<f64>, Vec<f64>) {
 fn residuals(clips: &[Vec<f64>], ab: [f64; 2], fit: StateFit) -> Option<Vec<f64>> {
     let steps = clips.first()?.len();
     let (p, q) = responses(ab[0], ab[1], steps);
-    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(x, y)| x * y).sum::<f64>();
     let (pp, qq, pq) = (dot(&p, &p), dot(&q, &q), dot(&p, &q));
     let det = pp * qq - pq * pq;
     if fit == StateFit::LeastSquares && (det.abs() <= 1e-12 * pp * qq || !det.is_finite()) {
@@ -52,8 +51,12 @@ fn residuals(clips: &[Vec<f64>], ab: [f64; 2], fit: StateFit) -> Option<Vec<f64>
     out.iter().all(|r| r.is_finite()).then_some(out)
 }
 
+fn dot(u: &[f64], v: &[f64]) -> f64 {
+    u.iter().zip(v).map(|(x, y)| x * y).sum()
+}
+
 fn cost(r: &[f64]) -> f64 {
-    r.iter().map(|x| x * x).sum()
+    dot(r, r)
 }
 
 /// The (a, b) minimising the summed squared rollout residual of `clips` [N][T ≥ 3], searched
@@ -81,7 +84,6 @@ pub fn solve_two_step(clips: &[Vec<f64>], start: [f64; 2], fit: StateFit) -> Opt
                 .map(|(u, d)| (u - d) / (2.0 * h))
                 .collect();
         }
-        let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(x, y)| x * y).sum::<f64>();
         let jtj = [
             [dot(&jac[0], &jac[0]), dot(&jac[0], &jac[1])],
             [dot(&jac[1], &jac[0]), dot(&jac[1], &jac[1])],
@@ -102,7 +104,8 @@ pub fn solve_two_step(clips: &[Vec<f64>], start: [f64; 2], fit: StateFit) -> Opt
             if let Some(rt) = residuals(clips, trial, fit).filter(|rt| cost(rt) < c) {
                 let converged = step[0].abs() <= 1e-12 * ab[0].abs().max(1e-3)
                     && step[1].abs() <= 1e-12 * ab[1].abs().max(1e-3);
-                (ab, r, c) = (trial, rt.clone(), cost(&rt));
+                c = cost(&rt);
+                (ab, r) = (trial, rt);
                 lambda = (lambda / 3.0).max(1e-12);
                 improved = !converged;
                 break;
