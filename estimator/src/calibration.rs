@@ -4,6 +4,7 @@
 //! known q give: `--reference CLIP:FRAME=VALUE,...`, or meta.json for `gen` data. This module
 //! holds the resolved `Calibration` and the helpers the models' `derive` use.
 
+use physvid_shared::cli::num;
 use physvid_shared::AffineFit;
 
 /// What turns latent units into SI units, resolved from the flags and meta.json.
@@ -19,6 +20,9 @@ pub struct Calibration {
     /// Where it came from: "flags", "meta.json" or "none".
     pub source: String,
 }
+
+/// The largest reference value taken (SI): a million metres or radians is no measurement.
+pub const MAX_REFERENCE: f64 = 1e6;
 
 /// Gravitational acceleration assumed when neither `--g` nor meta.json gives it (m/s²).
 pub const DEFAULT_G: f64 = 9.81;
@@ -62,6 +66,48 @@ impl Calibration {
             incline_deg: incline_deg.or_else(|| meta.and_then(|m| m.incline_deg)),
             g: g.or_else(|| meta.and_then(|m| m.g)).unwrap_or(DEFAULT_G),
             source: source.into(),
+        }
+    }
+
+    /// Checks the reference values: finite and within ±[`MAX_REFERENCE`], each frame once, two
+    /// or more frames of different values, and none below zero where the quantity cannot be
+    /// (`nonnegative`: what it is, e.g. Torricelli's water level).
+    pub fn check_values(&self, nonnegative: Option<&str>) -> Result<(), String> {
+        let origin = self.origin();
+        for (i, &(c, f, v)) in self.reference.iter().enumerate() {
+            if v.is_nan() || v.abs() > MAX_REFERENCE {
+                return Err(format!(
+                    "{origin} {c}:{f}={}: must be within ±{MAX_REFERENCE:e} (SI units: rad, m, relative brightness)",
+                    num(v)
+                ));
+            }
+            if let (Some(what), true) = (nonnegative, v < 0.0) {
+                return Err(format!(
+                    "{origin} {c}:{f}={}: below zero, and {what} cannot be",
+                    num(v)
+                ));
+            }
+            if let Some((_, _, v2)) = self.reference[..i]
+                .iter()
+                .find(|(c2, f2, _)| (*c2, *f2) == (c, f))
+            {
+                return Err(format!(
+                    "{origin} {c}:{f} is given twice ({} and {}); give each frame once",
+                    num(*v2),
+                    num(v)
+                ));
+            }
+        }
+        match self.reference.as_slice() {
+            [] => Ok(()),
+            [(c, f, _)] => Err(format!(
+                "{origin}: one frame ({c}:{f}) gives no scale; give two or more frames of different values"
+            )),
+            [(_, _, v), rest @ ..] if rest.iter().all(|r| r.2 == *v) => Err(format!(
+                "{origin}: every frame has the value {}; the scale needs two or more different values",
+                num(*v)
+            )),
+            _ => Ok(()),
         }
     }
 

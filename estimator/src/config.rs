@@ -4,13 +4,13 @@
 //! the checks that need the data. Nothing downstream re-derives a default.
 
 use crate::calibration::Calibration;
-use crate::cli::{DeviceChoice, EstimateArgs};
+use crate::cli::{DeviceChoice, EstimateArgs, ModelArgs};
 use crate::data::ClipData;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
 use crate::physics::model::DT_RANGE;
-use crate::physics::{Integrator, ModelRef, RolloutStart};
+use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use physvid_shared::cli::num;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -81,6 +81,7 @@ impl RunConfig {
             )));
         }
         check_dt(model, data)?;
+        check_calibration_flags(model, m)?;
         let [n, frames, _, height, width] = data.shape;
         let (min_side, why) = model.info().min_frame;
         if height.min(width) < min_side {
@@ -114,6 +115,9 @@ impl RunConfig {
                 model.name()
             )));
         }
+        calibration
+            .check_values(model.info().nonnegative_reference)
+            .map_err(input_error)?;
         if let Some((c, f, p)) = calibration.positions.iter().find(|(_, _, p)| {
             p.chunks(2).any(|xy| {
                 !(0.0..=width as f64).contains(&xy[0]) || !(0.0..=height as f64).contains(&xy[1])
@@ -188,6 +192,32 @@ pub fn initial_values(model: ModelRef, init: &[(String, f64)]) -> Result<Vec<f64
         values[i] = *v;
     }
     Ok(values)
+}
+
+/// Refuses a calibration flag the model's answers do not read, naming the models that do.
+fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), EstimateError> {
+    let given = [
+        ("--reference", m.reference.is_some()),
+        ("--incline-deg", m.incline_deg.is_some()),
+        ("--g", m.g.is_some()),
+    ];
+    let Some((flag, _)) = given
+        .into_iter()
+        .find(|&(flag, given)| given && !model.info().calibration_flags.contains(&flag))
+    else {
+        return Ok(());
+    };
+    let readers: Vec<&str> = MODELS
+        .iter()
+        .filter(|r| r.info().calibration_flags.contains(&flag))
+        .map(|r| r.name())
+        .collect();
+    Err(input_error(format!(
+        "{flag}: {} does not use it (its answers need no calibration of that kind); it applies \
+         to {}; drop it",
+        model.name(),
+        readers.join(", ")
+    )))
 }
 
 /// The data's dt against [`DT_RANGE`] and the model's longest, naming where it came from.

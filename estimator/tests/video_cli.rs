@@ -228,6 +228,24 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
     let bytes = std::fs::read(&video).unwrap();
     let truncated = t.join("truncated.mkv");
     std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    // 200 bytes zeroed in the middle: used to give 41 of 60 frames in silence.
+    let mut zeroed = bytes.clone();
+    let mid = zeroed.len() / 2;
+    zeroed[mid..mid + 200].fill(0);
+    let damaged = t.join("damaged.mkv");
+    std::fs::write(&damaged, &zeroed).unwrap();
+    // Image folders with a truncated and an empty image: used to skip it (later frames shifted
+    // in time) or to stop without naming it.
+    let folder = |name: &str, bad: &str, keep: usize| {
+        let dir = t.join(name);
+        write_frames(&dir, 12);
+        let img = dir.join(bad);
+        let png = std::fs::read(&img).unwrap();
+        std::fs::write(&img, &png[..keep.min(png.len() / 2)]).unwrap();
+        dir.to_str().unwrap().to_string()
+    };
+    let truncated_png = folder("cut", "frame5.png", usize::MAX);
+    let empty_png = folder("zero", "frame7.png", 0);
     let text = t.join("notes.mp4");
     std::fs::write(&text, "not a video at all\n").unwrap();
     let empty = t.join("empty");
@@ -238,6 +256,15 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (vec![text.to_str().unwrap()], "not a readable video"),
         (vec![truncated.to_str().unwrap()], "truncated"),
+        (vec![damaged.to_str().unwrap()], "damaged"),
+        (
+            vec![&truncated_png, "--fps", "10"],
+            "frame5.png: image 5 of 12 in the folder does not decode",
+        ),
+        (
+            vec![&empty_png, "--fps", "10"],
+            "frame7.png: image 7 of 12 in the folder does not decode (an empty file)",
+        ),
         (vec![v, "--start", "100"], "no frames between --start 100"),
         (vec![v, "--crop", "30,20,20,20"], "outside the 40×30 frame"),
         (vec![v, "--frames-per-clip", "40"], "one clip of 40 frames"),
@@ -249,7 +276,7 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
         (vec![v, "--size", "3x3"], "--size"),
         (
             vec![empty.to_str().unwrap(), "--fps", "10"],
-            "holds no .png",
+            "nor an image folder (no .png",
         ),
     ];
     let out = t.join("run");

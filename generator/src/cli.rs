@@ -50,9 +50,8 @@ pub struct GenArgs {
     /// stays in frame) [default: 0.04].
     #[arg(long)]
     pub zeta: Option<f64>,
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3),
-          help = setting_help())]
-    pub setting: u8,
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3), help = setting_help())]
+    pub setting: Option<u8>,
     #[arg(long, value_name = "NAME=VALUE,...", help = set_help())]
     pub set: Option<String>,
     /// Seed of the random draws (amplitude, phase, noise).
@@ -118,7 +117,7 @@ fn size_help() -> String {
 fn setting_help() -> String {
     let each: Vec<String> = SCENES
         .iter()
-        .filter(|s| s.accepts_set())
+        .filter(|s| s.has_settings())
         .filter_map(|s| {
             let (a, b, c) = (s.params(1), s.params(2), s.params(3));
             let key = a.keys().find(|k| a[*k] != b[*k] || b[*k] != c[*k])?;
@@ -132,7 +131,7 @@ fn setting_help() -> String {
         })
         .collect();
     format!(
-        "Delfys75 scenes: the column of appendix Table 4 ({})",
+        "Delfys75 scenes: the column of appendix Table 4 ({}) [default: 1]",
         each.join("; ")
     )
 }
@@ -157,7 +156,23 @@ impl GenArgs {
     pub fn into_config(self) -> Result<GenConfig, ConfigError> {
         let scene = self.scenario;
         let mut cfg = GenConfig::new(scene, self.out);
-        cfg.params = scene.params(self.setting);
+        if let Some(s) = self.setting.filter(|_| !scene.has_settings()) {
+            let with: Vec<&str> = SCENES
+                .iter()
+                .filter(|s| s.has_settings())
+                .map(|s| s.name())
+                .collect();
+            return Err(invalid(
+                "--setting",
+                s,
+                format!(
+                    "{} has no settings (they are appendix Table 4's columns of {})",
+                    scene.name(),
+                    with.join(", ")
+                ),
+            ));
+        }
+        cfg.params = scene.params(self.setting.unwrap_or(1));
         for (flag, name, value) in [
             ("--omega", "omega", self.omega),
             ("--zeta", "zeta", self.zeta),

@@ -2,10 +2,15 @@
 
 use crate::error::{invalid, ConfigError};
 use crate::scenes::{Params, SceneRef};
+use physvid_shared::cli::num;
+use physvid_shared::dynamics::DT_RANGE;
 use std::path::PathBuf;
 
 /// Largest dataset `gen` will hold in memory.
 pub const MAX_BYTES: u64 = 8 << 30;
+
+/// Largest frame side (pixels).
+pub const MAX_SIZE: usize = 4096;
 
 /// Settings of one generation run; build with [`GenConfig::new`], change fields, then
 /// [`GenConfig::validate`].
@@ -58,14 +63,19 @@ impl GenConfig {
                 "must be at least 3 (a second-order model needs two frames to start and one to predict)",
             ));
         }
-        if self.size < 8 {
-            return Err(invalid("--size", self.size, "must be at least 8 pixels"));
+        if !(8..=MAX_SIZE).contains(&self.size) {
+            return Err(invalid(
+                "--size",
+                self.size,
+                format!("must be from 8 to {MAX_SIZE} pixels"),
+            ));
         }
-        if !(self.dt.is_finite() && self.dt > 0.0) {
+        let (lo, hi) = DT_RANGE;
+        if !(lo..=hi).contains(&self.dt) {
             return Err(invalid(
                 "--dt",
-                self.dt,
-                "must be a finite number > 0 (seconds)",
+                num(self.dt),
+                format!("must be from {lo:e} to {hi} s (a million frames a second to one a day)"),
             ));
         }
         self.scene
@@ -84,10 +94,10 @@ impl GenConfig {
             .saturating_mul(4);
         if bytes > MAX_BYTES {
             return Err(invalid(
-                "--samples",
-                self.samples,
+                "--samples × --frames × --size²",
+                format!("{} × {} × {}²", self.samples, self.frames, self.size),
                 format!(
-                    "{} × {} frames × {}² pixels needs {:.1} GiB, more than the 8 GiB limit; lower --samples, --frames or --size",
+                    "{} clips × {} frames × {}² pixels needs {:.1} GiB, more than the 8 GiB limit; lower --samples, --frames or --size",
                     self.samples,
                     self.frames,
                     self.size,
@@ -172,8 +182,26 @@ mod tests {
                     samples: 1_000_000,
                     ..defaults()
                 },
-                "--samples",
+                "--samples × --frames × --size²",
             ),
+            // Used to blame --samples.
+            (
+                GenConfig {
+                    size: 100_000,
+                    ..defaults()
+                },
+                "--size",
+            ),
+            // All frames identical.
+            (
+                GenConfig {
+                    dt: 1e-300,
+                    ..defaults()
+                },
+                "--dt",
+            ),
+            // Still after the first frame.
+            (with("zeta", 1e9), "--zeta"),
         ];
         for (cfg, flag) in cases {
             let e = cfg.validate().unwrap_err();

@@ -92,6 +92,16 @@ fn bad_input_gets_a_one_line_error_naming_the_flag_and_exit_code_2() {
     scale()
         .args(["--samples", "100000", "--size", "200"])
         .bad_input("8 GiB");
+    // Issue 14: flags that did not apply, misleading blame, degenerate physics.
+    let scene = |name: &str, args: &[&str]| gen_scene(name, &out).args(args.to_vec());
+    scene("intensity", &["--setting", "2"]).bad_input("--setting 2: intensity has no settings");
+    scene("intensity", &["--size", "100000"]).bad_input("--size 100000: must be from 8 to 4096");
+    scene("sliding-block", &["--set", "travel=0.001"]).bad_input("--set travel=0.001,mu=0.21");
+    scene("intensity", &["--dt", "1e-300"]).bad_input("--dt 1e-300: must be from 1e-6");
+    scene("intensity", &["--dt", "1e-5"]).bad_input("too little to see it move");
+    scene("intensity", &["--zeta", "1e9"]).bad_input("need zeta*dt <= 2");
+    scene("pendulum", &["--set", "length=1e-9"]).bad_input("below its Nyquist rate");
+    scene("pendulum", &["--dt", "5"]).bad_input("--dt 5: a pendulum of length 0.45 m");
     assert!(!out.exists(), "nothing is written on bad input");
 }
 

@@ -54,7 +54,7 @@ impl DataSpec {
             self.size.to_string(),
         ];
         let mut add = |flag: &str, value: String| a.extend([flag.to_string(), value]);
-        if SceneRef::by_name(self.scenario).is_some_and(|s| s.accepts_set()) {
+        if SceneRef::by_name(self.scenario).is_some_and(|s| s.has_settings()) {
             add("--setting", self.setting.to_string());
         }
         if let Some(f) = self.frames {

@@ -40,6 +40,24 @@ pub fn num(v: f64) -> String {
     }
 }
 
+/// A computed number for a message, to four significant digits (1234, 0.1235, 1.235e-7).
+pub fn approx(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-3..1e5).contains(&v.abs()) {
+        format!("{v:.3e}")
+    } else {
+        let s = format!(
+            "{:.*}",
+            (3 - v.abs().log10().floor() as i64).clamp(0, 6) as usize,
+            v
+        );
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    }
+}
+
 /// The most worker threads `--threads` takes: beyond a few per core threads only add
 /// overhead, and tens of thousands exhaust the stack and the OpenMP runtime.
 pub const MAX_THREADS: usize = 256;
@@ -92,6 +110,10 @@ mod tests {
         assert_eq!(super::num(1e300), "1e300");
         assert_eq!(super::num(-1e-30), "-1e-30");
         assert_eq!(super::num(f64::NAN), "NaN");
+        assert_eq!(super::approx(9904.544411531508), "9905");
+        assert_eq!(super::approx(0.67295), "0.673");
+        assert_eq!(super::approx(3.17e-5), "3.170e-5");
+        assert_eq!(super::approx(2.0), "2");
     }
 
     #[test]

@@ -1,5 +1,10 @@
 //! Closed-form dynamics: the damped oscillator z'' + γ1·z' + γ0·z = 0 of the paper's synthetic sets.
 
+/// The frame intervals `gen` renders and `estimate` accepts (s): from a million frames per
+/// second to one frame a day. Outside them no camera filmed the clip, and single precision
+/// loses the dynamics (dt² of 1e-300 is zero; 1e308 overflows).
+pub const DT_RANGE: (f64, f64) = (1e-6, 86_400.0);
+
 /// The under-damped oscillator z(t) = A·e^(−ζt)·cos(ωt + φ) (appendix A.3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DampedOscillator {

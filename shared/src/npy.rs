@@ -5,7 +5,8 @@ use crate::error::DatasetError;
 use std::io::{Read, Write};
 use std::path::Path;
 
-const MAGIC: &[u8; 6] = b"\x93NUMPY";
+/// The first bytes of every `.npy` file.
+pub const MAGIC: &[u8; 6] = b"\x93NUMPY";
 
 /// An n-dimensional float32 array in C order.
 #[derive(Debug, Clone, PartialEq)]
@@ -125,9 +126,14 @@ fn parse_header(path: &Path, dict: &str) -> Result<Header, DatasetError> {
         .map(str::trim)
         .filter(|s| !s.is_empty())
         .map(|s| {
-            s.trim_end_matches('L')
-                .parse::<usize>()
-                .map_err(|_| malformed(path, format!("shape entry '{s}' is not an integer")))
+            s.trim_end_matches('L').parse::<usize>().map_err(|_| {
+                let why = if s.starts_with('-') && s[1..].parse::<u64>().is_ok() {
+                    "is negative"
+                } else {
+                    "is not an integer"
+                };
+                malformed(path, format!("shape entry '{s}' {why}"))
+            })
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Header {
@@ -144,6 +150,9 @@ pub fn read_npy(path: &Path) -> Result<NpyArray, DatasetError> {
         path: path.to_path_buf(),
         source,
     };
+    if path.is_dir() {
+        return Err(malformed(path, "it is a directory"));
+    }
     let file = std::fs::File::open(path).map_err(read_err)?;
     let file_len = file.metadata().map_err(read_err)?.len();
     let mut r = std::io::BufReader::new(file);

@@ -4,11 +4,16 @@
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::MODELS;
+use physvid_shared::cli::num;
 use physvid_shared::video::Crop;
 use serde::Serialize;
 
 /// The frame size fed to the encoder when `--size` is not given (the paper's 100×56).
 pub const DEFAULT_SIZE: (usize, usize) = (100, 56);
+
+/// The highest frame rate taken (the fastest scientific cameras film ten million frames a
+/// second).
+pub const MAX_FPS: f64 = 1e7;
 
 /// How a recording becomes clips (refused for datasets).
 #[derive(Debug, Clone, PartialEq, Serialize, clap::Args)]
@@ -18,7 +23,7 @@ pub struct RecordingArgs {
     /// 30 fps for a 120 fps capture); required for an image folder.
     #[arg(long)]
     pub fps: Option<f64>,
-    /// Crop X,Y,W,H in pixels of the displayed (rotated) frame.
+    /// Crop X,Y,W,H in pixels of the displayed (rotated) frame (W, H ≥ 4).
     #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H")]
     pub crop: Option<Crop>,
     /// First second to use (of the file's own timeline). For sliding-block and free-fall the
@@ -67,9 +72,12 @@ pub fn parse_crop(text: &str) -> Result<Crop, String> {
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{text}' is not X,Y,W,H in pixels (e.g. 100,0,400,300)"))?;
     match v[..] {
-        [x, y, w, h] if w > 0 && h > 0 => Ok(Crop { x, y, w, h }),
+        [x, y, w, h] if w >= 4 && h >= 4 => Ok(Crop { x, y, w, h }),
+        [_, _, _, _] => Err(format!(
+            "'{text}': a crop of W, H ≥ 4 pixels is needed to show a motion (e.g. 100,0,400,300)"
+        )),
         _ => Err(format!(
-            "'{text}' is not X,Y,W,H with W, H > 0 (e.g. 100,0,400,300)"
+            "'{text}' is not X,Y,W,H in pixels (e.g. 100,0,400,300)"
         )),
     }
 }
@@ -93,11 +101,32 @@ impl RecordingArgs {
         self.size.unwrap_or(DEFAULT_SIZE)
     }
 
+    /// The recording flags given, as written on the command line.
+    pub fn given(&self) -> Vec<&'static str> {
+        [
+            ("--fps", self.fps.is_some()),
+            ("--crop", self.crop.is_some()),
+            ("--start", self.start.is_some()),
+            ("--end", self.end.is_some()),
+            ("--size", self.size.is_some()),
+            ("--frames-per-clip", self.frames_per_clip.is_some()),
+            ("--stride", self.stride.is_some()),
+            ("--hop", self.hop.is_some()),
+            ("--preview", self.preview),
+        ]
+        .into_iter()
+        .filter_map(|(flag, given)| given.then_some(flag))
+        .collect()
+    }
+
     /// Checks the flags that do not depend on the recording.
     pub fn validate(&self) -> Result<(), EstimateError> {
         if let Some(f) = self.fps {
-            if !(f.is_finite() && f > 0.0) {
-                return Err(input_error(format!("--fps {f}: must be > 0")));
+            if !(f > 0.0 && f <= MAX_FPS) {
+                return Err(input_error(format!(
+                    "--fps {}: must be > 0 and at most {MAX_FPS:e} (frames per second of real time)",
+                    num(f)
+                )));
             }
         }
         for (flag, v) in [("--start", self.start), ("--end", self.end)] {
@@ -141,7 +170,9 @@ mod tests {
                 h: 40
             }
         );
-        assert!(parse_crop("1,2,0,4").unwrap_err().contains("X,Y,W,H"));
+        assert!(parse_crop("1,2,0,4").unwrap_err().contains("W, H ≥ 4"));
+        // A 1×1 crop used to be stretched to the frame size and trained on.
+        assert!(parse_crop("10,10,1,1").unwrap_err().contains("W, H ≥ 4"));
         assert!(parse_crop("1,2,3").is_err());
         assert_eq!(parse_size("100x56").unwrap(), (100, 56));
         assert!(parse_size("100").unwrap_err().contains("WxH"));

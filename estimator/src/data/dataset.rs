@@ -5,10 +5,19 @@ use super::Source;
 use crate::cli::EstimateArgs;
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
+use physvid_shared::cli::num;
 use physvid_shared::read_dataset;
+use std::collections::BTreeMap;
 
 /// A dataset directory or a bare `.npy`.
 pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateError> {
+    if let Some(flag) = args.recording.given().first() {
+        return Err(input_error(format!(
+            "{flag}: applies to recordings (videos, image folders); {} is a dataset of clips \
+             already cut; drop it",
+            args.input.display()
+        )));
+    }
     let ds = read_dataset(&args.input)?;
     let source = ds.frames_path.display().to_string();
     let [n, t, c, h, w] = ds.shape;
@@ -54,6 +63,7 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
                     )));
                 }
             }
+            check_truth(&meta.model.parameters, meta_model)?;
             (meta.dt, meta_model)
         }
         None => {
@@ -83,4 +93,46 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
         warnings: Vec::new(),
         preview_png: None,
     })
+}
+
+/// The largest ground-truth value taken from meta.json.
+pub const MAX_TRUTH: f64 = 1e15;
+
+/// meta.json's ground truth against its model: when it has any, it names at least one value
+/// the model reports, each finite and within ±[`MAX_TRUTH`], and > 0 where no such system has
+/// it otherwise.
+fn check_truth(truth: &BTreeMap<String, f64>, model: ModelRef) -> Result<(), EstimateError> {
+    let keys = model.info().truth;
+    let bad = |what: String| input_error(format!("meta.json's ground truth {what}"));
+    if !truth.is_empty() && !keys.iter().any(|k| truth.contains_key(k.name)) {
+        let names: Vec<&str> = keys.iter().map(|k| k.name).collect();
+        let found: Vec<&str> = truth.keys().map(String::as_str).collect();
+        return Err(bad(format!(
+            "({}) names none of {}'s values ({}): written for another model?",
+            found.join(", "),
+            model.name(),
+            names.join(", ")
+        )));
+    }
+    for key in keys {
+        let Some(&v) = truth.get(key.name) else {
+            continue;
+        };
+        if v.is_nan() || v.abs() > MAX_TRUTH {
+            return Err(bad(format!(
+                "{} = {}: not a physical value (within ±{MAX_TRUTH:e})",
+                key.name,
+                num(v)
+            )));
+        }
+        if key.positive && v <= 0.0 {
+            return Err(bad(format!(
+                "{} = {}: must be > 0 for {}",
+                key.name,
+                num(v),
+                model.name()
+            )));
+        }
+    }
+    Ok(())
 }

@@ -6,8 +6,9 @@ mod dataset;
 pub mod recording;
 
 use crate::cli::EstimateArgs;
-use crate::error::EstimateError;
+use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
+use physvid_shared::cli::num;
 use physvid_shared::video::is_recording;
 use physvid_shared::DatasetMeta;
 use recording::RecordingSummary;
@@ -112,6 +113,21 @@ pub(crate) struct Source {
     pub(crate) preview_png: Option<Vec<u8>>,
 }
 
+/// Whether every sequence of `sequence` values (frames of `per_frame` values) holds one frame
+/// repeated; `Some(Some(v))` when that frame is `v` everywhere as well.
+fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32>> {
+    let moves = frames.chunks(sequence.max(1)).any(|seq| {
+        let (first, rest) = seq.split_at(per_frame.min(seq.len()));
+        rest.chunks(per_frame.max(1))
+            .any(|f| f.iter().zip(first).any(|(a, b)| a != b))
+    });
+    if moves {
+        return None;
+    }
+    let v = frames.first().copied();
+    Some(v.filter(|v| frames.iter().all(|x| x == v)))
+}
+
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
 pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, EstimateError> {
@@ -121,6 +137,28 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         dataset::dataset_source(args)?
     };
     let [n, t, c, h, w] = src.shape;
+    // A recording's frames are one sequence; a dataset's, one per clip.
+    let per_frame = c * h * w;
+    let sequence = match src.clip_index {
+        Some(_) => src.frames.len(),
+        None => t * per_frame,
+    };
+    if let Some(v) = still(&src.frames, sequence, per_frame) {
+        return Err(input_error(format!(
+            "{}: nothing moves: within every {} each frame equals the first{}, so no parameter \
+             of the motion can be estimated (check the file, or --crop for a recording)",
+            args.input.display(),
+            if src.clip_index.is_some() {
+                "recording"
+            } else {
+                "clip"
+            },
+            v.map_or(String::new(), |v| format!(
+                " (every pixel {})",
+                num(v as f64)
+            ))
+        )));
+    }
     let truth: BTreeMap<String, f64> = src
         .meta
         .as_ref()
@@ -196,5 +234,19 @@ mod tests {
             (got / expect - 1.0).abs() < 0.05,
             "std {got}, expected {expect}"
         );
+    }
+
+    #[test]
+    fn frames_that_never_change_are_still() {
+        // Two clips of three 2-pixel frames.
+        let flat = [0.5f32; 12];
+        assert_eq!(still(&flat, 6, 2), Some(Some(0.5)));
+        let mut each_its_own = flat;
+        each_its_own[6..].fill(0.2);
+        assert_eq!(still(&each_its_own, 6, 2), Some(None));
+        let mut one_pixel_moves = each_its_own;
+        one_pixel_moves[11] = 0.3;
+        assert_eq!(still(&one_pixel_moves, 6, 2), None);
+        assert_eq!(still(&[-0.0f32, 0.0, -0.0, 0.0], 4, 1), Some(Some(-0.0)));
     }
 }

@@ -61,6 +61,13 @@ pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateEr
             args.input.display()
         )));
     }
+    if args.input.is_dir() && video::image_files(&args.input).is_ok_and(|f| f.is_empty()) {
+        return Err(input_error(format!(
+            "{}: a directory that is neither a gen dataset (no frames.npy or meta.json) nor an \
+             image folder (no .png, .jpg or .jpeg files)",
+            args.input.display()
+        )));
+    }
     let model = args.model.model.ok_or_else(|| {
         input_error(format!(
             "{}: a recording needs --model (e.g. --model pendulum)",
@@ -68,9 +75,11 @@ pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateEr
         ))
     })?;
     if args.model.dt.is_some() {
-        return Err(input_error(
-            "--dt: for a recording dt is --stride / fps; set those instead",
-        ));
+        return Err(input_error(format!(
+            "--dt: {} is read as a recording (a video or an image folder), whose dt is \
+             --stride / fps; set those instead",
+            args.input.display()
+        )));
     }
     let rec = load_recording(&args.input, model, &args.recording)?;
     // Systems released from rest: the release is the first frame kept (trim with --start).

@@ -3,7 +3,7 @@
 //! differ in what their SI answers are.
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use tch::nn;
 use tch::Tensor;
@@ -25,6 +25,8 @@ pub struct ConstantAcceleration {
 pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
         released_from_rest: true,
+        calibration_flags: &["--reference", "--incline-deg", "--g"],
+        truth: &[TruthKey::signed("acceleration"), TruthKey::signed("mu")],
         ..ModelInfo::new(
             "sliding-block",
             "s'' = g·(sin α − μ·cos α), constant (acceleration_latent)",
@@ -39,6 +41,8 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
 pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
         released_from_rest: true,
+        calibration_flags: &["--reference"],
+        truth: &[TruthKey::positive("g")],
         ..ModelInfo::new(
             "free-fall",
             "h'' = g (acceleration_latent)",

@@ -1,7 +1,7 @@
 //! The LED I' = −γ·I (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use tch::nn;
@@ -14,6 +14,7 @@ pub struct Led;
 /// p·γ), which an MLP could learn: a linear encoder pins the latent.
 const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Linear,
+    truth: &[TruthKey::positive("gamma")],
     ..ModelInfo::new(
         "led",
         "I' = −γ·I (gamma, offset)",
@@ -36,6 +37,10 @@ impl Model for Led {
             opts.integrator,
             opts.dt,
         ))
+    }
+    /// The dimming rate γ.
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some(params[0].abs())
     }
     fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         let values = vec![

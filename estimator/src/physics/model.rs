@@ -60,6 +60,32 @@ impl ParamSpec {
     }
 }
 
+/// A ground-truth value a model's report is compared with (meta.json's `model.parameters`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TruthKey {
+    pub name: &'static str,
+    /// No such system has it at zero or below (a rate γ0, a length).
+    pub positive: bool,
+}
+
+impl TruthKey {
+    /// A value that is > 0 for every such system.
+    pub const fn positive(name: &'static str) -> TruthKey {
+        TruthKey {
+            name,
+            positive: true,
+        }
+    }
+
+    /// A value of either sign.
+    pub const fn signed(name: &'static str) -> TruthKey {
+        TruthKey {
+            name,
+            positive: false,
+        }
+    }
+}
+
 /// What the report shows of a trained block: values (SI or latent units) and warnings about
 /// answers left in latent units.
 pub type Derived = (Vec<DerivedValue>, Vec<String>);
@@ -96,14 +122,18 @@ pub struct ModelInfo {
     pub has_euler: bool,
     /// The smallest frame side (pixels) that can show the system (0: any), with what needs it.
     pub min_frame: (usize, &'static str),
+    /// The calibration flags its answers read (`--reference`, `--incline-deg`, `--g`); the
+    /// others are refused for it.
+    pub calibration_flags: &'static [&'static str],
+    /// The ground-truth values its report compares with (meta.json checks against them).
+    pub truth: &'static [TruthKey],
+    /// What its reference values are when they cannot be below zero (`None`: any sign).
+    pub nonnegative_reference: Option<&'static str>,
     /// The longest dt (s) the block can integrate (∞: any within [`DT_RANGE`]), with why.
     pub max_dt: (f64, &'static str),
 }
 
-/// The frame intervals any model accepts (s): from a million frames per second to one frame
-/// a day. Outside them no camera filmed the clip, and single precision loses the dynamics
-/// (dt² of 1e-300 is zero; 1e308 overflows).
-pub const DT_RANGE: (f64, f64) = (1e-6, 86_400.0);
+pub use physvid_shared::dynamics::DT_RANGE;
 
 impl ModelInfo {
     /// A model with the defaults most share: the small encoder, patience 30, no special needs.
@@ -128,6 +158,9 @@ impl ModelInfo {
             has_euler: true,
             min_frame: (0, ""),
             max_dt: (f64::INFINITY, ""),
+            calibration_flags: &[],
+            nonnegative_reference: None,
+            truth: &[],
         }
     }
 }
@@ -168,6 +201,12 @@ pub trait Model: Sync {
     /// exposes (the spring's rigid pair).
     fn kl_coordinates(&self, z: &Tensor) -> Tensor {
         z.shallow_clone()
+    }
+    /// The fastest rate of the motion the parameters describe (rad/s for an oscillation, 1/s
+    /// for a decay), to judge the answer against the frames' dt; `None` for motions without one
+    /// (a constant acceleration, a draining tank).
+    fn rate(&self, _params: &[f64]) -> Option<f64> {
+        None
     }
     /// Warnings about the data: `timed` says whether the clips' start times are known.
     fn data_warnings(&self, _timed: bool) -> Vec<String> {

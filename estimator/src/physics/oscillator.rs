@@ -3,7 +3,7 @@
 //! Euler step) from each clip's least-squares initial state (or its first two frames).
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use super::two_step::{impulse_responses, least_squares_start, safely_complex};
 use super::two_step_solve::{euler_gammas, exact_gammas, solve_two_step, StateFit};
 use crate::calibration::{Calibration, DerivedValue, Readings};
@@ -36,6 +36,7 @@ const INFO: ModelInfo = ModelInfo {
     // optimiser's jitter of γ1 (about ±1 % at 1e-4) below 0.4 %: on the clean position set
     // 47 epochs instead of 83, γ1 −1.26 % instead of −1.31 %.
     converged_spread: 1e-2,
+    truth: &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
     supports_residual: true,
     ..ModelInfo::new(
         "damped-oscillator",
@@ -73,6 +74,10 @@ impl Model for DampedOscillator {
         spectral_start(train, dt, integrator).into_iter().collect()
     }
     /// γ1 from the decay of the swing peaks (the envelope is e^(−γ1·t/2)).
+    /// The undamped frequency √γ0.
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some(params[0].max(0.0).sqrt())
+    }
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("gamma1", params[1], latents, dt, 0.0)
     }

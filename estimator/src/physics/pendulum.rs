@@ -8,7 +8,7 @@
 //! errors about five-fold over a period, and the fit buys them down with too much damping.
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use super::ode::{ObservationMap, OdeSystem, ShootingBlock};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
@@ -22,6 +22,8 @@ pub struct Pendulum;
 /// The calibrated answers need the latent affine to a few parts in 10⁴: patience 30.
 const INFO: ModelInfo = ModelInfo {
     calibrates_in_training: true,
+    calibration_flags: &["--reference", "--g"],
+    truth: &[TruthKey::positive("length"), TruthKey::signed("damping")],
     max_dt: (
         10.0,
         "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
@@ -68,6 +70,10 @@ impl Model for Pendulum {
     }
     /// The damping from the decay of the swing peaks (appendix A.6's procedure), around the
     /// angle offset.
+    /// The small-angle frequency √(g/L), the fastest it swings.
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some(params[0].max(0.0).sqrt())
+    }
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("damping", params[1], latents, dt, params[3])
     }

@@ -1,7 +1,7 @@
 //! Torricelli's tank h' = −k·√h (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use tch::nn;
@@ -14,6 +14,9 @@ pub struct Torricelli;
 /// which an MLP could learn: a linear encoder pins the latent.
 const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Linear,
+    calibration_flags: &["--reference"],
+    nonnegative_reference: Some("a water level (m above the tank's bottom)"),
+    truth: &[TruthKey::positive("k")],
     ..ModelInfo::new(
         "torricelli",
         "h' = −k·√h (k_latent, base)",

@@ -2,6 +2,7 @@
 //! the clips and the training outcome: the derived values with ground truth and errors, the
 //! warnings, the latent's check against the truth. `text.rs` prints it; `output.rs` writes it.
 
+mod checks;
 pub mod ensemble;
 pub mod parameters;
 mod text;
@@ -11,6 +12,7 @@ use crate::calibration::Calibration;
 use crate::config::RunConfig;
 use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
+use crate::loss::LossKind;
 use crate::peaks::PeakDecay;
 use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
 use ensemble::Ensemble;
@@ -110,6 +112,13 @@ impl Report {
         let mut warnings = data.warnings.clone();
         warnings.extend(calibration_warnings);
         warnings.extend(model.data_warnings(data.train_start.is_some()));
+        warnings.extend(checks::answer_warnings(
+            model,
+            &outcome.parameters,
+            init,
+            data.frames_per_clip as usize,
+            data.dt,
+        ));
         let peak_std = outcome
             .history
             .iter()
@@ -124,11 +133,18 @@ impl Report {
         let low_std = outcome.latent_std.min(last_std);
         let collapsed = low_std < COLLAPSE_FRACTION * peak_std;
         if collapsed {
+            let remedy = match cfg.loss {
+                LossKind::MseKl => {
+                    "even with the KL term: check that the frames show the motion (--preview for \
+                     a recording: crop, stride) or try another --seed"
+                }
+                _ => "train with --loss mse+kl",
+            };
             warnings.push(format!(
                 "the latent collapsed towards a constant (std {low_std:.2e} over the validation \
                  clips, down from {peak_std:.2e}): a constant latent makes the rollout error \
                  vanish whatever the parameters, so these estimates are not determined by the \
-                 video; train with --loss mse+kl"
+                 video; {remedy}"
             ));
         }
         match outcome.stop {

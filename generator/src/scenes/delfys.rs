@@ -46,7 +46,7 @@ pub trait DelfysSystem: Sync {
     /// The true values `estimate` recovers, as written in meta.json's model.
     fn model_parameters(&self, p: &Params) -> Params;
     /// Checks the (finite) parameters against physics and the clip's span (s).
-    fn validate(&self, p: &Params, span: f64) -> Result<(), ConfigError>;
+    fn validate(&self, p: &Params, span: f64, dt: f64) -> Result<(), ConfigError>;
     /// Draws one clip: its ground truth and the physical quantity at each frame (the angle in
     /// rad, the level or distance in m, the brightness relative to its start).
     fn sample(
@@ -143,7 +143,7 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
                 return Err(set_error(format!("{k}={v}"), "must be a finite number"));
             }
         }
-        self.0.validate(p, (frames - 1) as f64 * dt)
+        self.0.validate(p, (frames - 1) as f64 * dt, dt)
     }
     fn sample(
         &self,

@@ -3,12 +3,16 @@
 //! (`DiscPicture`, one file each). `DiscScene` adds what they share: the dynamics, the
 //! validation of ω and ζ, and meta.json's model.
 
-use super::{params, Params, Scene};
+use super::{params, Params, Scene, MIN_PHASE_SPAN};
 use crate::error::{invalid, ConfigError};
 use crate::render::{Canvas, Disc};
 use crate::sampling::{draw_initial_condition, AMPLITUDE_MAX, SAMPLING_TEXT};
+use physvid_shared::cli::{approx, num};
 use physvid_shared::{Calibration, DampedOscillator, SampleTruth};
 use rand_chacha::ChaCha8Rng;
+
+/// The largest ζ·dt rendered: beyond it the amplitude falls more than e²-fold per frame.
+pub const MAX_DECAY_PER_FRAME: f64 = 2.0;
 
 /// The facts about a disc picture, one record per picture (its file's `INFO`).
 #[derive(Debug, Clone, Copy)]
@@ -83,8 +87,30 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
                 ),
             ));
         }
+        let phase_span = omega * (frames - 1) as f64 * dt;
+        if phase_span < MIN_PHASE_SPAN {
+            return Err(invalid(
+                "--dt",
+                num(dt),
+                format!(
+                    "a clip of {frames} frames spans {} rad of the oscillation (omega*(frames-1)*dt), too little to see it move; need at least {MIN_PHASE_SPAN} rad",
+                    approx(phase_span)
+                ),
+            ));
+        }
         if !zeta.is_finite() {
             return Err(invalid("--zeta", zeta, "must be a finite number (1/s)"));
+        }
+        if zeta * dt > MAX_DECAY_PER_FRAME {
+            return Err(invalid(
+                "--zeta",
+                num(zeta),
+                format!(
+                    "with --dt {dt} the amplitude falls e^{}-fold from one frame to the next and the clip is still after its first frames; need zeta*dt <= {MAX_DECAY_PER_FRAME} (zeta <= {})",
+                    approx(zeta * dt),
+                    approx(MAX_DECAY_PER_FRAME / dt)
+                ),
+            ));
         }
         let t_end = (frames - 1) as f64 * dt;
         let growth = (-zeta * t_end).exp().max(1.0);

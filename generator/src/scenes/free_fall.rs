@@ -29,7 +29,7 @@ impl DelfysSystem for FreeFall {
     fn model_parameters(&self, p: &Params) -> Params {
         params(&[("g", p["g"])])
     }
-    fn validate(&self, p: &Params, _span: f64) -> Result<(), ConfigError> {
+    fn validate(&self, p: &Params, _span: f64, _dt: f64) -> Result<(), ConfigError> {
         positive(p, "radius")?;
         positive(p, "h0")?;
         positive(p, "g")

@@ -29,7 +29,7 @@ impl DelfysSystem for Led {
     fn model_parameters(&self, p: &Params) -> Params {
         params(&[("gamma", p["gamma"])])
     }
-    fn validate(&self, p: &Params, _span: f64) -> Result<(), ConfigError> {
+    fn validate(&self, p: &Params, _span: f64, _dt: f64) -> Result<(), ConfigError> {
         positive(p, "gamma")
     }
     fn sample(

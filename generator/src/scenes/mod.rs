@@ -29,6 +29,10 @@ use std::collections::BTreeMap;
 pub use delfys::{Delfys, DelfysSystem, SystemInfo, G, REFERENCE_FRACTIONS};
 pub use disc::{DiscPicture, DiscScene, PictureInfo};
 
+/// The least phase a clip spans (rad: ω·(T−1)·dt, about 1 % of a period) for the oscillating
+/// scenes: below it the frames barely differ and nothing can be learned from them.
+pub const MIN_PHASE_SPAN: f64 = 0.05;
+
 /// Parameters of a scene by name (SI units): the oscillator's omega and zeta, or a Delfys75
 /// system's Table 4 values after `--setting` and `--set`.
 pub type Params = BTreeMap<String, f64>;
@@ -50,6 +54,12 @@ pub trait Scene: Sync {
     fn default_clip(&self) -> (usize, f64);
     /// Parameters for `--setting` (1, 2 or 3; the disc scenes have one).
     fn params(&self, setting: u8) -> Params;
+    /// Whether `--setting 1|2|3` chooses among different parameters (appendix Table 4's
+    /// columns).
+    fn has_settings(&self) -> bool {
+        let (a, b, c) = (self.params(1), self.params(2), self.params(3));
+        a != b || b != c
+    }
     /// Whether `--set NAME=VALUE` changes the parameters (otherwise they have flags of their own).
     fn accepts_set(&self) -> bool;
     /// Checks the parameters against physics, the clip and the frame; errors name the flag to

@@ -2,9 +2,10 @@
 //! a bob on a string seen from the front.
 
 use super::delfys::{positive, set_error, DelfysSystem, SystemInfo, G};
-use super::{params, Params};
-use crate::error::ConfigError;
+use super::{params, Params, MIN_PHASE_SPAN};
+use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
+use physvid_shared::cli::{approx, num};
 use physvid_shared::{Calibration, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -40,7 +41,7 @@ impl DelfysSystem for Pendulum {
             ("g", p["g"]),
         ])
     }
-    fn validate(&self, p: &Params, _span: f64) -> Result<(), ConfigError> {
+    fn validate(&self, p: &Params, span: f64, dt: f64) -> Result<(), ConfigError> {
         positive(p, "length")?;
         positive(p, "g")?;
         let (lo, hi) = (p["amplitude_min_deg"], p["amplitude_max_deg"]);
@@ -48,6 +49,35 @@ impl DelfysSystem for Pendulum {
             return Err(set_error(
                 format!("amplitude_min_deg={lo},amplitude_max_deg={hi}"),
                 "need 0 < amplitude_min_deg <= amplitude_max_deg < 90",
+            ));
+        }
+        // The small-angle frequency is the fastest the pendulum swings.
+        let omega = (p["g"] / p["length"]).sqrt();
+        let swings = format!(
+            "a pendulum of length {} m (g {}) swings at sqrt(g/length) = {} rad/s",
+            num(p["length"]),
+            p["g"],
+            approx(omega)
+        );
+        if omega * dt >= std::f64::consts::PI {
+            return Err(invalid(
+                "--dt",
+                num(dt),
+                format!(
+                    "{swings}: frames {dt} s apart sample it below its Nyquist rate; need dt < {} s, or a longer pendulum (--set length=...)",
+                    approx(std::f64::consts::PI / omega)
+                ),
+            ));
+        }
+        if omega * span < MIN_PHASE_SPAN {
+            return Err(invalid(
+                "--dt",
+                num(dt),
+                format!(
+                    "{swings}: a clip of {} s spans {} rad of it, too little to see it move; need at least {MIN_PHASE_SPAN} rad (a longer --dt or --frames)",
+                    approx(span),
+                    approx(omega * span)
+                ),
             ));
         }
         if p["damping"] < 0.0 {

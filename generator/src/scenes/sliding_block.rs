@@ -6,6 +6,7 @@ use super::delfys::{
 use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
+use physvid_shared::cli::num;
 use physvid_shared::{Calibration, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 
@@ -51,7 +52,7 @@ impl DelfysSystem for SlidingBlock {
             ("acceleration", block_acceleration(p)),
         ])
     }
-    fn validate(&self, p: &Params, span: f64) -> Result<(), ConfigError> {
+    fn validate(&self, p: &Params, span: f64, _dt: f64) -> Result<(), ConfigError> {
         positive(p, "travel")?;
         positive(p, "g")?;
         let alpha = p["incline_deg"];
@@ -71,7 +72,12 @@ impl DelfysSystem for SlidingBlock {
             ));
         }
         let what = "the block covers the incline";
-        fits_in_motion(format!("mu={}", p["mu"]), what, duration(p), span)
+        let blame = format!(
+            "travel={},mu={},incline_deg={alpha}",
+            num(p["travel"]),
+            p["mu"]
+        );
+        fits_in_motion(blame, what, duration(p), span)
     }
     fn sample(
         &self,
@@ -135,9 +141,11 @@ mod tests {
     #[test]
     fn settings_follow_table_4_and_validate() {
         let mut p = SlidingBlock.setting(0);
-        assert!(SlidingBlock.validate(&p, 9.0 / 30.0).is_ok());
+        assert!(SlidingBlock.validate(&p, 9.0 / 30.0, 1.0 / 30.0).is_ok());
         p.insert("mu".into(), 0.5);
-        let e = SlidingBlock.validate(&p, 9.0 / 30.0).unwrap_err();
+        let e = SlidingBlock
+            .validate(&p, 9.0 / 30.0, 1.0 / 30.0)
+            .unwrap_err();
         assert!(e.expected.contains("tan"), "{e}");
     }
 }

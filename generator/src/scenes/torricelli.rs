@@ -6,6 +6,7 @@ use super::delfys::{
 use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
+use physvid_shared::cli::num;
 use physvid_shared::{Calibration, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 
@@ -40,7 +41,7 @@ impl DelfysSystem for Torricelli {
     fn model_parameters(&self, p: &Params) -> Params {
         params(&[("k", p["k"])])
     }
-    fn validate(&self, p: &Params, span: f64) -> Result<(), ConfigError> {
+    fn validate(&self, p: &Params, span: f64, _dt: f64) -> Result<(), ConfigError> {
         positive(p, "k")?;
         positive(p, "h_end")?;
         if p["h_start"] <= p["h_end"] {
@@ -50,7 +51,13 @@ impl DelfysSystem for Torricelli {
             ));
         }
         let what = "the tank drains from h_start to h_end";
-        fits_in_motion(format!("k={}", p["k"]), what, duration(p), span)
+        let blame = format!(
+            "k={},h_start={},h_end={}",
+            num(p["k"]),
+            num(p["h_start"]),
+            num(p["h_end"])
+        );
+        fits_in_motion(blame, what, duration(p), span)
     }
     fn sample(
         &self,

@@ -1,12 +1,15 @@
 //! `decode`: ffmpeg → grey frames through a pipe, one at a time, each resized as it arrives;
 //! image folders go through ffmpeg's concat demuxer so both inputs take the same path. Checks
-//! the crop, truncated files, empty trims and clips that do not fit.
+//! the crop, truncated or damaged files (any ffmpeg error), empty trims and clips that do not fit.
 
+use super::folder::{concat_list, damaged_folder};
 use super::probe::tool;
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
-use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::io::{BufRead, Read};
+use std::path::Path;
 use std::process::Stdio;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 
 /// A decoded recording: every kept frame, resized, and the clips cut from it.
 #[derive(Debug, Clone)]
@@ -74,6 +77,7 @@ pub fn decode(
     let mut cmd = tool("ffmpeg")?;
     cmd.args(["-v", "error", "-nostdin"]);
     let mut list_file = None;
+    let mut folder_files = Vec::new();
     let info = if folder {
         let files = image_files(input).map_err(|e| bad(input, format!("cannot list: {e}")))?;
         let first = files
@@ -94,15 +98,10 @@ pub fn decode(
         let mut info = probe(first)?;
         info.container_fps = None;
         info.expected_frames = Some(files.len());
-        let mut text = String::from("ffconcat version 1.0\n");
-        for f in &files {
-            let abs = std::fs::canonicalize(f).map_err(|e| bad(f, e.to_string()))?;
-            text += &format!("file '{}'\n", abs.to_string_lossy().replace('\'', "'\\''"));
-        }
-        let tmp = tempfile_path();
-        std::fs::write(&tmp, text).map_err(|e| bad(&tmp, e.to_string()))?;
-        cmd.args(["-f", "concat", "-safe", "0", "-i"]).arg(&tmp);
-        list_file = Some(TempFile(tmp));
+        let list = concat_list(&files)?;
+        cmd.args(["-f", "concat", "-safe", "0", "-i"]).arg(&list.0);
+        list_file = Some(list);
+        folder_files = files;
         info
     } else {
         if !input.exists() {
@@ -159,10 +158,22 @@ pub fn decode(
         .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
     let mut stdout = child.stdout.take().expect("piped stdout");
     let mut stderr = child.stderr.take().expect("piped stderr");
+    // ffmpeg's complaints (at `-v error` a clean file has none), each with the frames read
+    // when it came: damage in the middle of a file is reported near where it is.
+    let progress = Arc::new(AtomicUsize::new(0));
+    let seen = Arc::clone(&progress);
     let err_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = stderr.read_to_string(&mut s);
-        s
+        std::io::BufReader::new(&mut stderr)
+            .lines()
+            .map_while(Result::ok)
+            .map(|l| {
+                (
+                    seen.load(Ordering::Relaxed),
+                    without_context(&l).to_string(),
+                )
+            })
+            .filter(|(_, l)| !l.is_empty() && !l.starts_with("Last message repeated"))
+            .collect::<Vec<_>>()
     });
     let frame_bytes = info.width * info.height;
     let mut buf = vec![0u8; frame_bytes];
@@ -175,6 +186,7 @@ pub fn decode(
             Ok(n) if n == frame_bytes => {
                 frames.extend(resizer.resize(&buf));
                 count += 1;
+                progress.store(count, Ordering::Relaxed);
             }
             Ok(0) => break,
             Ok(_) => {
@@ -187,38 +199,47 @@ pub fn decode(
     let status = child.wait().map_err(|e| bad(input, e.to_string()))?;
     let log = err_reader.join().unwrap_or_default();
     drop(list_file);
-    if !status.success() || partial {
-        let line = log
-            .lines()
-            .last()
-            .unwrap_or("decoding failed")
-            .trim()
-            .to_string();
-        if count == 0 {
-            return Err(VideoError::NotAVideo {
-                path: input.to_path_buf(),
-                reason: line,
-            });
-        }
-        return Err(bad(
-            input,
-            format!(
-                "decoding stopped after {} frames: {line} (a truncated file?)",
-                count
-            ),
-        ));
+    let last = log.last().map_or("decoding failed", |(_, l)| l.as_str());
+    if folder && (!log.is_empty() || !status.success() || count != folder_files.len()) {
+        return Err(damaged_folder(input, &folder_files, count, last));
     }
-    let untrimmed = opts.start.is_none() && opts.end.is_none() && !folder;
+    if count == 0 && (!status.success() || partial) {
+        return Err(VideoError::NotAVideo {
+            path: input.to_path_buf(),
+            reason: last.to_string(),
+        });
+    }
+    let untrimmed = opts.start.is_none() && opts.end.is_none();
     if let Some(expected) = info.expected_frames.filter(|_| untrimmed) {
-        if !count == 0 && (count as f64) < 0.95 * expected as f64 {
+        if count > 0 && (count as f64) < 0.95 * expected as f64 {
             return Err(bad(
                 input,
                 format!(
-                    "decoding stopped after {} of the {expected} frames the container announces (a truncated file?)",
-                    count
+                    "decoding stopped after {count} of the {expected} frames the container \
+                     announces (a truncated or damaged file){}",
+                    log.first().map_or(String::new(), |(at, l)| format!(
+                        "; ffmpeg's first error came near frame {at}: {l}"
+                    ))
                 ),
             ));
         }
+    }
+    if !status.success() || partial {
+        return Err(bad(
+            input,
+            format!("decoding stopped after {count} frames: {last} (a truncated file?)"),
+        ));
+    }
+    if let Some((at, first)) = log.first() {
+        return Err(bad(
+            input,
+            format!(
+                "damaged: ffmpeg reported {} decoding error(s), the first near frame {at} of \
+                 {count} ({first}); re-encode the file, or keep an undamaged part with \
+                 --start/--end",
+                log.len()
+            ),
+        ));
     }
     if count == 0 {
         return Err(bad(
@@ -233,7 +254,7 @@ pub fn decode(
             },
         ));
     }
-    let span = (opts.frames_per_clip - 1) * opts.stride;
+    let span = (opts.frames_per_clip - 1).saturating_mul(opts.stride);
     if count <= span {
         return Err(bad(
             input,
@@ -242,7 +263,7 @@ pub fn decode(
                 count,
                 opts.frames_per_clip,
                 opts.stride,
-                span + 1
+                span.saturating_add(1)
             ),
         ));
     }
@@ -275,21 +296,11 @@ fn read_full(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
     Ok(n)
 }
 
-/// A file removed when dropped.
-struct TempFile(PathBuf);
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
+/// An ffmpeg log line without its `[h264 @ 0x55…] ` context prefix.
+fn without_context(line: &str) -> &str {
+    let line = line.trim();
+    match line.split_once("] ") {
+        Some((ctx, rest)) if ctx.starts_with('[') && ctx.contains(" @ ") => rest,
+        _ => line,
     }
-}
-
-fn tempfile_path() -> PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    std::env::temp_dir().join(format!(
-        "physvid-frames-{}-{}.ffconcat",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ))
 }

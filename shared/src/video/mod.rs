@@ -4,6 +4,7 @@
 //! the errors, the options, and what counts as a recording.
 
 mod decode;
+mod folder;
 mod probe;
 mod resize;
 
@@ -60,9 +61,9 @@ pub struct VideoOptions {
     pub max_clips: usize,
 }
 
-/// Whether `path` is an input this module reads: a file that is not `.npy`, or a directory
-/// that is not a dataset (no `frames.npy`, no `meta.json`, no `.partial` files), taken as a
-/// folder of images.
+/// Whether `path` is an input this module reads: a file that is not `.npy` (by its name or its
+/// first bytes), or a directory that is not a dataset (no `frames.npy`, no `meta.json`, no
+/// `.partial` files), taken as a folder of images.
 pub fn is_recording(path: &Path) -> bool {
     if path.is_dir() {
         let dataset_like = std::fs::read_dir(path).is_ok_and(|mut d| {
@@ -77,9 +78,19 @@ pub fn is_recording(path: &Path) -> bool {
         });
         !dataset_like
     } else {
-        path.extension()
-            .is_none_or(|e| !e.eq_ignore_ascii_case("npy"))
+        let named_npy = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+        !named_npy && !starts_like_npy(path)
     }
+}
+
+/// Whether the file at `path` begins with the `.npy` magic string.
+fn starts_like_npy(path: &Path) -> bool {
+    use std::io::Read;
+    let mut magic = [0u8; 6];
+    std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut magic).is_ok())
+        && &magic == crate::npy::MAGIC
 }
 
 /// Image files (png, jpg, jpeg) in `dir`, in natural order (frame2 before frame10).

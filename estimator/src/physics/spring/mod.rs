@@ -18,7 +18,7 @@
 mod system;
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use super::ode::{ObservationMap, ShootingBlock};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
@@ -33,6 +33,8 @@ pub struct Spring;
 
 const INFO: ModelInfo = ModelInfo {
     latent_dims: 4,
+    calibration_flags: &["--reference"],
+    truth: &[TruthKey::positive("k"), TruthKey::positive("rest_length")],
     has_euler: false,
     encoder: EncoderKind::Keypoints,
     min_frame: (44, "two 22-px digits side by side"),
@@ -148,6 +150,10 @@ impl Model for Spring {
     }
     /// k as learned; l in latent units, and in pixels with the similarity's scale from frames
     /// of known body positions.
+    /// The relative vector's oscillation √(2k) (two unit masses).
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some((2.0 * params[0]).max(0.0).sqrt())
+    }
     fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let mut values = vec![
             DerivedValue::si("k", params[0], Some("k")),
