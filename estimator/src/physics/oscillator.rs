@@ -31,10 +31,8 @@ pub struct DampedOscillator;
 const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Small,
     patience: 20,
-    // The final refinement solves (γ0, γ1) exactly on the kept encoder, so the band only has
-    // to show that the encoder has settled, not wait for the learning rate to damp the
-    // optimiser's jitter of γ1 (about ±1 % at 1e-4) below 0.4 %: on the clean position set
-    // 47 epochs instead of 83, γ1 −1.26 % instead of −1.31 %.
+    // The final solve gives (γ0, γ1) exactly on the kept encoder: the band only shows that the
+    // encoder settled, not Adam's ±1 % jitter of γ1 (clean position: 47 epochs instead of 83).
     converged_spread: 1e-2,
     truth: &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
     supports_residual: true,
