@@ -71,11 +71,10 @@ impl Model for DampedOscillator {
     ) -> Vec<Vec<f64>> {
         spectral_start(train, dt, integrator).into_iter().collect()
     }
-    /// γ1 from the decay of the swing peaks (the envelope is e^(−γ1·t/2)).
-    /// The undamped frequency √γ0.
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some(params[0].max(0.0).sqrt())
     }
+    /// γ1 from the decay of the swing peaks (the envelope is e^(−γ1·t/2)).
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("gamma1", params[1], latents, dt, 0.0)
     }

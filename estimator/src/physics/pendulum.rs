@@ -68,12 +68,12 @@ impl Model for Pendulum {
             vec![g[0] / 4.0, damping / 2.0, init[2], init[3]],
         ]
     }
-    /// The damping from the decay of the swing peaks (appendix A.6's procedure), around the
-    /// angle offset.
     /// The small-angle frequency √(g/L), the fastest it swings.
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some(params[0].max(0.0).sqrt())
     }
+    /// The damping from the decay of the swing peaks (appendix A.6's procedure), around the
+    /// angle offset.
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("damping", params[1], latents, dt, params[3])
     }

@@ -148,12 +148,12 @@ impl Model for Spring {
         let period = std::f64::consts::TAU / ((2.0 * init[0]).sqrt() * dt);
         Some((1.5 * period).ceil().max(4.0) as usize)
     }
-    /// k as learned; l in latent units, and in pixels with the similarity's scale from frames
-    /// of known body positions.
     /// The relative vector's oscillation √(2k) (two unit masses).
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some((2.0 * params[0]).max(0.0).sqrt())
     }
+    /// k as learned; l in latent units, and in pixels with the similarity's scale from frames
+    /// of known body positions.
     fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let mut values = vec![
             DerivedValue::si("k", params[0], Some("k")),
