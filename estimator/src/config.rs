@@ -91,8 +91,22 @@ impl RunConfig {
                 model.name()
             )));
         }
+        let mut reference = m.reference_points().to_vec();
+        if let Some(&(t, v)) = m.reference_times().first() {
+            let Some((rec, _)) = &data.recording else {
+                return Err(input_error(format!(
+                    "--reference {}s={}: times apply to recordings; for a data set give CLIP:FRAME=VALUE",
+                    num(t),
+                    num(v)
+                )));
+            };
+            let frames = rec
+                .reference_frames(m.reference_times())
+                .map_err(|e| input_error(format!("--reference {e}")))?;
+            reference.extend(frames);
+        }
         let calibration = Calibration::resolve(
-            m.reference_points(),
+            &reference,
             m.reference_positions(),
             m.incline_deg,
             m.g,

@@ -54,6 +54,12 @@ fn flags_that_do_not_apply_are_refused() {
     run(&["--reference", "0:0=1,1:0=2"])
         .bad_input("--reference: damped-oscillator does not use it");
     run(&["--g", "9.8"]).bad_input("it applies to pendulum, sliding-block");
+    // Reference times are for recordings; a data set's frames are counted in clips.
+    let pendulum = small_set(&tmp.path().join("p"), "pendulum", "16");
+    Estimate::new(&pendulum)
+        .args(["--reference", "1s=0.1,2s=0.2"])
+        .out(&out)
+        .bad_input("--reference 1s=0.1: times apply to recordings");
     assert!(!out.exists());
 }
 

@@ -300,3 +300,61 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("install ffmpeg"), "{}", stderr(&o));
 }
+
+#[test]
+fn references_by_time_land_on_the_clip_frame_at_that_time() {
+    if !ffmpeg_available() {
+        eprintln!("SKIPPED: ffmpeg/ffprobe not on PATH");
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let frames = tmp.path().join("frames");
+    write_frames(&frames, 60);
+    let out = tmp.path().join("run");
+    // 10 fps, the pendulum's 20-frame clips at stride 1: clip c starts at frame c.
+    let run = |refs: &str| {
+        Estimate::new(&frames)
+            .args(["--fps", "10", "--model", "pendulum", "--reference", refs])
+            .args(["--epochs", "1", "--threads", "1"])
+            .out(&out)
+    };
+    run("1.0s=0.2,3.5s=-0.1").quiet().ok();
+    let r = read_report(&out);
+    let refs = r["calibration"]["reference"].as_array().unwrap();
+    assert_eq!(refs.len(), 2, "{refs:?}");
+    assert_eq!(refs[0], serde_json::json!([10, 0, 0.2]));
+    assert_eq!(refs[1], serde_json::json!([35, 0, -0.1]));
+    run("1.0s=0.2,7.0s=-0.1")
+        .bad_input("--reference 7s: outside the part of the recording kept, 0–5.9 s");
+    run("1.0s=0.2,1.02s=0.3").bad_input("1s=0.2 and 1.02s=0.3 fall on the same frame");
+}
+
+#[test]
+fn real_free_fall_with_time_references_gives_g_in_si() {
+    let Some(video) = real_video("freefall-ball.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // Read off the video (README): the ball leaves its rest at 3.933 s of the container's
+    // timeline and has fallen 2.26 m at 6.70 s, just above the floor.
+    let (r, _) = estimate(
+        &[
+            video.to_str().unwrap(),
+            "--model",
+            "free-fall",
+            "--fps",
+            "120",
+            "--start",
+            "3.933",
+            "--end",
+            "6.72",
+            "--size",
+            "16x160",
+            "--reference",
+            "3.933s=0,6.7s=2.26",
+        ],
+        &tmp.path().join("run"),
+    );
+    let g = estimate_of(&r, "g");
+    assert!((g / 9.81 - 1.0).abs() < 0.15, "g {g}");
+}

@@ -22,9 +22,10 @@ pub struct ModelArgs {
     pub init: Option<InitValues>,
     /// Calibration for answers in SI units: the physical quantity (level, distance, …; the
     /// pendulum's angle in rad, which then fixes its angle scale) at two or more frames,
-    /// CLIP:FRAME=VALUE[,...]; for the spring, both bodies' pixel positions,
-    /// CLIP:FRAME=X1/Y1/X2/Y2 (taken from meta.json for gen data).
-    #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE,...")]
+    /// CLIP:FRAME=VALUE[,...], or for a recording at two or more times on its own timeline
+    /// (as --start uses), SECONDSs=VALUE (e.g. 3.0s=0.079,20.5s=0.012); for the spring, both
+    /// bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2 (taken from meta.json for gen data).
+    #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE|SECONDSs=VALUE,...")]
     pub reference: Option<ReferencePoints>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
     #[arg(long)]
@@ -74,10 +75,13 @@ fn init_help() -> String {
     )
 }
 
-/// `--reference` values: CLIP:FRAME=VALUE triples, and CLIP:FRAME=X1/Y1/X2/Y2 body positions.
+/// `--reference` values: CLIP:FRAME=VALUE triples, SECONDSs=VALUE pairs (a recording's
+/// timeline), and CLIP:FRAME=X1/Y1/X2/Y2 body positions.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ReferencePoints {
     pub values: Vec<(usize, usize, f64)>,
+    /// (seconds on the recording's timeline, value).
+    pub times: Vec<(f64, f64)>,
     pub positions: Vec<(usize, usize, Vec<f64>)>,
 }
 
@@ -88,10 +92,21 @@ pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
     for item in text.split(',').filter(|s| !s.trim().is_empty()) {
         let bad = || {
             format!(
-                "'{item}' is not CLIP:FRAME=VALUE or CLIP:FRAME=X1/Y1/X2/Y2 (e.g. 0:0=0.07,3:19=0.01)"
+                "'{item}' is not CLIP:FRAME=VALUE, SECONDSs=VALUE or CLIP:FRAME=X1/Y1/X2/Y2 (e.g. 0:0=0.07,3:19=0.01 or 3.0s=0.079)"
             )
         };
         let (at, v) = item.split_once('=').ok_or_else(bad)?;
+        if let Some(t) = at.trim().strip_suffix('s') {
+            let t: f64 = t.trim().parse().map_err(|_| bad())?;
+            let v: f64 = v.trim().parse().map_err(|_| bad())?;
+            if !(t.is_finite() && t >= 0.0 && v.is_finite()) {
+                return Err(format!(
+                    "'{item}': the time must be >= 0 s and the value a finite number"
+                ));
+            }
+            points.times.push((t, v));
+            continue;
+        }
         let (c, f) = at.split_once(':').ok_or_else(bad)?;
         let (c, f) = (
             c.trim().parse().map_err(|_| bad())?,
@@ -165,6 +180,11 @@ impl ModelArgs {
         self.reference.as_ref().map_or(&[], |r| &r.values)
     }
 
+    /// The `--reference` times on a recording's timeline (none when the flag is absent).
+    pub fn reference_times(&self) -> &[(f64, f64)] {
+        self.reference.as_ref().map_or(&[], |r| &r.times)
+    }
+
     /// The `--reference` body positions (none when the flag is absent).
     pub fn reference_positions(&self) -> &[(usize, usize, Vec<f64>)] {
         self.reference.as_ref().map_or(&[], |r| &r.positions)
@@ -192,5 +212,10 @@ mod tests {
         assert!(parse_reference("0=0.5").is_err());
         assert!(parse_reference("0:1=1/x").is_err());
         assert!(parse_reference("0:1=nan").is_err());
+        let t = parse_reference("3.0s=0.079, 20.5s=0.012,1:2=0.5").unwrap();
+        assert_eq!(t.times, vec![(3.0, 0.079), (20.5, 0.012)]);
+        assert_eq!(t.values, vec![(1, 2, 0.5)]);
+        assert!(parse_reference("-1s=0.5").is_err());
+        assert!(parse_reference("xs=0.5").is_err());
     }
 }

@@ -6,6 +6,7 @@ use super::Source;
 use crate::cli::{EstimateArgs, RecordingArgs};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
+use physvid_shared::cli::{approx, num};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
 use physvid_shared::video::{self, Crop, VideoInfo, VideoOptions};
 use serde::Serialize;
@@ -36,6 +37,62 @@ pub struct RecordingSummary {
     /// First recording frame of each clip (index into the decoded frames).
     #[serde(skip)]
     pub clip_starts: Vec<usize>,
+}
+
+impl RecordingSummary {
+    /// The clip frame (clip, frame in it) nearest to `t` seconds of the recording's own
+    /// timeline (as `--start` counts, at the container's frame rate; an image folder's at
+    /// `--fps`), or why there is none.
+    pub fn clip_frame_at(&self, t: f64) -> Result<(usize, usize), String> {
+        let start = self.start.unwrap_or(0.0);
+        let last = self.frames_decoded.saturating_sub(1);
+        let timeline_fps = self.info.container_fps.unwrap_or(self.fps);
+        let at = (t - start) * timeline_fps;
+        if !(at > -0.5 && at < last as f64 + 0.5) {
+            return Err(format!(
+                "{}s: outside the part of the recording kept, {}–{} s",
+                num(t),
+                approx(start),
+                approx(start + last as f64 / timeline_fps)
+            ));
+        }
+        let f = at.round() as usize;
+        let nearest = |s: usize| {
+            let k = (f.saturating_sub(s) + self.stride / 2) / self.stride;
+            let k = k.min(self.frames_per_clip - 1);
+            ((s + k * self.stride).abs_diff(f), k)
+        };
+        self.clip_starts
+            .iter()
+            .enumerate()
+            .map(|(c, &s)| (nearest(s), c))
+            .min()
+            .map(|((_, k), c)| (c, k))
+            .ok_or_else(|| format!("{}s: the recording has no clips", num(t)))
+    }
+
+    /// `--reference` times as (clip, frame, value) at their nearest clip frames; two times on
+    /// one frame with different values are refused.
+    pub fn reference_frames(
+        &self,
+        times: &[(f64, f64)],
+    ) -> Result<Vec<(usize, usize, f64)>, String> {
+        let mut out: Vec<(usize, usize, f64, f64)> = Vec::new();
+        for &(t, v) in times {
+            let (c, f) = self.clip_frame_at(t)?;
+            if let Some(&(_, _, v2, t2)) = out.iter().find(|o| (o.0, o.1) == (c, f) && o.2 != v) {
+                return Err(format!(
+                    "{}s={} and {}s={} fall on the same frame with different values",
+                    num(t2),
+                    num(v2),
+                    num(t),
+                    num(v)
+                ));
+            }
+            out.push((c, f, v, t));
+        }
+        Ok(out.into_iter().map(|(c, f, v, _)| (c, f, v)).collect())
+    }
 }
 
 /// A decoded recording cut into clips (by index: the frames are held once).
