@@ -358,3 +358,36 @@ fn real_free_fall_with_time_references_gives_g_in_si() {
     let g = estimate_of(&r, "g");
     assert!((g / 9.81 - 1.0).abs() < 0.15, "g {g}");
 }
+
+#[test]
+fn real_torricelli_with_time_references_gives_k_in_si() {
+    let Some(video) = real_video("torricelli-500ml.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // Levels read off single frames (README): 7.27 cm at 3.0 s, 3.73 cm at 12.0 s.
+    let (r, _) = estimate(
+        &[
+            video.to_str().unwrap(),
+            "--model",
+            "torricelli",
+            "--start",
+            "3",
+            "--end",
+            "20",
+            "--stride",
+            "15",
+            "--reference",
+            "3.0s=0.0727,12.0s=0.0373",
+        ],
+        &tmp.path().join("run"),
+    );
+    assert_eq!(r["parameters"][0]["units"], "SI");
+    // Appendix Eq. 23's two-point k from the same two readings.
+    let two_point = 2.0 * (0.0727f64.sqrt() - 0.0373f64.sqrt()) / 9.0;
+    let k = estimate_of(&r, "k");
+    assert!(
+        (k / two_point - 1.0).abs() < 0.05,
+        "k {k} against {two_point}"
+    );
+}
