@@ -76,27 +76,27 @@ fn real_pendulum_gives_g_over_l_from_its_period() {
     );
 }
 
+/// The Torricelli jar after the hand and the sloshing, before it runs dry; dt 0.5 s.
+const TORRICELLI_CLIPS: [&str; 8] = [
+    "--model",
+    "torricelli",
+    "--start",
+    "3",
+    "--end",
+    "20",
+    "--stride",
+    "15",
+];
+
 #[test]
 fn real_torricelli_fit_explains_the_level_in_latent_units() {
     let Some(video) = real_video("torricelli-500ml.mp4") else {
         return;
     };
     let tmp = tempfile::tempdir().unwrap();
-    // After the hand and the sloshing, before the jar runs dry; dt 0.5 s.
-    let (r, err) = estimate(
-        &[
-            video.to_str().unwrap(),
-            "--model",
-            "torricelli",
-            "--start",
-            "3",
-            "--end",
-            "20",
-            "--stride",
-            "15",
-        ],
-        &tmp.path().join("run"),
-    );
+    let mut args = vec![video.to_str().unwrap()];
+    args.extend(TORRICELLI_CLIPS);
+    let (r, err) = estimate(&args, &tmp.path().join("run"));
     let residual = r["best_val_rel_mse"].as_f64().unwrap();
     assert!(
         residual < 0.15,
@@ -366,22 +366,10 @@ fn real_torricelli_with_time_references_gives_k_in_si() {
     };
     let tmp = tempfile::tempdir().unwrap();
     // Levels read off single frames (README): 7.27 cm at 3.0 s, 3.73 cm at 12.0 s.
-    let (r, _) = estimate(
-        &[
-            video.to_str().unwrap(),
-            "--model",
-            "torricelli",
-            "--start",
-            "3",
-            "--end",
-            "20",
-            "--stride",
-            "15",
-            "--reference",
-            "3.0s=0.0727,12.0s=0.0373",
-        ],
-        &tmp.path().join("run"),
-    );
+    let mut args = vec![video.to_str().unwrap()];
+    args.extend(TORRICELLI_CLIPS);
+    args.extend(["--reference", "3.0s=0.0727,12.0s=0.0373"]);
+    let (r, _) = estimate(&args, &tmp.path().join("run"));
     assert_eq!(r["parameters"][0]["units"], "SI");
     // Appendix Eq. 23's two-point k from the same two readings.
     let two_point = 2.0 * (0.0727f64.sqrt() - 0.0373f64.sqrt()) / 9.0;
