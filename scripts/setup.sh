@@ -7,7 +7,8 @@
 #  2. .cargo/config.toml pointing LIBTORCH at it, so plain `cargo build` / `cargo test` work;
 #  3. the ffmpeg command-line tools (Debian's `ffmpeg` package) for `estimate` on recordings,
 #     where this machine lets us install them (root or password-less sudo with apt-get);
-#     otherwise a note, and the tests that need them skip.
+#     otherwise a note, and the tests that need them skip;
+#  4. Debian's `chromium` the same way, for the test that opens report.html in a browser.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -47,15 +48,25 @@ if [ "$(cat .cargo/config.toml 2>/dev/null)" != "$config" ]; then
     echo "setup: wrote .cargo/config.toml (LIBTORCH=$libtorch)" >&2
 fi
 
-if ! command -v ffmpeg >/dev/null 2>&1 || ! command -v ffprobe >/dev/null 2>&1; then
-    sudo=""
+# apt_install PACKAGE WHY: installs a Debian package where this machine lets us (root or
+# password-less sudo with apt-get); otherwise a note (the tests that need it skip).
+apt_updated=""
+apt_install() {
+    local sudo=""
     [ "$(id -u)" = 0 ] || { sudo -n true 2>/dev/null && sudo="sudo -n"; } || sudo="none"
     if [ "$sudo" != "none" ] && command -v apt-get >/dev/null 2>&1; then
-        echo "setup: installing ffmpeg with apt-get (for estimate on videos)" >&2
-        $sudo apt-get update -qq >/dev/null 2>&1 || true
-        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq ffmpeg >/dev/null 2>&1 ||
-            echo "setup: apt-get could not install ffmpeg; videos need it (tests skip)" >&2
+        echo "setup: installing $1 with apt-get ($2)" >&2
+        [ -n "$apt_updated" ] || { $sudo apt-get update -qq >/dev/null 2>&1 || true; apt_updated=1; }
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "$1" >/dev/null 2>&1 ||
+            echo "setup: apt-get could not install $1 ($2; tests skip)" >&2
     else
-        echo "setup: ffmpeg not found and not installable here; install it to read videos (tests skip)" >&2
+        echo "setup: $1 not found and not installable here ($2; tests skip)" >&2
     fi
+}
+
+if ! command -v ffmpeg >/dev/null 2>&1 || ! command -v ffprobe >/dev/null 2>&1; then
+    apt_install ffmpeg "for estimate on videos"
+fi
+if ! command -v chromium >/dev/null 2>&1; then
+    apt_install chromium "for the test that opens report.html in a headless browser"
 fi

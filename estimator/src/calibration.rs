@@ -188,6 +188,9 @@ pub struct DerivedValue {
     pub estimate: f64,
     /// "SI" or "latent".
     pub units: &'static str,
+    /// The unit's symbol ("m/s^2", "1/s", "1" for a pure number, "px"; "latent" in latent
+    /// units).
+    pub unit: &'static str,
     /// Key of the ground truth in meta.json's model parameters.
     #[serde(skip)]
     pub truth_key: Option<&'static str>,
@@ -195,11 +198,17 @@ pub struct DerivedValue {
 
 impl DerivedValue {
     /// A value in SI units, compared with meta.json's `truth_key` when given.
-    pub fn si(name: &str, estimate: f64, truth_key: Option<&'static str>) -> DerivedValue {
+    pub fn si(
+        name: &str,
+        unit: &'static str,
+        estimate: f64,
+        truth_key: Option<&'static str>,
+    ) -> DerivedValue {
         DerivedValue {
             name: name.into(),
             estimate,
             units: "SI",
+            unit,
             truth_key,
         }
     }
@@ -210,6 +219,7 @@ impl DerivedValue {
             name: name.into(),
             estimate,
             units: "latent",
+            unit: "latent",
             truth_key: None,
         }
     }

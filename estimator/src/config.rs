@@ -87,7 +87,7 @@ impl RunConfig {
         if height.min(width) < min_side {
             return Err(input_error(format!(
                 "{}: frames of {width}×{height} px are too small for {} ({why}); need at least {min_side}×{min_side}",
-                args.input.display(),
+                args.input().display(),
                 model.name()
             )));
         }
@@ -154,7 +154,7 @@ impl RunConfig {
             )));
         }
         Ok(RunConfig {
-            input: args.input.clone(),
+            input: args.input().to_path_buf(),
             model,
             dt: data.dt,
             epochs: t.epochs,

@@ -27,6 +27,13 @@ pub enum EstimateError {
     },
     #[error("cannot draw {path}: {reason}")]
     Plot { path: PathBuf, reason: String },
+    /// `--batch` or `--merge`: some rows failed (exit code 1); the others' results are written.
+    #[error("{failed} of {total} rows failed; see {summary}")]
+    RowsFailed {
+        failed: usize,
+        total: usize,
+        summary: PathBuf,
+    },
     /// Training ran but gave no estimate (exit code 3); nothing is written.
     #[error("no estimate: {0}; nothing written")]
     NoEstimate(String),

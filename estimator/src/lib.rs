@@ -3,6 +3,7 @@
 //! learnable parameters rolls it forward, and the loss compares the two. The models live in
 //! `physics/`, one file each; see ARCHITECTURE.md for the map.
 
+pub mod batch;
 pub mod calibration;
 pub mod cli;
 pub mod config;
@@ -10,6 +11,7 @@ pub mod data;
 pub mod device;
 pub mod encoder;
 pub mod error;
+pub mod html;
 pub mod linalg;
 pub mod loss;
 pub mod network;

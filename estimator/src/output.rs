@@ -1,5 +1,5 @@
-//! The one place that writes a run's outputs into `--out`: report.json, metrics.csv, the plots
-//! and, for a recording, timeline.png, timeline.csv and clips.png. Each file is written under a temporary
+//! The one place that writes a run's outputs into `--out`: report.json, report.html,
+//! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv and clips.png. Each file is written under a temporary
 //! name and renamed.
 
 use crate::data::ClipData;
@@ -9,7 +9,8 @@ use crate::report::Report;
 use physvid_shared::write_atomic;
 use std::path::Path;
 
-fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), EstimateError> {
+/// Writes `dir/name` under a temporary name, then renames it.
+pub fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), EstimateError> {
     write_atomic(&dir.join(name), bytes).map_err(|e| match e {
         physvid_shared::DatasetError::Write { path, source } => {
             EstimateError::Write { path, source }
@@ -18,17 +19,19 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), EstimateError> {
     })
 }
 
-fn plot(dir: &Path, name: &str, png: Result<Vec<u8>, String>) -> Result<(), EstimateError> {
+fn plot(dir: &Path, name: &str, png: Result<Vec<u8>, String>) -> Result<Vec<u8>, EstimateError> {
     let png = png.map_err(|reason| EstimateError::Plot {
         path: dir.join(name),
         reason,
     })?;
-    write(dir, name, &png)
+    write_file(dir, name, &png)?;
+    Ok(png)
 }
 
 /// Every file a run may write, report.json first: removed before a run writes its own.
-const OUTPUTS: [&str; 7] = [
+const OUTPUTS: [&str; 8] = [
     "report.json",
+    "report.html",
     "metrics.csv",
     "parameters.png",
     "latents.png",
@@ -37,24 +40,33 @@ const OUTPUTS: [&str; 7] = [
     "clips.png",
 ];
 
-/// Writes report.json, metrics.csv, parameters.png and latents.png (and timeline.png,
-/// timeline.csv and clips.png for a recording) into `out`, report.json last.
-pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
-    std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
-        path: out.to_path_buf(),
-        source,
-    })?;
-    // The directory becomes wholly this run's: an earlier run's report.json goes first (a
-    // directory with a report.json is complete), then what this run will not write again.
+/// Removes every file a run writes from `out`, report.json first (a directory with a
+/// report.json is complete).
+pub fn clear_outputs(out: &Path) -> Result<(), EstimateError> {
     for name in OUTPUTS {
         let path = out.join(name);
         if path.is_file() {
             std::fs::remove_file(&path).map_err(|source| EstimateError::Write { path, source })?;
         }
     }
-    write(out, "metrics.csv", report.metrics_csv().as_bytes())?;
-    plot(out, "parameters.png", parameters_png(report))?;
-    plot(
+    Ok(())
+}
+
+/// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
+/// timeline.csv and clips.png for a recording) into `out`, report.json last.
+pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
+    std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
+        path: out.to_path_buf(),
+        source,
+    })?;
+    // The directory becomes wholly this run's.
+    clear_outputs(out)?;
+    write_file(out, "metrics.csv", report.metrics_csv().as_bytes())?;
+    let mut images = vec![(
+        "Parameters over epochs",
+        plot(out, "parameters.png", parameters_png(report))?,
+    )];
+    let latents = plot(
         out,
         "latents.png",
         latents_png(
@@ -64,17 +76,29 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
             data.model.latent_dims(),
         ),
     )?;
+    images.push(("Latents of validation clips", latents));
     if let Some(t) = &report.outcome.timeline {
-        plot(out, "timeline.png", timeline_png(t))?;
-        write(
+        images.push((
+            "The recording's timeline",
+            plot(out, "timeline.png", timeline_png(t))?,
+        ));
+        write_file(
             out,
             "timeline.csv",
             t.csv(data.model.latent_dims()).as_bytes(),
         )?;
     }
     if let Some(png) = &data.preview_png {
-        write(out, "clips.png", png)?;
+        if report.recording.as_ref().is_some_and(|r| r.preview) {
+            write_file(out, "clips.png", png)?;
+        }
+        images.push(("The first clips as the model saw them", png.clone()));
     }
+    write_file(
+        out,
+        "report.html",
+        crate::html::report_page(report, &images).as_bytes(),
+    )?;
     let json = serde_json::to_vec_pretty(report).expect("report serialises");
-    write(out, "report.json", &json)
+    write_file(out, "report.json", &json)
 }

@@ -22,7 +22,10 @@ pub struct Estimation {
 /// Runs one estimation as the (validated) arguments say, writes its outputs and prints the
 /// table.
 pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
-    let Estimation { report, data } = estimate(args)?;
+    let Estimation { mut report, data } = estimate(args)?;
+    report.command = Some(shell_words::join(
+        std::env::args_os().map(|a| a.to_string_lossy().into_owned()),
+    ));
     let cfg = &report.config;
     write_outputs(&cfg.out, &data, &report)?;
     println!("{}", report.table());
@@ -34,8 +37,8 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     }
     if !cfg.quiet {
         eprintln!(
-            "report: {}  (metrics.csv, parameters.png, latents.png beside it)",
-            cfg.out.join("report.json").display()
+            "report: {}  (report.json, metrics.csv and the plots beside it)",
+            cfg.out.join("report.html").display()
         );
     }
     Ok(())

@@ -131,6 +131,9 @@ fn help_describes_every_flag() {
         "--stride",
         "--hop",
         "--preview",
+        "--batch",
+        "--shard",
+        "--merge",
     ] {
         assert!(help.contains(flag), "--help lacks {flag}");
     }

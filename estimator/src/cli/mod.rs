@@ -5,10 +5,12 @@
 //! is generated from `physics::MODELS`. `reproduce` builds its runs from the same arguments, so
 //! each table row is a command a user can type.
 
+mod batch;
 mod model;
 mod recording;
 mod training;
 
+pub use batch::{parse_shard, BatchArgs, Shard};
 pub use model::{parse_init, parse_reference, ModelArgs};
 pub use recording::{parse_crop, parse_size, RecordingArgs};
 pub use training::{DeviceChoice, TrainingArgs};
@@ -27,15 +29,24 @@ use std::path::PathBuf;
 /// rolled out) + KL(N(μ, σ²) ‖ N(0, 1)) (CVPR 2025, arXiv 2410.01376). Reads gen datasets, bare
 /// .npy arrays, videos and image folders. Values are labelled SI or latent units; latent-unit
 /// ones need --reference. Ends with a table of estimates (and ground truth with relative errors
-/// when meta.json gives them) and writes report.json, metrics.csv, parameters.png and
-/// latents.png (and timeline.png and timeline.csv for a recording) into --out.
+/// when meta.json gives them) and writes report.html (a page to open: estimates, warnings,
+/// plots, the command), report.json, metrics.csv, parameters.png and latents.png (and
+/// timeline.png and timeline.csv for a recording) into --out. With --batch, many inputs in one
+/// command, each row into its own directory, with summary.csv, summary.md and index.html.
 #[derive(Debug, Clone, Parser)]
-#[command(name = "estimate", version, allow_negative_numbers = true)]
+// A flag given twice keeps its last value, so a batch row's flags override the command line's.
+#[command(
+    name = "estimate",
+    version,
+    allow_negative_numbers = true,
+    args_override_self = true
+)]
 pub struct EstimateArgs {
     /// A dataset directory written by `gen` (frames.npy + meta.json); a bare float32 .npy of
     /// shape [N, T, C, H, W] (then --dt and --model are required); a video file (anything
     /// ffmpeg reads) or a folder of PNG/JPEG images (with --fps), with --model.
-    pub input: PathBuf,
+    #[arg(required_unless_present_any = ["batch", "merge"])]
+    pub input: Option<PathBuf>,
     #[command(flatten)]
     pub model: ModelArgs,
     #[command(flatten)]
@@ -44,13 +55,16 @@ pub struct EstimateArgs {
     pub recording: RecordingArgs,
     #[command(flatten)]
     pub output: OutputArgs,
+    #[command(flatten)]
+    pub batch: BatchArgs,
 }
 
 /// Where the results go.
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Output")]
 pub struct OutputArgs {
-    /// Directory for report.json, metrics.csv and the plots (created; files are replaced).
+    /// Directory for report.json, report.html, metrics.csv and the plots (created; files are
+    /// replaced); for --batch and --merge, the summaries and one directory per row.
     #[arg(long, default_value = "runs/estimate", value_name = "DIR")]
     pub out: PathBuf,
     /// Print only the final table.
@@ -59,11 +73,18 @@ pub struct OutputArgs {
 }
 
 impl EstimateArgs {
+    /// The input of a single run (`validate` has checked that one is given unless the command
+    /// is a batch or a merge, which never reach a single run's code).
+    pub fn input(&self) -> &std::path::Path {
+        self.input.as_deref().unwrap_or(std::path::Path::new(""))
+    }
+
     /// Checks the flags that do not depend on the data.
     pub fn validate(self) -> Result<EstimateArgs, EstimateError> {
         self.model.validate()?;
         self.training.validate()?;
         self.recording.validate()?;
+        self.batch.validate()?;
         physvid_shared::check_output_dir("--out", &self.output.out).map_err(input_error)?;
         Ok(self)
     }

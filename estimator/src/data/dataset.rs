@@ -15,10 +15,10 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
         return Err(input_error(format!(
             "{flag}: applies to recordings (videos, image folders); {} is a dataset of clips \
              already cut; drop it",
-            args.input.display()
+            args.input().display()
         )));
     }
-    let ds = read_dataset(&args.input)?;
+    let ds = read_dataset(args.input())?;
     let source = ds.frames_path.display().to_string();
     let [n, t, c, h, w] = ds.shape;
     if t < 3 {

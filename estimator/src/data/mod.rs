@@ -39,7 +39,8 @@ pub struct ClipData {
     pub recording: Option<(RecordingSummary, Tensor)>,
     /// Things about the input the report should say (e.g. a doubtful frame rate).
     pub warnings: Vec<String>,
-    /// clips.png for `--preview`: clips of a recording as the model sees them.
+    /// For a recording: its first clips as the model sees them (in report.html, and clips.png
+    /// with `--preview`).
     pub preview_png: Option<Vec<u8>>,
 }
 
@@ -131,7 +132,7 @@ fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
 pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, EstimateError> {
-    let src = if is_recording(&args.input) {
+    let src = if is_recording(args.input()) {
         recording::recording_source(args)?
     } else {
         dataset::dataset_source(args)?
@@ -147,7 +148,7 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         return Err(input_error(format!(
             "{}: nothing moves: within every {} each frame equals the first{}, so no parameter \
              of the motion can be estimated (check the file, or --crop for a recording)",
-            args.input.display(),
+            args.input().display(),
             if src.clip_index.is_some() {
                 "recording"
             } else {

@@ -29,6 +29,8 @@ pub struct RecordingSummary {
     pub clips: usize,
     pub size: (usize, usize),
     pub crop: Option<Crop>,
+    /// `--preview`: clips.png written beside the report.
+    pub preview: bool,
     pub start: Option<f64>,
     pub end: Option<f64>,
     /// Seconds spent decoding (ffmpeg, the pipe, crop and resize) and frames per second.
@@ -104,7 +106,7 @@ pub struct LoadedRecording {
     /// [N, T, 1, H, W] of the clips.
     pub shape: [usize; 5],
     pub dt: f64,
-    /// clips.png for `--preview`.
+    /// The first clips as the model sees them (report.html; clips.png with `--preview`).
     pub preview_png: Option<Vec<u8>>,
     pub summary: RecordingSummary,
     pub warnings: Vec<String>,
@@ -112,33 +114,33 @@ pub struct LoadedRecording {
 
 /// A video or image folder, cut into clips for `--model`.
 pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateError> {
-    if !args.input.exists() {
+    if !args.input().exists() {
         return Err(input_error(format!(
             "{}: no such file or directory",
-            args.input.display()
+            args.input().display()
         )));
     }
-    if args.input.is_dir() && video::image_files(&args.input).is_ok_and(|f| f.is_empty()) {
+    if args.input().is_dir() && video::image_files(args.input()).is_ok_and(|f| f.is_empty()) {
         return Err(input_error(format!(
             "{}: a directory that is neither a gen dataset (no frames.npy or meta.json) nor an \
              image folder (no .png, .jpg or .jpeg files)",
-            args.input.display()
+            args.input().display()
         )));
     }
     let model = args.model.model.ok_or_else(|| {
         input_error(format!(
             "{}: a recording needs --model (e.g. --model pendulum)",
-            args.input.display()
+            args.input().display()
         ))
     })?;
     if args.model.dt.is_some() {
         return Err(input_error(format!(
             "--dt: {} is read as a recording (a video or an image folder), whose dt is \
              --stride / fps; set those instead",
-            args.input.display()
+            args.input().display()
         )));
     }
-    let rec = load_recording(&args.input, model, &args.recording)?;
+    let rec = load_recording(args.input(), model, &args.recording)?;
     // Systems released from rest: the release is the first frame kept (trim with --start).
     let start_times = model.released_from_rest().then(|| {
         rec.summary
@@ -219,7 +221,7 @@ pub fn load_recording(
     let n = decoded.clip_starts.len();
     let shape = [n, frames_per_clip, 1, size.1, size.0];
     // Four clips spread over the recording, at the encoder's resolution, magnified 2×.
-    let preview_png = flags.preview.then(|| {
+    let preview_png = Some({
         let m = n.min(4);
         let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
         let (clips, shape) = decoded.clips(&rows, frames_per_clip, stride);
@@ -237,6 +239,7 @@ pub fn load_recording(
         clips: decoded.clip_starts.len(),
         size,
         crop: flags.crop,
+        preview: flags.preview,
         start: flags.start,
         end: flags.end,
         decode_s,

@@ -78,18 +78,18 @@ impl Model for ConstantAcceleration {
         };
         let acc = params[0] / alpha;
         if !self.incline {
-            values.insert(0, DerivedValue::si("g", acc, Some("g")));
+            values.insert(0, DerivedValue::si("g", "m/s^2", acc, Some("g")));
             return (values, warnings);
         }
         values.insert(
             0,
-            DerivedValue::si("acceleration", acc, Some("acceleration")),
+            DerivedValue::si("acceleration", "m/s^2", acc, Some("acceleration")),
         );
         match cal.incline_deg {
             Some(deg) => {
                 let r = deg.to_radians();
                 let mu = r.tan() - acc / (cal.g * r.cos());
-                values.insert(0, DerivedValue::si("mu", mu, Some("mu")));
+                values.insert(0, DerivedValue::si("mu", "1", mu, Some("mu")));
             }
             None => warnings.push(
                 "the friction coefficient needs the incline's angle: pass --incline-deg".into(),

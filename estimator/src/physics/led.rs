@@ -44,7 +44,7 @@ impl Model for Led {
     }
     fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         let values = vec![
-            DerivedValue::si("gamma", params[0], Some("gamma")),
+            DerivedValue::si("gamma", "1/s", params[0], Some("gamma")),
             DerivedValue::latent("offset", params[1]),
         ];
         (values, Vec::new())

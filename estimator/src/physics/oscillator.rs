@@ -81,8 +81,8 @@ impl Model for DampedOscillator {
     fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         (
             vec![
-                DerivedValue::si("gamma0", params[0], Some("gamma0")),
-                DerivedValue::si("gamma1", params[1], Some("gamma1")),
+                DerivedValue::si("gamma0", "1/s^2", params[0], Some("gamma0")),
+                DerivedValue::si("gamma1", "1/s", params[1], Some("gamma1")),
             ],
             Vec::new(),
         )

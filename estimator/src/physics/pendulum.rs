@@ -94,9 +94,9 @@ impl Model for Pendulum {
             );
         }
         let values = vec![
-            DerivedValue::si("length", cal.g / params[0], Some("length")),
-            DerivedValue::si("damping", params[1], Some("damping")),
-            DerivedValue::si("g_over_l", params[0], None),
+            DerivedValue::si("length", "m", cal.g / params[0], Some("length")),
+            DerivedValue::si("damping", "1/s", params[1], Some("damping")),
+            DerivedValue::si("g_over_l", "1/s^2", params[0], None),
             DerivedValue::latent("angle_scale", params[2]),
             DerivedValue::latent("angle_offset", params[3]),
         ];

@@ -43,7 +43,10 @@ impl Model for Torricelli {
         ];
         let mut warnings = Vec::new();
         match cal.root_scale(&readings.values, params[1]) {
-            Some(q) => values.insert(0, DerivedValue::si("k", params[0] / q.abs(), Some("k"))),
+            Some(q) => values.insert(
+                0,
+                DerivedValue::si("k", "m^0.5/s", params[0] / q.abs(), Some("k")),
+            ),
             None => warnings.push(needs_reference("Torricelli's k")),
         }
         (values, warnings)

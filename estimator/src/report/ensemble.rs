@@ -10,6 +10,7 @@ use serde::Serialize;
 pub struct EnsembleValue {
     pub name: String,
     pub units: String,
+    pub unit: String,
     pub mean: f64,
     /// Sample standard deviation (n − 1).
     pub std: f64,
@@ -51,6 +52,7 @@ pub fn summarise(seeds: Vec<u64>, members: &[Vec<ParameterResult>]) -> Ensemble 
                     EnsembleValue {
                         name: p.name.clone(),
                         units: p.units.clone(),
+                        unit: p.unit.clone(),
                         mean,
                         std,
                         min: values.iter().copied().fold(f64::INFINITY, f64::min),
@@ -82,7 +84,7 @@ impl Ensemble {
             "mean",
             "std",
             "range",
-            "units",
+            "unit",
             "truth"
         );
         for v in &self.values {
@@ -92,7 +94,7 @@ impl Ensemble {
                 v.mean,
                 v.std,
                 format!("[{:.6}, {:.6}]", v.min, v.max),
-                v.units,
+                v.unit,
                 v.truth.map_or("-".into(), |t| format!("{t:.6}"))
             );
         }
@@ -109,6 +111,7 @@ mod tests {
             name: name.into(),
             estimate,
             units: "SI".into(),
+            unit: "m/s^2".into(),
             truth: Some(4.0),
             relative_error: None,
         }

@@ -41,6 +41,9 @@ pub struct RunInfo {
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
     pub tool: String,
+    /// The command line that produced the report (set by `run`; absent for library callers).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub command: Option<String>,
     pub version: String,
     pub input: String,
     pub model: String,
@@ -166,6 +169,7 @@ impl Report {
         }
         Report {
             tool: "estimate".into(),
+            command: None,
             version: env!("CARGO_PKG_VERSION").into(),
             input: cfg.input.display().to_string(),
             model: model.name().into(),

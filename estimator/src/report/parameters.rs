@@ -12,6 +12,8 @@ pub struct ParameterResult {
     pub estimate: f64,
     /// "SI" or "latent" (latent units: not determined by the video without a calibration).
     pub units: String,
+    /// The unit's symbol ("m/s^2", "1/s", "1" for a pure number; "latent").
+    pub unit: String,
     pub truth: Option<f64>,
     /// (estimate − truth) / truth.
     pub relative_error: Option<f64>,
@@ -26,6 +28,7 @@ impl ParameterResult {
             name: value.name,
             estimate: value.estimate,
             units: value.units.into(),
+            unit: value.unit.into(),
             truth: t,
         }
     }

@@ -17,8 +17,8 @@ impl Report {
             self.device
         );
         s += &format!(
-            "{:<20} {:>12} {:>7} {:>12} {:>12}\n",
-            "parameter", "estimate", "units", "truth", "rel. error"
+            "{:<20} {:>12} {:>8} {:>12} {:>12}\n",
+            "parameter", "estimate", "unit", "truth", "rel. error"
         );
         for p in &self.parameters {
             let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
@@ -26,8 +26,8 @@ impl Report {
                 .relative_error
                 .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
             s += &format!(
-                "{:<20} {:>12.6} {:>7} {:>12} {:>12}\n",
-                p.name, p.estimate, p.units, truth, err
+                "{:<20} {:>12.6} {:>8} {:>12} {:>12}\n",
+                p.name, p.estimate, p.unit, truth, err
             );
         }
         if let Some(c) = &self.cross_check {

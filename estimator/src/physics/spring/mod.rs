@@ -156,7 +156,7 @@ impl Model for Spring {
     /// of known body positions.
     fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let mut values = vec![
-            DerivedValue::si("k", params[0], Some("k")),
+            DerivedValue::si("k", "1/s^2", params[0], Some("k")),
             DerivedValue::latent("rest_length_latent", params[1]),
         ];
         let mut warnings = Vec::new();
@@ -164,7 +164,7 @@ impl Model for Spring {
             Some((scale, r2)) => {
                 values.insert(
                     1,
-                    DerivedValue::si("rest_length", params[1] / scale, Some("rest_length")),
+                    DerivedValue::si("rest_length", "px", params[1] / scale, Some("rest_length")),
                 );
                 if r2 < POSITION_FIT_R2 {
                     warnings.push(format!(

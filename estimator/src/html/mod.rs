@@ -1,0 +1,209 @@
+//! The pages a person opens: `report.html` for a run (estimates, warnings, the run's facts, the
+//! plots inlined as PNG, the command), and the rendering and style that `batch`'s index.html
+//! shares. One self-contained file each, plain HTML and CSS from minijinja templates; nothing
+//! is fetched from the network.
+
+use crate::report::Report;
+use base64::Engine;
+use minijinja::{context, Environment};
+use serde::Serialize;
+
+/// The pages' style sheet, inlined into each.
+pub fn style() -> minijinja::Value {
+    minijinja::Value::from_safe_string(include_str!("style.css").to_string())
+}
+
+/// Renders a template (HTML-escaping every value not marked safe).
+pub fn render(name: &str, source: &'static str, ctx: minijinja::Value) -> String {
+    let mut env = Environment::new();
+    env.add_template(name, source).expect("the template parses");
+    env.get_template(name)
+        .and_then(|t| t.render(ctx))
+        .expect("the template renders")
+}
+
+#[derive(Serialize)]
+struct Row {
+    name: String,
+    estimate: String,
+    unit: String,
+    truth: String,
+    error: String,
+}
+
+#[derive(Serialize)]
+struct Image {
+    caption: &'static str,
+    data: String,
+    /// Drawn pixel for pixel (the clips), not smoothed.
+    pixels: bool,
+}
+
+/// `report.html` for `report`, with its plots (caption, PNG bytes) inlined.
+pub fn report_page(report: &Report, images: &[(&'static str, Vec<u8>)]) -> String {
+    let b64 = base64::engine::general_purpose::STANDARD;
+    let parameters: Vec<Row> = report
+        .parameters
+        .iter()
+        .map(|p| Row {
+            name: p.name.clone(),
+            estimate: sig(p.estimate),
+            unit: p.unit.clone(),
+            truth: p.truth.map_or("–".into(), sig),
+            error: p
+                .relative_error
+                .map_or("–".into(), |e| format!("{:+.3} %", e * 100.0)),
+        })
+        .collect();
+    let ensemble: Vec<_> = report
+        .ensemble
+        .iter()
+        .flat_map(|e| &e.values)
+        .map(|v| {
+            context! {
+                name => v.name, mean => sig(v.mean), std => sig(v.std),
+                range => format!("{} – {}", sig(v.min), sig(v.max)), unit => v.unit,
+                truth => v.truth.map_or("–".into(), sig),
+            }
+        })
+        .collect();
+    let cross_check = report.cross_check.as_ref().map(|c| {
+        format!(
+            "Cross-check: {} from the amplitude decay of {} swings (appendix A.6) is {} ± {} \
+             (learned {}): {}.",
+            c.name,
+            c.peaks.len(),
+            sig(c.estimate),
+            sig(c.std_error),
+            sig(c.learned),
+            if c.agrees {
+                "within 2 standard errors"
+            } else {
+                "outside 2 standard errors"
+            }
+        )
+    });
+    let cfg = &report.config;
+    let [n, t, ch, h, w] = report.shape;
+    let mut facts = vec![
+        ("model", report.model.clone()),
+        ("frame interval dt", format!("{} s", sig(report.dt))),
+        ("clips", format!("{n} × {t} frames of {w}×{h}×{ch}")),
+        (
+            "train / validation clips",
+            format!("{} / {}", report.train_clips, report.validation_clips),
+        ),
+        ("loss", cfg.loss.name().to_string()),
+        ("integrator", cfg.integrator.name().to_string()),
+        (
+            "epochs run (best)",
+            format!("{} ({})", report.epochs_run, report.best_epoch),
+        ),
+        ("stopped", stop_text(&report.stop)),
+        (
+            "validation rel. MSE",
+            format!("{:.3e}", report.best_val_rel_mse),
+        ),
+        (
+            "latent std",
+            format!(
+                "{:.3e}{}",
+                report.latent_std,
+                if report.latent_collapsed {
+                    " (collapsed)"
+                } else {
+                    ""
+                }
+            ),
+        ),
+        ("seed", cfg.seed.to_string()),
+        (
+            "device, threads",
+            format!("{}, {}", report.device, report.threads),
+        ),
+        ("wall time", format!("{:.1} s", report.wall_time_s)),
+    ];
+    if let Some(l) = &report.latent_vs_truth {
+        facts.push(("latent vs truth R²", format!("{:.4}", l.r2())));
+    }
+    let recording = report.recording.as_ref().map(|r| {
+        vec![
+            (
+                "frame rate",
+                format!("{} fps ({})", sig(r.fps), r.fps_source),
+            ),
+            ("frames decoded", r.frames_decoded.to_string()),
+            (
+                "kept",
+                format!(
+                    "{} to {}",
+                    r.start
+                        .map_or("its start".into(), |s| format!("{} s", sig(s))),
+                    r.end.map_or("its end".into(), |e| format!("{} s", sig(e)))
+                ),
+            ),
+            (
+                "crop",
+                r.crop.map_or("none".into(), |c| {
+                    format!("{},{},{},{}", c.x, c.y, c.w, c.h)
+                }),
+            ),
+            ("encoder frame size", format!("{}×{}", r.size.0, r.size.1)),
+            (
+                "clip frames, stride, hop",
+                format!("{}, {}, {}", r.frames_per_clip, r.stride, r.hop),
+            ),
+            ("decoding", format!("{:.1} s", r.decode_s)),
+        ]
+    });
+    let images: Vec<Image> = images
+        .iter()
+        .map(|(caption, png)| Image {
+            caption,
+            data: b64.encode(png),
+            pixels: caption.contains("clips"),
+        })
+        .collect();
+    let headline = format!(
+        "{} clips, dt {} s; {} epochs in {:.1} s on {}",
+        report.train_clips + report.validation_clips,
+        sig(report.dt),
+        report.epochs_run,
+        report.wall_time_s,
+        report.device
+    );
+    render(
+        "report.html",
+        include_str!("report.html"),
+        context! {
+            style => style(),
+            model => report.model, input => report.input, headline,
+            parameters, ensemble, cross_check, warnings => report.warnings, facts, recording,
+            images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
+            version => report.version, libtorch => report.libtorch_version,
+        },
+    )
+}
+
+fn stop_text(stop: &crate::train::StopReason) -> String {
+    use crate::train::StopReason::*;
+    match stop {
+        EarlyStop { patience } => format!("no improvement for {patience} epochs"),
+        Converged { window, spread } => format!(
+            "parameters within {:.2} % for {window} epochs",
+            spread * 100.0
+        ),
+        MaxEpochs => "at --epochs".into(),
+        NonFiniteLoss { epoch } => format!("non-finite loss at epoch {epoch}"),
+    }
+}
+
+/// Six significant digits.
+pub fn sig(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:.5e}")
+    } else {
+        let digits = (5 - v.abs().log10().floor() as i64).clamp(0, 9) as usize;
+        format!("{v:.digits$}")
+    }
+}

@@ -1,0 +1,181 @@
+//! report.html and a batch's index.html opened in a real browser: headless Chromium loads each
+//! page from disk (no network), its DOM must hold the estimates' rows and every image must have
+//! decoded; a screenshot is taken. Skipped with a message where no Chromium is installed
+//! (scripts/setup.sh installs Debian's `chromium` where it can).
+
+mod util;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+use util::{gen_dataset, read_report, Estimate};
+
+/// The first Chromium on PATH, or `None` with a message.
+fn chromium() -> Option<PathBuf> {
+    for name in ["chromium", "chromium-browser", "google-chrome", "chrome"] {
+        let found = Command::new(name)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if found {
+            return Some(PathBuf::from(name));
+        }
+    }
+    eprintln!("SKIPPED: no chromium on PATH (scripts/setup.sh installs it where apt-get can)");
+    None
+}
+
+/// Runs headless Chromium on `page` with `mode` (`--dump-dom` or `--screenshot=PATH`) and
+/// returns its stdout (through a file: a page's DOM overfills a pipe); killed after 90 s.
+fn headless(browser: &Path, page: &Path, mode: &str, profile: &Path) -> String {
+    let stdout = profile.with_extension("stdout");
+    let mut child = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--hide-scrollbars",
+            "--window-size=1280,2000",
+            "--virtual-time-budget=5000",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(mode)
+        .arg(format!("file://{}", page.display()))
+        .stdout(std::fs::File::create(&stdout).unwrap())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("chromium starts");
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(90) {
+            let _ = child.kill();
+            panic!("chromium did not finish on {} in 90 s", page.display());
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    String::from_utf8_lossy(&std::fs::read(&stdout).unwrap()).into_owned()
+}
+
+/// Opens `page`: every image decoded, `needles` in the DOM; a screenshot that decodes, at the
+/// window's width. Returns the DOM.
+fn check_page(browser: &Path, page: &Path, needles: &[&str]) -> String {
+    let dir = page.parent().unwrap();
+    let profile = dir.join("chromium-profile");
+    let dom = headless(browser, page, "--dump-dom", &profile);
+    let images = dom.matches("<img ").count();
+    let want = format!("data-images-decoded=\"{images}/{images}\"");
+    if images > 0 {
+        assert!(
+            dom.contains(&want),
+            "{}: not every image decoded",
+            page.display()
+        );
+    }
+    for n in needles {
+        assert!(dom.contains(n), "{} lacks {n}", page.display());
+    }
+    let shot = dir.join("screenshot.png");
+    headless(
+        browser,
+        page,
+        &format!("--screenshot={}", shot.display()),
+        &profile,
+    );
+    let img = image::open(&shot).expect("the screenshot decodes");
+    assert_eq!(img.width(), 1280);
+    eprintln!("screenshot of {}: {}", page.display(), shot.display());
+    dom
+}
+
+#[test]
+fn reports_and_the_batch_index_show_in_a_browser() {
+    let Some(browser) = chromium() else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let set = gen_dataset(
+        &tmp.path().join("set"),
+        "intensity",
+        &["--samples", "100", "--size", "32", "--seed", "2"],
+    );
+    let run = tmp.path().join("run");
+    Estimate::new(&set)
+        .args(["--epochs", "5"])
+        .out(&run)
+        .quiet()
+        .ok();
+    let report = read_report(&run);
+    let dom = check_page(
+        &browser,
+        &run.join("report.html"),
+        &[
+            "gamma0",
+            "gamma1",
+            "1/s^2",
+            "<pre id=\"command\">",
+            "--epochs 5",
+        ],
+    );
+    // One table row per reported value, as report.json has them.
+    let rows = dom.matches("<tr class=\"estimate\">").count();
+    assert_eq!(rows, report["parameters"].as_array().unwrap().len());
+    assert_eq!(dom.matches("<img ").count(), 2, "parameters and latents");
+
+    // A batch of two rows, one failing: the index links the good one's report.
+    let file = tmp.path().join("runs.csv");
+    std::fs::write(&file, format!("input\n{set}\nmissing.npy\n")).unwrap();
+    let out = tmp.path().join("batch");
+    let o = Estimate::bare()
+        .arg("--batch")
+        .arg(&file)
+        .out(&out)
+        .args(["--epochs", "3", "--quiet"])
+        .output();
+    assert_eq!(o.status.code(), Some(1));
+    let dom = check_page(
+        &browser,
+        &out.join("index.html"),
+        &["href=\"01-set/report.html\"", "missing.npy", "failed"],
+    );
+    assert_eq!(dom.matches("<tr class=\"row\">").count(), 2);
+}
+
+#[test]
+fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
+    let Some(browser) = chromium() else {
+        return;
+    };
+    let video =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-videos/freefall-ball.mp4");
+    let ffmpeg = Command::new("ffprobe").arg("-version").output().is_ok();
+    if !video.exists() || !ffmpeg {
+        eprintln!("SKIPPED: the shared real videos or ffmpeg are absent");
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let run = tmp.path().join("run");
+    Estimate::new(&video)
+        .args(["--model", "free-fall", "--fps", "120", "--start", "3.933"])
+        .args(["--end", "6.72", "--size", "16x160", "--epochs", "5"])
+        .args(["--reference", "3.933s=0,6.7s=2.26"])
+        .out(&run)
+        .quiet()
+        .ok();
+    let dom = check_page(
+        &browser,
+        &run.join("report.html"),
+        &[
+            "m/s^2",
+            "Recording",
+            "120.000 fps",
+            "3.93300 s to 6.72000 s",
+        ],
+    );
+    // Parameters, latents, the timeline and the clips.
+    assert_eq!(dom.matches("<img ").count(), 4);
+    assert!(
+        !run.join("clips.png").exists(),
+        "clips.png only with --preview"
+    );
+}
