@@ -70,16 +70,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> anyhow::Result<()> {
     })?;
     write_summary(out, &merged)?;
     print!("{}", merged.markdown());
-    let failed = merged.failed();
-    if failed > 0 {
-        return Err(EstimateError::RowsFailed {
-            failed,
-            total: merged.rows.len(),
-            summary: out.join("summary.md"),
-        }
-        .into());
-    }
-    Ok(())
+    Ok(merged.outcome(out.join("summary.md"))?)
 }
 
 /// `path` made absolute (symbolic links resolved where it exists), for relative links.

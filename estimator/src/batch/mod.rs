@@ -68,16 +68,7 @@ pub fn run(args: &EstimateArgs, base: &[OsString], exe: &Path) -> anyhow::Result
         write_summary(out, &summary)?;
     }
     print!("{}", summary.markdown());
-    let failed = summary.failed();
-    if failed > 0 {
-        return Err(EstimateError::RowsFailed {
-            failed,
-            total: mine.len(),
-            summary: out.join("summary.md"),
-        }
-        .into());
-    }
-    Ok(())
+    Ok(summary.outcome(out.join("summary.md"))?)
 }
 
 /// Writes summary.json, summary.csv, summary.md and index.html into `out`.

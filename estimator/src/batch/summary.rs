@@ -85,6 +85,18 @@ impl Summary {
             .filter(|r| r.status != RowStatus::OtherShard)
     }
 
+    /// Err(`RowsFailed`) when any own row failed or was not run; `summary_md` is named in it.
+    pub fn outcome(&self, summary_md: std::path::PathBuf) -> Result<(), crate::EstimateError> {
+        match self.failed() {
+            0 => Ok(()),
+            failed => Err(crate::EstimateError::RowsFailed {
+                failed,
+                total: self.own_rows().count(),
+                summary: summary_md,
+            }),
+        }
+    }
+
     pub fn failed(&self) -> usize {
         self.own_rows()
             .filter(|r| matches!(r.status, RowStatus::Failed | RowStatus::NotRun))
