@@ -67,7 +67,8 @@ fn a_batch_lists_every_row_fails_with_code_1_and_its_shards_merge_to_the_whole()
         return;
     };
     let tmp = tempfile::tempdir().unwrap();
-    let a = small_set(&tmp.path().join("sets/intensity"), "intensity");
+    small_set(&tmp.path().join("sets/intensity"), "intensity");
+    small_set(&tmp.path().join("sets/scale"), "scale");
     let v = |n: &str| videos.join(n).display().to_string();
     let file = tmp.path().join("runs.csv");
     std::fs::write(
@@ -78,7 +79,7 @@ fn a_batch_lists_every_row_fails_with_code_1_and_its_shards_merge_to_the_whole()
              {},ball,free-fall,3.933,6.72,,120,16x160,\"3.933s=0,6.7s=2.26\",g=9.81\n\
              {},apple,pendulum,,,,,,,g_over_l=9.15\n\
              sets/intensity,,,,,,,,,\n\
-             {a}/no-such-frames.npy,,damped-oscillator,,,,,,,\n",
+             sets/scale,wrong-model,led,,,,,,,\n",
             v("torricelli-500ml.mp4"),
             v("freefall-ball.mp4"),
             v("pendulum-redapple.mov"),
@@ -97,8 +98,9 @@ fn a_batch_lists_every_row_fails_with_code_1_and_its_shards_merge_to_the_whole()
     assert_eq!(rows.len(), 5, "{csv}");
     let status: Vec<&str> = rows.iter().map(|r| &r[col("status")]).collect();
     assert_eq!(status, ["ok", "ok", "ok", "ok", "failed"]);
+    // The fifth row fails on purpose: its model contradicts the set's meta.json.
     assert!(
-        rows[4][col("error")].contains("no-such-frames.npy"),
+        rows[4][col("error")].contains("--model led contradicts"),
         "{csv}"
     );
     // Units, the known values and their errors; the relative input read from the CSV's folder.
@@ -109,7 +111,7 @@ fn a_batch_lists_every_row_fails_with_code_1_and_its_shards_merge_to_the_whole()
     for dir in ["01-jar", "02-ball", "03-apple", "04-intensity"] {
         assert!(whole.join(dir).join("report.html").is_file(), "{dir}");
     }
-    assert!(!whole.join("05-no-such-frames").join("report.json").exists());
+    assert!(!whole.join("05-wrong-model").join("report.json").exists());
     // (minijinja writes '/' in attributes as &#x2f;.)
     let index = std::fs::read_to_string(whole.join("index.html"))
         .unwrap()
