@@ -81,7 +81,12 @@ pub fn read_batch_file(path: &Path) -> Result<Vec<BatchRow>, EstimateError> {
             "no 'input' column (the recording or data set of each row)".into(),
         ));
     };
-    let base = path.parent().unwrap_or(Path::new("."));
+    // "./x" rather than "x" for a batch file in the current folder: an input named "-x" must
+    // not read as a flag in the row's command.
+    let base = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let mut rows: Vec<BatchRow> = Vec::new();
     for (i, record) in reader.records().enumerate() {
         let record = record.map_err(|e| bad(format!("{e}")))?;
