@@ -4,6 +4,7 @@
 
 use crate::data::ClipData;
 use crate::error::EstimateError;
+use crate::html::{report_page, Figure};
 use crate::plots::{latents_png, parameters_png, timeline_png};
 use crate::report::Report;
 use physvid_shared::write_atomic;
@@ -62,23 +63,27 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
     // The directory becomes wholly this run's.
     clear_outputs(out)?;
     write_file(out, "metrics.csv", report.metrics_csv().as_bytes())?;
-    let mut images = vec![(
+    let plot_figure = |caption, png| Figure {
+        caption,
+        png,
+        pixels: false,
+    };
+    let mut figures = vec![plot_figure(
         "Parameters over epochs",
         plot(out, "parameters.png", parameters_png(report))?,
     )];
-    let latents = plot(
-        out,
-        "latents.png",
-        latents_png(
-            report,
-            data.dt,
-            data.frames_per_clip,
-            data.model.latent_dims(),
-        ),
-    )?;
-    images.push(("Latents of validation clips", latents));
+    let latents = latents_png(
+        report,
+        data.dt,
+        data.frames_per_clip,
+        data.model.latent_dims(),
+    );
+    figures.push(plot_figure(
+        "Latents of validation clips",
+        plot(out, "latents.png", latents)?,
+    ));
     if let Some(t) = &report.outcome.timeline {
-        images.push((
+        figures.push(plot_figure(
             "The recording's timeline",
             plot(out, "timeline.png", timeline_png(t))?,
         ));
@@ -92,13 +97,13 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
         if report.recording.as_ref().is_some_and(|r| r.preview) {
             write_file(out, "clips.png", png)?;
         }
-        images.push(("The first clips as the model saw them", png.clone()));
+        figures.push(Figure {
+            caption: "The first clips as the model saw them",
+            png: png.clone(),
+            pixels: true,
+        });
     }
-    write_file(
-        out,
-        "report.html",
-        crate::html::report_page(report, &images).as_bytes(),
-    )?;
+    write_file(out, "report.html", report_page(report, &figures).as_bytes())?;
     let json = serde_json::to_vec_pretty(report).expect("report serialises");
     write_file(out, "report.json", &json)
 }

@@ -5,9 +5,8 @@
 
 mod util;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use util::{gen_dataset, stderr, Estimate};
+use std::path::Path;
+use util::{gen_dataset, real_video, stderr, Estimate};
 
 /// A small synthetic set (100 clips of 32×32).
 fn small_set(dir: &Path, scenario: &str) -> String {
@@ -16,20 +15,6 @@ fn small_set(dir: &Path, scenario: &str) -> String {
         scenario,
         &["--samples", "100", "--size", "32", "--seed", "3"],
     )
-}
-
-/// The shared recordings when they and ffmpeg are there.
-fn real_videos() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-videos");
-    let ffmpeg = Command::new("ffprobe")
-        .arg("-version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ffmpeg || !dir.join("freefall-ball.mp4").exists() {
-        eprintln!("SKIPPED: the shared real videos or ffmpeg are absent");
-        return None;
-    }
-    Some(dir)
 }
 
 /// summary.csv without its wall_s column (the one thing that differs between runs).
@@ -63,9 +48,10 @@ fn batch(file: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
 
 #[test]
 fn a_batch_lists_every_row_fails_with_code_1_and_its_shards_merge_to_the_whole() {
-    let Some(videos) = real_videos() else {
+    let Some(video) = real_video("freefall-ball.mp4") else {
         return;
     };
+    let videos = video.parent().unwrap();
     let tmp = tempfile::tempdir().unwrap();
     small_set(&tmp.path().join("sets/intensity"), "intensity");
     small_set(&tmp.path().join("sets/scale"), "scale");

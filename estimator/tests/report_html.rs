@@ -8,7 +8,7 @@ mod util;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-use util::{gen_dataset, read_report, Estimate};
+use util::{gen_dataset, read_report, real_video, Estimate};
 
 /// The first Chromium on PATH, or `None` with a message.
 fn chromium() -> Option<PathBuf> {
@@ -146,13 +146,9 @@ fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
     let Some(browser) = chromium() else {
         return;
     };
-    let video =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-videos/freefall-ball.mp4");
-    let ffmpeg = Command::new("ffprobe").arg("-version").output().is_ok();
-    if !video.exists() || !ffmpeg {
-        eprintln!("SKIPPED: the shared real videos or ffmpeg are absent");
+    let Some(video) = real_video("freefall-ball.mp4") else {
         return;
-    }
+    };
     let tmp = tempfile::tempdir().unwrap();
     let run = tmp.path().join("run");
     Estimate::new(&video)

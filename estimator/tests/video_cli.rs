@@ -4,38 +4,9 @@
 
 mod util;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-use util::{estimate_of, read_report, stderr, Estimate};
-
-fn ffmpeg_available() -> bool {
-    ["ffmpeg", "ffprobe"].iter().all(|t| {
-        Command::new(t)
-            .arg("-version")
-            .output()
-            .is_ok_and(|o| o.status.success())
-    })
-}
-
-/// `../shared/real-videos/NAME` when it and ffmpeg are there; otherwise prints why and `None`.
-fn real_video(name: &str) -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-videos");
-    let path = dir.join(name);
-    if !ffmpeg_available() {
-        eprintln!(
-            "SKIPPED: ffmpeg/ffprobe not on PATH (scripts/setup.sh installs them where it can)"
-        );
-        return None;
-    }
-    if !path.exists() {
-        eprintln!(
-            "SKIPPED: {} is absent (the shared real-video folder is not here)",
-            path.display()
-        );
-        return None;
-    }
-    Some(path)
-}
+use util::{estimate_of, ffmpeg_available, read_report, real_video, stderr, Estimate};
 
 fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
     let o = Estimate::bare().args(args).out(out).quiet().ok();

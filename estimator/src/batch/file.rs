@@ -51,7 +51,7 @@ pub fn read_batch_file(path: &Path) -> Result<Vec<BatchRow>, EstimateError> {
         .iter()
         .map(str::to_string)
         .collect();
-    let flags = flag_columns();
+    let flags = settable_flags();
     let mut columns = Vec::new();
     for (i, h) in header.iter().enumerate() {
         let column = if h == INPUT || h == NAME || h == TRUTH {
@@ -60,10 +60,10 @@ pub fn read_batch_file(path: &Path) -> Result<Vec<BatchRow>, EstimateError> {
             return Err(bad(format!(
                 "column '{h}' is the batch's own (give it on the command line)"
             )));
-        } else if let Some(&(_, takes_value)) = flags.iter().find(|(n, _)| n == h) {
+        } else if let Some(&(_, _, takes_value)) = flags.iter().find(|(n, _, _)| n == h) {
             Column::Flag(takes_value)
         } else {
-            let names: Vec<&str> = flags.iter().map(|(n, _)| n.as_str()).collect();
+            let names: Vec<&str> = flags.iter().map(|(n, _, _)| n.as_str()).collect();
             return Err(bad(format!(
                 "unknown column '{h}' (column {}); columns are input, name, truth and these \
                  flags without dashes: {}",
@@ -164,13 +164,39 @@ enum Column {
     Flag(bool),
 }
 
-/// `estimate`'s long flags a row may set, with whether each takes a value.
-fn flag_columns() -> Vec<(String, bool)> {
+/// `estimate`'s flags a row may set (from its clap definition): long name, argument id, and
+/// whether it takes a value (else a switch).
+fn settable_flags() -> Vec<(String, String, bool)> {
     EstimateArgs::command()
         .get_arguments()
-        .filter_map(|a| Some((a.get_long()?.to_string(), a.get_action().takes_values())))
-        .filter(|(n, _)| !BATCH_ONLY.contains(&n.as_str()))
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            (!BATCH_ONLY.contains(&long)).then(|| {
+                let id = a.get_id().as_str().to_string();
+                (long.to_string(), id, a.get_action().takes_values())
+            })
+        })
         .collect()
+}
+
+/// The flags of the batch's own command line that every row takes (those a row may set, as
+/// given), as arguments.
+pub fn command_line_flags(matches: &clap::ArgMatches) -> Vec<OsString> {
+    let mut flags = Vec::new();
+    for (long, id, takes_value) in settable_flags() {
+        if matches.value_source(&id) != Some(clap::parser::ValueSource::CommandLine) {
+            continue;
+        }
+        if takes_value {
+            for raw in matches.get_raw(&id).into_iter().flatten() {
+                flags.push(OsString::from(format!("--{long}")));
+                flags.push(raw.to_os_string());
+            }
+        } else {
+            flags.push(OsString::from(format!("--{long}")));
+        }
+    }
+    flags
 }
 
 /// A label safe as a directory name: letters, digits, '.', '_' and '-' kept, the rest '_'.

@@ -9,7 +9,7 @@ mod index;
 mod merge;
 pub mod summary;
 
-pub use file::{read_batch_file, BatchRow, BATCH_ONLY};
+pub use file::{command_line_flags, read_batch_file, BatchRow, BATCH_ONLY};
 pub use merge::merge;
 
 use crate::error::EstimateError;

@@ -35,12 +35,19 @@ struct Row {
 struct Image {
     caption: &'static str,
     data: String,
-    /// Drawn pixel for pixel (the clips), not smoothed.
     pixels: bool,
 }
 
-/// `report.html` for `report`, with its plots (caption, PNG bytes) inlined.
-pub fn report_page(report: &Report, images: &[(&'static str, Vec<u8>)]) -> String {
+/// A picture for the page: its caption, its PNG bytes, and whether it is drawn pixel for pixel
+/// (frames as the model sees them) rather than smoothed (plots).
+pub struct Figure {
+    pub caption: &'static str,
+    pub png: Vec<u8>,
+    pub pixels: bool,
+}
+
+/// `report.html` for `report`, with its figures inlined.
+pub fn report_page(report: &Report, figures: &[Figure]) -> String {
     let b64 = base64::engine::general_purpose::STANDARD;
     let parameters: Vec<Row> = report
         .parameters
@@ -156,12 +163,12 @@ pub fn report_page(report: &Report, images: &[(&'static str, Vec<u8>)]) -> Strin
             ("decoding", format!("{:.1} s", r.decode_s)),
         ]
     });
-    let images: Vec<Image> = images
+    let images: Vec<Image> = figures
         .iter()
-        .map(|(caption, png)| Image {
-            caption,
-            data: b64.encode(png),
-            pixels: caption.contains("clips"),
+        .map(|f| Image {
+            caption: f.caption,
+            data: b64.encode(&f.png),
+            pixels: f.pixels,
         })
         .collect();
     let headline = format!(

@@ -74,3 +74,33 @@ pub fn write_npy(path: &Path, descr: &str, shape: &str, data: &[u8]) {
 pub fn f32_bytes(values: &[f32]) -> Vec<u8> {
     values.iter().flat_map(|v| v.to_le_bytes()).collect()
 }
+
+/// Whether the ffmpeg command-line tools are on PATH.
+pub fn ffmpeg_available() -> bool {
+    ["ffmpeg", "ffprobe"].iter().all(|t| {
+        std::process::Command::new(t)
+            .arg("-version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
+}
+
+/// `../shared/real-videos/NAME` when it and ffmpeg are there; otherwise prints why and `None`.
+pub fn real_video(name: &str) -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-videos");
+    let path = dir.join(name);
+    if !ffmpeg_available() {
+        eprintln!(
+            "SKIPPED: ffmpeg/ffprobe not on PATH (scripts/setup.sh installs them where it can)"
+        );
+        return None;
+    }
+    if !path.exists() {
+        eprintln!(
+            "SKIPPED: {} is absent (the shared real-video folder is not here)",
+            path.display()
+        );
+        return None;
+    }
+    Some(path)
+}
