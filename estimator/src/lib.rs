@@ -12,7 +12,7 @@ pub mod device;
 pub mod encoder;
 pub mod error;
 pub mod html;
-pub mod linalg;
+pub use physvid_shared::linalg;
 pub mod loss;
 pub mod network;
 pub mod output;

@@ -4,7 +4,8 @@
 
 use crate::config::GenConfig;
 use crate::error::{invalid, ConfigError};
-use crate::scenes::{SceneRef, SCENES};
+use crate::scenes::file::FileScene;
+use crate::scenes::{Scene, SceneRef, SCENES};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::Parser;
 use physvid_shared::cli::parse_name_values;
@@ -31,6 +32,12 @@ pub struct GenArgs {
     /// The scene: one of the damped-oscillator scenes (what z controls) or a Delfys75 system.
     #[arg(long, value_parser = scene_parser())]
     pub scenario: SceneRef,
+    /// A model file (see README, "Your own model") drawn on the intensity, position or scale
+    /// scene instead of the damped oscillator: its parameters' starts (changed with --set), each
+    /// clip's initial state from its [initial] ranges, its first observed variable mapped onto the
+    /// scene's z in [-1, 1] (the map and reference frames of known value go to meta.json).
+    #[arg(long, value_name = "FILE.toml")]
+    pub model: Option<PathBuf>,
     /// Output directory (created; must be empty unless --force).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -154,8 +161,12 @@ fn set_help() -> String {
 impl GenArgs {
     /// The configuration these arguments describe (validated).
     pub fn into_config(self) -> Result<GenConfig, ConfigError> {
-        let scene = self.scenario;
-        let mut cfg = GenConfig::new(scene, self.out);
+        let file = match &self.model {
+            Some(path) => Some(self.file_scene(path, (0.0, 1.0))?),
+            None => None,
+        };
+        let scene = file.map_or(self.scenario, |f| SceneRef(f.0));
+        let mut cfg = GenConfig::new(scene, self.out.clone());
         if let Some(s) = self.setting.filter(|_| !scene.has_settings()) {
             let with: Vec<&str> = SCENES
                 .iter()
@@ -178,7 +189,7 @@ impl GenArgs {
             ("--zeta", "zeta", self.zeta),
         ] {
             let Some(v) = value else { continue };
-            if !cfg.params.contains_key(name) {
+            if !cfg.params.contains_key(name) || self.model.is_some() {
                 return Err(invalid(
                     flag,
                     scene.name(),
@@ -195,7 +206,7 @@ impl GenArgs {
                 return Err(invalid(
                     "--set",
                     text,
-                    "applies to the Delfys75 scenes only; use --omega and --zeta",
+                    "applies to the Delfys75 scenes and model files only; use --omega and --zeta",
                 ));
             }
             let pairs = parse_name_values(text).map_err(|e| invalid("--set", text, e))?;
@@ -230,7 +241,38 @@ impl GenArgs {
         cfg.seed = self.seed;
         cfg.noise = self.noise;
         cfg.force = self.force;
-        cfg.validate()
+        let mut cfg = cfg.validate()?;
+        if let (Some(f), Some(path)) = (file, &self.model) {
+            // The map from the observed variable onto z, from every clip's trajectory.
+            let map =
+                f.1.fit_map(&cfg.params, cfg.samples, cfg.seed, cfg.frames, cfg.dt)?;
+            cfg.scene = SceneRef(self.file_scene(path, map)?.0);
+        }
+        Ok(cfg)
+    }
+
+    /// The scene of `--model`'s file on `--scenario`'s picture with the map `map`.
+    fn file_scene(
+        &self,
+        path: &std::path::Path,
+        map: (f64, f64),
+    ) -> Result<(&'static dyn Scene, &'static FileScene), ConfigError> {
+        let picture = self.scenario.0.picture().ok_or_else(|| {
+            invalid(
+                "--scenario",
+                self.scenario.name(),
+                "a model file is drawn on intensity, position or scale",
+            )
+        })?;
+        let file = physvid_shared::model_file::load(path).map_err(|e| {
+            invalid(
+                "--model",
+                path.display(),
+                format!("{}: {}", e.key, e.problem),
+            )
+        })?;
+        let scene: &'static FileScene = Box::leak(Box::new(FileScene::new(file, picture, map)?));
+        Ok((scene, scene))
     }
 
     /// Parses `gen` arguments (without the program name) into a validated configuration: what

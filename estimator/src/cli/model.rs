@@ -5,15 +5,16 @@ use super::positive;
 use crate::calibration::DEFAULT_G;
 use crate::error::{input_error, EstimateError};
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
-use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::builder::{PossibleValue, TypedValueParser};
 use physvid_shared::cli::num;
 
 /// The governing equation and how it is integrated and calibrated.
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Model")]
 pub struct ModelArgs {
-    /// The governing equation (taken from meta.json when present; required for recordings).
-    #[arg(long, value_parser = model_parser())]
+    /// The governing equation: a built-in model, or a model file FILE.toml (see README, "Your
+    /// own model"); taken from meta.json when present, required for recordings.
+    #[arg(long, value_parser = model_parser(), value_name = "MODEL|FILE.toml")]
     pub model: Option<ModelRef>,
     /// Seconds between frames (taken from meta.json when present).
     #[arg(long)]
@@ -47,14 +48,40 @@ pub struct ModelArgs {
     pub rollout_start: RolloutStart,
 }
 
-/// `--model`'s values with their equations, from the registry.
-fn model_parser() -> impl TypedValueParser<Value = ModelRef> {
-    let values: Vec<PossibleValue> = MODELS
-        .iter()
-        .map(|m| PossibleValue::new(m.name()).help(m.help()))
-        .collect();
-    PossibleValuesParser::new(values)
-        .map(|name| ModelRef::by_name(&name).expect("a possible value names a model"))
+/// `--model`'s values: the registry's names with their equations (listed in `--help`), or a
+/// model file.
+#[derive(Clone)]
+struct ModelParser;
+
+impl TypedValueParser for ModelParser {
+    type Value = ModelRef;
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &std::ffi::OsStr,
+    ) -> Result<ModelRef, clap::Error> {
+        let text = value.to_string_lossy();
+        ModelRef::parse(&text).map_err(|e| {
+            let flag = arg.map_or("--model".into(), |a| a.to_string());
+            clap::Error::raw(
+                clap::error::ErrorKind::ValueValidation,
+                format!("invalid value '{text}' for '{flag}': {e}\n"),
+            )
+            .with_cmd(cmd)
+        })
+    }
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(
+            MODELS
+                .iter()
+                .map(|m| PossibleValue::new(m.name()).help(m.help())),
+        ))
+    }
+}
+
+fn model_parser() -> ModelParser {
+    ModelParser
 }
 
 fn init_help() -> String {

@@ -38,22 +38,23 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
         )));
     }
     let (dt, model) = match &ds.meta {
+        Some(meta) if args.model.model.is_some_and(|m| m.info().file.is_some()) => {
+            // A model file may be tried on any data: meta.json's model is not checked against
+            // it (its ground truth is compared by name where the names agree).
+            check_dt(args, meta.dt)?;
+            let model = args.model.model.expect("a model file");
+            (meta.dt, model)
+        }
         Some(meta) => {
             let meta_model = ModelRef::by_name(&meta.model.name).ok_or_else(|| {
                 input_error(format!(
-                    "meta.json names model '{}', which estimate does not know (known: {})",
+                    "meta.json names model '{}', which estimate does not know (known: {}); for \
+                     data made from a model file, pass it: --model FILE.toml",
                     meta.model.name,
                     ModelRef::names()
                 ))
             })?;
-            if let Some(dt) = args.model.dt {
-                if (dt - meta.dt).abs() > 1e-12 * meta.dt.max(1.0) {
-                    return Err(input_error(format!(
-                        "--dt {dt} contradicts meta.json's dt {}; drop --dt to use the metadata",
-                        meta.dt
-                    )));
-                }
-            }
+            check_dt(args, meta.dt)?;
             if let Some(m) = args.model.model {
                 if m != meta_model {
                     return Err(input_error(format!(
@@ -93,6 +94,16 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
         warnings: Vec::new(),
         preview_png: None,
     })
+}
+
+/// `--dt`, when given, must be meta.json's.
+fn check_dt(args: &EstimateArgs, meta_dt: f64) -> Result<(), EstimateError> {
+    match args.model.dt {
+        Some(dt) if (dt - meta_dt).abs() > 1e-12 * meta_dt.max(1.0) => Err(input_error(format!(
+            "--dt {dt} contradicts meta.json's dt {meta_dt}; drop --dt to use the metadata"
+        ))),
+        _ => Ok(()),
+    }
 }
 
 /// The largest ground-truth value taken from meta.json.

@@ -207,6 +207,9 @@ fn stop_text(stop: &crate::train::StopReason) -> String {
 
 /// Six significant digits.
 pub fn sig(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
     if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
         format!("{v:.5e}")
     } else {

@@ -4,7 +4,9 @@
 //! values and help are generated from that list. Adding a model = a file and a line here.
 
 pub mod block;
+pub mod bounds;
 pub mod constant_acceleration;
+pub mod file;
 pub mod led;
 pub mod model;
 pub mod ode;
@@ -16,6 +18,7 @@ mod two_step;
 mod two_step_solve;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
+pub use bounds::Bounds;
 pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec, Settles};
 
 /// Every model, in the order `--help` lists them.
@@ -36,6 +39,21 @@ impl ModelRef {
             .iter()
             .find(|m| m.name() == name)
             .map(|m| ModelRef(*m))
+    }
+
+    /// A model given on the command line: a built-in model's name, or a model file
+    /// (`FILE.toml`).
+    pub fn parse(text: &str) -> Result<ModelRef, String> {
+        if let Some(m) = ModelRef::by_name(text) {
+            return Ok(m);
+        }
+        if text.ends_with(".toml") || std::path::Path::new(text).is_file() {
+            return file::FileModel::load(std::path::Path::new(text)).map_err(|e| e.to_string());
+        }
+        Err(format!(
+            "'{text}' is neither a model ({}) nor a model file (FILE.toml)",
+            ModelRef::names()
+        ))
     }
 
     /// Every model's name, for messages.

@@ -2,6 +2,7 @@
 //! block, extra starts and SI answers), and `ModelRef`, a model of the registry as a value.
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use super::bounds::Bounds;
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::PeakDecay;
@@ -15,6 +16,8 @@ pub struct ParamSpec {
     pub start: f64,
     /// Learned as a logarithm, so it stays > 0 and must start > 0.
     pub positive: bool,
+    /// The interval it is learned in (positive: (0, ∞)); the start must lie inside.
+    pub bounds: Bounds,
     /// How the early stop judges that it has converged.
     pub settles: Settles,
 }
@@ -39,6 +42,11 @@ impl ParamSpec {
             name,
             start,
             positive,
+            bounds: if positive {
+                Bounds::POSITIVE
+            } else {
+                Bounds::FREE
+            },
             settles: Settles::Relative,
         }
     }
@@ -131,6 +139,8 @@ pub struct ModelInfo {
     pub nonnegative_reference: Option<&'static str>,
     /// The longest dt (s) the block can integrate (∞: any within [`DT_RANGE`]), with why.
     pub max_dt: (f64, &'static str),
+    /// The model file it was read from (`None`: built in).
+    pub file: Option<&'static str>,
 }
 
 pub use physvid_shared::dynamics::DT_RANGE;
@@ -161,6 +171,7 @@ impl ModelInfo {
             calibration_flags: &[],
             nonnegative_reference: None,
             truth: &[],
+            file: None,
         }
     }
 }

@@ -175,32 +175,7 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
     /// range, rather than at its ends, where a clip's first or last frame sits, make the scale
     /// less sensitive to any one frame).
     fn calibration(&self, p: &Params, size: usize, latents: &[Vec<f64>]) -> Calibration {
-        let all = || {
-            latents
-                .iter()
-                .enumerate()
-                .flat_map(|(i, clip)| clip.iter().enumerate().map(move |(k, &z)| (i, k, z)))
-        };
-        let lo = all().map(|p| p.2).fold(f64::INFINITY, f64::min);
-        let hi = all().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
-        let reference_points = REFERENCE_FRACTIONS
-            .iter()
-            .map(|f| {
-                let target = lo + f * (hi - lo);
-                // The first frame nearest the target (a strict `<` keeps ties deterministic).
-                let mut best = (0, 0, f64::NAN);
-                for (i, k, z) in all() {
-                    if best.2.is_nan() || (z - target).abs() < (best.2 - target).abs() {
-                        best = (i, k, z);
-                    }
-                }
-                ReferencePoint {
-                    clip: best.0,
-                    frame: best.1,
-                    value: best.2,
-                }
-            })
-            .collect();
+        let reference_points = reference_points(latents, |z| z);
         let mut c = Calibration {
             quantity: Some(self.0.info().quantity.into()),
             reference_points,
@@ -217,4 +192,36 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
     fn released_from_rest(&self) -> bool {
         self.0.info().released_from_rest
     }
+}
+
+/// Reference frames spread over the range of the quantity `value(z)` of every clip's latents:
+/// those nearest to [`REFERENCE_FRACTIONS`] of it (the first such frame on ties).
+pub fn reference_points(latents: &[Vec<f64>], value: impl Fn(f64) -> f64) -> Vec<ReferencePoint> {
+    let value = &value;
+    let all = || {
+        latents
+            .iter()
+            .enumerate()
+            .flat_map(move |(i, clip)| clip.iter().enumerate().map(move |(k, &z)| (i, k, value(z))))
+    };
+    let lo = all().map(|p| p.2).fold(f64::INFINITY, f64::min);
+    let hi = all().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
+    REFERENCE_FRACTIONS
+        .iter()
+        .map(|f| {
+            let target = lo + f * (hi - lo);
+            // The first frame nearest the target (a strict `<` keeps ties deterministic).
+            let mut best = (0, 0, f64::NAN);
+            for (i, k, z) in all() {
+                if best.2.is_nan() || (z - target).abs() < (best.2 - target).abs() {
+                    best = (i, k, z);
+                }
+            }
+            ReferencePoint {
+                clip: best.0,
+                frame: best.1,
+                value: best.2,
+            }
+        })
+        .collect()
 }

@@ -173,6 +173,9 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
     fn released_from_rest(&self) -> bool {
         false
     }
+    fn picture(&self) -> Option<&dyn DiscPicture> {
+        Some(&self.0)
+    }
 }
 
 #[cfg(test)]

@@ -4,11 +4,13 @@
 //! calibration a user would measure. Two families share most of their code: the damped
 //! oscillator's disc scenes (`disc.rs`: intensity, position, scale) and the Delfys75 systems
 //! (`delfys.rs`: pendulum, torricelli, sliding-block, led, free-fall); the two-body spring of
-//! appendix A.5 (`spring.rs`) implements `Scene` itself. Adding a scene = a file implementing
+//! appendix A.5 (`spring.rs`) implements `Scene` itself, and so does `file.rs`, a model file's
+//! system drawn on a disc picture (`gen --model`). Adding a scene = a file implementing
 //! `DiscPicture`, `DelfysSystem` or `Scene`, and a line in `SCENES`.
 
 mod delfys;
 mod disc;
+pub mod file;
 pub mod free_fall;
 pub mod intensity;
 pub mod led;
@@ -26,7 +28,7 @@ use physvid_shared::{Calibration, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
 
-pub use delfys::{Delfys, DelfysSystem, SystemInfo, G, REFERENCE_FRACTIONS};
+pub use delfys::{reference_points, Delfys, DelfysSystem, SystemInfo, G, REFERENCE_FRACTIONS};
 pub use disc::{DiscPicture, DiscScene, PictureInfo};
 
 /// The least phase a clip spans (rad: ω·(T−1)·dt, about 1 % of a period) for the oscillating
@@ -104,6 +106,11 @@ pub trait Scene: Sync {
     /// Whether the recording starts at a release from rest (then meta.json gets each clip's
     /// start time since it).
     fn released_from_rest(&self) -> bool;
+    /// The disc picture of a damped-oscillator scene, which a model file's system can be drawn
+    /// on instead (`gen --model FILE.toml`).
+    fn picture(&self) -> Option<&dyn DiscPicture> {
+        None
+    }
 }
 
 /// Every scene, in the order `--help` lists them.

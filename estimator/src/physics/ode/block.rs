@@ -15,7 +15,7 @@ use super::rk4::Span;
 use super::shooting::{fit_clip, ClipFit, POOR_FIT};
 use super::OdeSystem;
 use crate::physics::Clips;
-use crate::physics::ParamSpec;
+use crate::physics::{Bounds, ParamSpec};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use tch::nn;
@@ -80,9 +80,9 @@ fn orthonormal_columns(a: &[f64], rows: usize, n: usize) -> Vec<f64> {
 /// An `OdeSystem` rolled out by shooting from each clip's least-squares initial state.
 pub struct ShootingBlock {
     pub(super) system: Box<dyn OdeSystem>,
-    /// Learnable parameters, as logarithms where positive.
+    /// Learnable parameters, as raw values (see [`Bounds`]: logarithms where positive).
     pub(super) raw: Vec<Tensor>,
-    pub(super) positive: Vec<bool>,
+    pub(super) bounds: Vec<Bounds>,
     pub map: ObservationMap,
     /// The state components the latent coordinates observe.
     pub(super) observed: Vec<usize>,
@@ -109,18 +109,14 @@ impl ShootingBlock {
             .iter()
             .zip(init)
             .map(|(s, &v)| {
-                let (name, v) = if s.positive {
-                    (format!("log_{}", s.name), v.ln())
-                } else {
-                    (s.name.to_string(), v)
-                };
-                path.var(&name, &[], nn::Init::Const(v))
+                let name = format!("{}{}", s.bounds.prefix(), s.name);
+                path.var(&name, &[], nn::Init::Const(s.bounds.raw(v)))
             })
             .collect();
         ShootingBlock {
             system,
             raw,
-            positive: specs.iter().map(|s| s.positive).collect(),
+            bounds: specs.iter().map(|s| s.bounds).collect(),
             map,
             observed,
             dt,
@@ -129,13 +125,13 @@ impl ShootingBlock {
         }
     }
 
-    /// The physical parameters p [m] (exponentials of the logarithms), differentiable.
+    /// The physical parameters p [m] (from their raw values), differentiable.
     pub fn physical(&self) -> Tensor {
         let p: Vec<Tensor> = self
             .raw
             .iter()
-            .zip(&self.positive)
-            .map(|(r, &pos)| if pos { r.exp() } else { r.shallow_clone() })
+            .zip(&self.bounds)
+            .map(|(r, b)| b.value(r))
             .collect();
         Tensor::stack(&p, 0)
     }

@@ -35,6 +35,29 @@ impl ObservationMap {
         }
     }
 
+    /// The map of `d` coordinates at scale `s` and offset `c`, each learned or held fixed (a
+    /// part the law leaves free is held: learning it would only wander).
+    pub fn partly_learned(
+        path: &nn::Path,
+        d: i64,
+        (s, learn_scale): (f64, bool),
+        (c, learn_offset): (f64, bool),
+    ) -> ObservationMap {
+        let part = |name: &str, v: f64, learn: bool| {
+            if learn {
+                path.var(name, &[d], nn::Init::Const(v))
+            } else {
+                let mut t = path.zeros_no_train(name, &[d]);
+                let _ = tch::no_grad(|| t.fill_(v));
+                t
+            }
+        };
+        ObservationMap::Learned {
+            log_scale: part("log_scale", s.ln(), learn_scale),
+            offset: part("offset", c, learn_offset),
+        }
+    }
+
     /// (s, c) as tensors [D], or `None` for the identity.
     pub(super) fn scale_offset(&self) -> Option<(Tensor, Tensor)> {
         match self {

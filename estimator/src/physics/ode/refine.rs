@@ -4,7 +4,7 @@
 use super::block::{host, ShootingBlock};
 use super::shooting::ClipFit;
 use crate::linalg::solve;
-use crate::physics::Clips;
+use crate::physics::{Bounds, Clips};
 use tch::Tensor;
 
 impl ShootingBlock {
@@ -34,11 +34,11 @@ impl ShootingBlock {
             if !cost.is_finite() {
                 break;
             }
-            // Normal equations in the step variables (log p for positive parameters).
+            // Normal equations in the raw variables (log p for positive parameters).
             let (mut h, mut g) = (vec![0.0; m * m], vec![0.0; m]);
             for (i, f) in fits.iter().enumerate() {
                 let clip = &target[i * rows..(i + 1) * rows];
-                let jr = projected_jacobian(f, n, m, &p, &self.positive);
+                let jr = projected_jacobian(f, n, m, &p, &self.bounds);
                 for r in 0..rows {
                     let res = f.y[r] - clip[r];
                     for a in 0..m {
@@ -62,14 +62,8 @@ impl ShootingBlock {
                 let trial: Vec<f64> = p
                     .iter()
                     .zip(&step)
-                    .zip(&self.positive)
-                    .map(|((v, s), &pos)| {
-                        if pos {
-                            v * s.clamp(-0.5, 0.5).exp()
-                        } else {
-                            v + s
-                        }
-                    })
+                    .zip(&self.bounds)
+                    .map(|((v, s), b)| b.step(*v, *s))
                     .collect();
                 let trial_fits = fit_all(&trial);
                 let c = total(&trial_fits);
@@ -130,20 +124,19 @@ impl ShootingBlock {
         }
     }
 
-    /// Sets the physical parameters to `p` (logarithms for positive ones).
+    /// Sets the physical parameters to `p` (through their raw values).
     fn set_physical(&self, p: &[f64]) {
         tch::no_grad(|| {
-            for ((raw, &v), &pos) in self.raw.iter().zip(p).zip(&self.positive) {
-                let v = if pos { v.ln() } else { v };
-                let _ = raw.shallow_clone().fill_(v);
+            for ((raw, &v), b) in self.raw.iter().zip(p).zip(&self.bounds) {
+                let _ = raw.shallow_clone().fill_(b.raw(v));
             }
         });
     }
 }
 
-/// (I − Jx·(JxᵀJx)⁻¹·Jxᵀ)·Jp [R × m] of a clip's fit, with the columns of positive parameters
-/// scaled by their value (derivatives with respect to their logarithm).
-fn projected_jacobian(f: &ClipFit, n: usize, m: usize, p: &[f64], positive: &[bool]) -> Vec<f64> {
+/// (I − Jx·(JxᵀJx)⁻¹·Jxᵀ)·Jp [R × m] of a clip's fit, with the columns of bounded parameters
+/// scaled by d(value)/d(raw) (derivatives with respect to their raw variable).
+fn projected_jacobian(f: &ClipFit, n: usize, m: usize, p: &[f64], bounds: &[Bounds]) -> Vec<f64> {
     let rows = f.y.len();
     // Jxᵀ·Jp [n × m], then ainv·(Jxᵀ·Jp).
     let mut xtp = vec![0.0; n * m];
@@ -164,7 +157,7 @@ fn projected_jacobian(f: &ClipFit, n: usize, m: usize, p: &[f64], positive: &[bo
     for r in 0..rows {
         for a in 0..m {
             let along: f64 = (0..n).map(|i| f.jx[r * n + i] * coef[i * m + a]).sum();
-            let scale = if positive[a] { p[a] } else { 1.0 };
+            let scale = bounds[a].slope(p[a]);
             jr[r * m + a] = (f.jp[r * m + a] - along) * scale;
         }
     }

@@ -1,4 +1,5 @@
-//! Dense linear algebra on small f64 systems, for the shooting fits and the peak fits.
+//! Dense linear algebra on small f64 systems: the shooting fits, the peak fits, a model
+//! file's symmetry analysis.
 
 /// Solves the n×n system `m`·x = `b` by Gaussian elimination with partial pivoting.
 pub fn solve(m: &[f64], b: &[f64], n: usize) -> Option<Vec<f64>> {

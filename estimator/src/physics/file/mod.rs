@@ -1,0 +1,276 @@
+//! Models from a file (`--model FILE.toml`): the user's system of ODEs (read and checked by
+//! `physvid_shared::model_file`) as a `Model`, rolled out by the shooting machinery
+//! (`block.rs`) with exact Jacobians of the file's expressions (`system.rs`). Which parameters
+//! are SI as learned and which are in latent units is found numerically: those a change of the
+//! observed variables' scale or offset moves (`model_file::symmetry`) are in latent units until
+//! reference frames calibrate the map; a part of the map the law leaves free is held, a part
+//! it pins is learned. Where the motion oscillates, a start scaled in time to the frames'
+//! frequency (spectral) is probed beside the file's start.
+
+mod block;
+mod kl;
+mod system;
+
+use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use super::model::{Derived, Model, ModelInfo, ParamSpec, Settles, TruthKey};
+use super::{Bounds, ModelRef};
+use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
+use crate::encoder::EncoderKind;
+use crate::spectral::spectral_start;
+use block::FileBlock;
+use physvid_shared::model_file::symmetry::{symmetries, transformed, Transform};
+use physvid_shared::model_file::{self, ModelFile, Symmetries};
+use std::path::Path;
+use system::FileSystem;
+use tch::nn;
+use tch::Tensor;
+
+/// A model read from a file.
+pub struct FileModel {
+    file: ModelFile,
+    system: FileSystem,
+    info: ModelInfo,
+    symmetries: Symmetries,
+}
+
+fn leak(s: String) -> &'static str {
+    Box::leak(s.into_boxed_str())
+}
+
+impl FileModel {
+    /// Reads `path` into a registry-like model that lives as long as the process.
+    pub fn load(path: &Path) -> Result<ModelRef, model_file::ModelFileError> {
+        let file = model_file::load(path)?;
+        if let Some(builtin) = ModelRef::by_name(&file.name) {
+            return Err(file.error(
+                "name",
+                format!(
+                    "'{}' is a built-in model's name: choose another",
+                    builtin.name()
+                ),
+            ));
+        }
+        let system = FileSystem::new(&file);
+        let symmetries = symmetries(&file, &system.compiled);
+        let mut specs: Vec<ParamSpec> = file
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(j, p)| {
+                let shifted = symmetries.shift.as_ref().is_some_and(|s| s[j]);
+                ParamSpec {
+                    bounds: Bounds::new(p.min, p.max),
+                    settles: if shifted {
+                        Settles::LatentOffset
+                    } else {
+                        Settles::Relative
+                    },
+                    ..ParamSpec::new(
+                        leak(p.name.clone()),
+                        p.start,
+                        Bounds::new(p.min, p.max).is_positive(),
+                    )
+                }
+            })
+            .collect();
+        let observed: Vec<&str> = file
+            .observed
+            .iter()
+            .map(|&i| file.states[i].as_str())
+            .collect();
+        let amplitude = |i: usize| {
+            file.initial[i].map_or(1.0, |(lo, hi): (f64, f64)| lo.abs().max(hi.abs()).max(1e-6))
+        };
+        for &o in &file.observed {
+            let name = &file.states[o];
+            specs.push(ParamSpec::map(
+                leak(format!("{name}_scale")),
+                1.0 / amplitude(o),
+                true,
+            ));
+        }
+        for o in &observed {
+            specs.push(ParamSpec::map(leak(format!("{o}_offset")), 0.0, false));
+        }
+        let truth: Vec<TruthKey> = file
+            .parameters
+            .iter()
+            .map(|p| p.name.clone())
+            .chain(file.derived.iter().map(|d| d.name.clone()))
+            .map(|n| TruthKey::signed(leak(n)))
+            .collect();
+        let encoder = match file.encoder.as_deref() {
+            Some("paper") => EncoderKind::Paper,
+            Some("linear") => EncoderKind::Linear,
+            Some("keypoints") => EncoderKind::Keypoints,
+            _ => EncoderKind::Small,
+        };
+        let d = file.observed.len();
+        let help = if file.description.is_empty() {
+            format!("from {}", path.display())
+        } else {
+            file.description.clone()
+        };
+        let info = ModelInfo {
+            latent_dims: d,
+            encoder,
+            calibration_flags: &["--reference"],
+            calibrates_in_training: d == 1,
+            has_euler: false,
+            truth: Box::leak(truth.into_boxed_slice()),
+            file: Some(leak(path.display().to_string())),
+            ..ModelInfo::new(
+                leak(file.name.clone()),
+                leak(help),
+                Box::leak(specs.into_boxed_slice()),
+                (20, 0.1),
+            )
+        };
+        let model: &'static FileModel = Box::leak(Box::new(FileModel {
+            file,
+            system,
+            info,
+            symmetries,
+        }));
+        Ok(ModelRef(model))
+    }
+
+    fn calibrated(&self, cal: &Calibration) -> bool {
+        self.info.calibrates_in_training && cal.reference.len() >= 2
+    }
+}
+
+impl Model for FileModel {
+    fn info(&self) -> &ModelInfo {
+        &self.info
+    }
+
+    fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock> {
+        let learn = (
+            self.symmetries.scale.is_none(),
+            self.symmetries.shift.is_none(),
+        );
+        Box::new(FileBlock::new(
+            path,
+            &self.file,
+            self.info.parameters,
+            init,
+            opts,
+            learn,
+        ))
+    }
+
+    /// Where the frames oscillate (their most persistent mode) and so does the file's law, the
+    /// start rescaled in time to the frames' frequency, and to half of it (a latent like |x|
+    /// oscillates at twice the motion's frequency).
+    fn extra_starts(
+        &self,
+        train: &Tensor,
+        dt: f64,
+        integrator: Integrator,
+        init: &[f64],
+    ) -> Vec<Vec<f64>> {
+        let m = self.file.parameters.len();
+        let Some(g) = spectral_start(train, dt, integrator) else {
+            return Vec::new();
+        };
+        let Some(w) = self.system.frequency(&init[..m], dt) else {
+            return Vec::new();
+        };
+        let kappa = g[0].max(0.0).sqrt() / w;
+        [kappa, kappa / 2.0]
+            .into_iter()
+            .filter(|k| k.is_finite() && *k > 0.0)
+            .filter_map(|k| {
+                transformed(
+                    &self.file,
+                    &self.system.compiled,
+                    &init[..m],
+                    Transform::Time(k),
+                )
+            })
+            .filter(|p| {
+                p.iter()
+                    .zip(self.info.parameters)
+                    .all(|(v, s)| s.bounds.contains(*v))
+            })
+            .map(|mut p| {
+                p.extend_from_slice(&init[m..]);
+                p
+            })
+            .collect()
+    }
+
+    /// The file's `[observed] kl` combinations when it names them (the spring's relative
+    /// position: KL on the raw coordinates would let a rigid pair through), else each coordinate.
+    fn kl_coordinates(&self, z: &Tensor) -> Tensor {
+        if self.file.kl.is_empty() || z.dim() < 3 {
+            return z.shallow_clone();
+        }
+        kl::kl_coordinates(&self.file.kl, &self.file.observed, z)
+    }
+
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        // The frequency needs a dt to sample at; the frames' own is unknown here: 0.01 s, then
+        // finer.
+        self.system
+            .frequency(&params[..self.file.parameters.len()], 0.01)
+    }
+
+    /// One and a half periods of the start's motion, at least four frames.
+    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        let w = self
+            .system
+            .frequency(&init[..self.file.parameters.len()], dt)?;
+        Some((1.5 * std::f64::consts::TAU / (w * dt)).ceil().max(4.0) as usize)
+    }
+
+    fn derive(&self, params: &[f64], cal: &Calibration, _readings: &Readings) -> Derived {
+        let m = self.file.parameters.len();
+        let calibrated = self.calibrated(cal);
+        let latent = |j: usize| !calibrated && self.symmetries.latent_units(j);
+        let unit = |u: &Option<String>| leak(u.clone().unwrap_or_else(|| "-".into()));
+        let mut values = Vec::new();
+        let mut in_latent = Vec::new();
+        for (j, p) in self.file.parameters.iter().enumerate() {
+            if latent(j) {
+                in_latent.push(p.name.clone());
+                values.push(DerivedValue::latent(&p.name, params[j]));
+            } else {
+                values.push(DerivedValue::si(
+                    &p.name,
+                    unit(&p.unit),
+                    params[j],
+                    Some(self.info.truth[j].name),
+                ));
+            }
+        }
+        let n = self.file.states.len();
+        for (k, (d, v)) in self
+            .file
+            .derived
+            .iter()
+            .zip(self.file.derived_values(&params[..m]))
+            .enumerate()
+        {
+            if (0..m).any(|j| latent(j) && d.expr.uses(n + j)) {
+                values.push(DerivedValue::latent(&d.name, v));
+            } else {
+                values.push(DerivedValue::si(
+                    &d.name,
+                    unit(&d.unit),
+                    v,
+                    Some(self.info.truth[m + k].name),
+                ));
+            }
+        }
+        for (spec, v) in self.info.parameters[m..].iter().zip(&params[m..]) {
+            values.push(DerivedValue::latent(spec.name, *v));
+        }
+        let mut warnings = Vec::new();
+        if !in_latent.is_empty() {
+            warnings.push(needs_reference(&in_latent.join(", ")));
+        }
+        (values, warnings)
+    }
+}
