@@ -7,6 +7,7 @@ use crate::data::{load_clips, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
 use crate::output::write_outputs;
+use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
@@ -58,6 +59,24 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let mut starts = vec![cfg.init.clone()];
     if !cfg.single_start {
         starts.extend(model.extra_starts(&data.train, data.dt, cfg.integrator, &cfg.init));
+        if model.calibrates_in_training() && cfg.calibration.reference.len() >= 2 {
+            // The map is fitted to the reference frames at every step: starts that differ only
+            // in it are one start.
+            let physical = |s: &[f64]| -> Vec<u64> {
+                s.iter()
+                    .zip(model.parameters())
+                    .filter(|(_, p)| p.settles != Settles::Map)
+                    .map(|(v, _)| v.to_bits())
+                    .collect()
+            };
+            let mut seen = Vec::new();
+            starts.retain(|s| {
+                let key = physical(s);
+                let new = !seen.contains(&key);
+                seen.push(key);
+                new
+            });
+        }
     }
     let names = model.parameter_names();
     let progress = Progress::new(cfg.epochs, cfg.quiet);
