@@ -1,8 +1,9 @@
 //! Reading a model file: TOML into a checked [`ModelFile`], every problem one error naming the
 //! key.
 
-use super::expr::{parse, Expr, FUNCTIONS, MAX_DEPTH};
+use super::expr::{parse, Expr, FUNCTIONS};
 use super::parameters::{number, parameters};
+use super::system::MAX_VARIABLES;
 use super::{DerivedDef, ModelFile, ModelFileError};
 use crate::cli::num;
 use std::path::Path;
@@ -196,10 +197,13 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
         file.equations.push(e);
     }
     let (n, m) = (file.states.len(), file.parameters.len());
-    if n + m > MAX_DEPTH {
+    if n + m + 1 > MAX_VARIABLES {
         return Err(file.error(
             "state",
-            format!("{n} state variables and {m} parameters: at most {MAX_DEPTH} in all"),
+            format!(
+                "{n} state variables and {m} parameters: at most {} in all",
+                MAX_VARIABLES - 1
+            ),
         ));
     }
     for (j, p) in file.parameters.iter().enumerate() {
@@ -331,16 +335,5 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
         });
     }
 
-    // The compiled equations and every Jacobian entry must fit the evaluator's stack.
-    for (i, e) in file.equations.iter().enumerate() {
-        let deepest = (0..n + m)
-            .map(|v| e.derivative(v).compile().depth)
-            .chain([e.compile().depth])
-            .max()
-            .unwrap_or(0);
-        if deepest > MAX_DEPTH {
-            return Err(file.error(format!("state.{}", file.states[i]), format!("nested too deeply ({deepest} > {MAX_DEPTH} levels): split it with parentheses differently")));
-        }
-    }
     Ok(file)
 }

@@ -2,12 +2,12 @@
 //! ∂f/∂p on one tape (symbolic derivatives, common subexpressions computed once), and a plain
 //! RK4 trajectory for `gen`.
 
-use super::expr::{Tape, TapeBuilder, MAX_DEPTH};
+use super::expr::{Tape, TapeBuilder};
 use super::ModelFile;
 use std::cell::RefCell;
 
 /// The most variables (states + parameters + t) a file may have.
-pub const MAX_VARIABLES: usize = MAX_DEPTH;
+pub const MAX_VARIABLES: usize = 64;
 
 /// f and its Jacobians, compiled onto one tape: f's n outputs first (so f alone evaluates a
 /// prefix), then ∂f/∂x row-major, then ∂f/∂p.
@@ -67,7 +67,7 @@ impl CompiledSystem {
         jac: Option<(&mut [f64], &mut [f64])>,
     ) {
         let (n, m) = (self.n, self.m);
-        let mut vars = [0.0f64; MAX_VARIABLES + 1];
+        let mut vars = [0.0f64; MAX_VARIABLES];
         vars[..n].copy_from_slice(&x[..n]);
         vars[n..n + m].copy_from_slice(&p[..m]);
         vars[n + m] = t;

@@ -1,14 +1,12 @@
 //! Expressions of a model file: parsed (`parse.rs`) into an `Expr` tree over numbered
-//! variables, differentiated symbolically (`diff.rs`) and compiled into a flat `Program` that
+//! variables, differentiated symbolically (`diff.rs`) and compiled onto a `Tape` (`tape.rs`) that
 //! evaluates on f64 without allocating (the RK4 machinery calls it for every stage).
 
 mod diff;
 mod parse;
-mod program;
 mod tape;
 
 pub use parse::{parse, ParseError};
-pub use program::{Program, MAX_DEPTH};
 pub use tape::{Tape, TapeBuilder};
 
 /// A function callable in an expression.
@@ -218,17 +216,6 @@ impl Expr {
     pub fn derivative(&self, v: usize) -> Expr {
         diff::derivative(self, v)
     }
-
-    /// The postfix program that evaluates it.
-    pub fn compile(&self) -> Program {
-        let mut p = Program {
-            ops: Vec::new(),
-            depth: 0,
-        };
-        let mut depth = 0;
-        p.emit(self, &mut depth);
-        p
-    }
 }
 
 #[cfg(test)]
@@ -261,9 +248,14 @@ mod tests {
                 "{text}: {}",
                 e.eval(&at)
             );
+            let mut b = TapeBuilder::default();
+            b.output(&e);
+            let tape = b.finish();
+            let mut buf = vec![0.0; tape.len()];
+            tape.run(&at, tape.len(), &mut buf);
             assert!(
-                (e.compile().eval(&at) - want).abs() < 1e-12,
-                "{text} compiled"
+                (tape.output(0, &buf) - want).abs() < 1e-12,
+                "{text} on a tape"
             );
         }
     }
@@ -279,6 +271,9 @@ mod tests {
         assert!(err("min(x)").message.contains("2 argument"));
         assert!(err("x v").message.contains("after"));
         assert!(err("").message.contains("early"));
+        let deep = format!("{}x{}", "(".repeat(100_000), ")".repeat(100_000));
+        assert!(err(&deep).message.contains("nested more than 200"));
+        assert!(err(&"-".repeat(100_000)).message.contains("nested"));
     }
 
     #[test]
@@ -292,7 +287,7 @@ mod tests {
         for text in texts {
             let e = parse(text, &vars).unwrap();
             for v in 0..5 {
-                let d = e.derivative(v).compile().eval(&at);
+                let d = e.derivative(v).eval(&at);
                 let h = 1e-6;
                 let (mut p, mut m) = (at, at);
                 p[v] += h;

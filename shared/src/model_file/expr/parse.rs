@@ -4,6 +4,9 @@
 
 use super::{Expr, Func};
 
+/// The deepest nesting an expression may have (a bound on the parser's recursion).
+pub const MAX_NESTING: usize = 200;
+
 /// A parse or name error: the 1-based column and what is wrong there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {
@@ -75,6 +78,8 @@ fn lex(text: &str) -> Result<Vec<(Token, usize)>, ParseError> {
 struct Parser<'a> {
     tokens: Vec<(Token, usize)>,
     at: usize,
+    /// Nesting so far (parentheses, signs, exponents), bounded by [`MAX_NESTING`].
+    depth: usize,
     lookup: &'a dyn Fn(&str) -> Option<usize>,
 }
 
@@ -127,6 +132,16 @@ impl Parser<'_> {
     }
 
     fn unary(&mut self) -> Result<Expr, ParseError> {
+        if self.depth >= MAX_NESTING {
+            return self.error(format!("nested more than {MAX_NESTING} levels deep"));
+        }
+        self.depth += 1;
+        let e = self.signed();
+        self.depth -= 1;
+        e
+    }
+
+    fn signed(&mut self) -> Result<Expr, ParseError> {
         if self.eat('-') {
             return Ok(Expr::negate(self.unary()?));
         }
@@ -209,6 +224,7 @@ pub fn parse(text: &str, lookup: &dyn Fn(&str) -> Option<usize>) -> Result<Expr,
     let mut p = Parser {
         tokens: lex(text)?,
         at: 0,
+        depth: 0,
         lookup,
     };
     let e = p.sum()?;
