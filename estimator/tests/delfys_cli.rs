@@ -13,12 +13,7 @@ fn estimate(data: &str, out: &Path, extra: &[&str]) -> serde_json::Value {
 }
 
 fn relative_error(report: &serde_json::Value, name: &str) -> f64 {
-    let p = report["parameters"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["name"] == name)
-        .unwrap_or_else(|| panic!("no {name} in {report}"));
+    let p = util::parameter(report, name);
     assert_eq!(p["units"], "SI", "{name} is not in SI units");
     p["relative_error"].as_f64().expect("truth known")
 }

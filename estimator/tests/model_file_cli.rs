@@ -5,7 +5,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{estimate_of, gen_dataset, read_report, Estimate};
+use util::{estimate_of, gen_dataset, parameter, read_report, Estimate};
 
 /// A file of the repository's `examples/` folder.
 fn example(name: &str) -> String {
@@ -28,12 +28,7 @@ fn run(data: &str, model: &str, out: &Path, extra: &[&str]) -> serde_json::Value
 
 /// (estimate, units label, relative error against meta.json's truth if known) of `name`.
 fn value(report: &serde_json::Value, name: &str) -> (f64, String, Option<f64>) {
-    let p = report["parameters"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["name"] == name)
-        .unwrap_or_else(|| panic!("no {name} in {report}"));
+    let p = parameter(report, name);
     (
         p["estimate"].as_f64().unwrap(),
         p["units"].as_str().unwrap().to_string(),

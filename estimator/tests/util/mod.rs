@@ -45,14 +45,20 @@ pub fn read_report(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&text).expect("report.json is JSON")
 }
 
-/// The estimate of parameter `name` in a report.
-pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
+/// The entry of parameter `name` in a report's `parameters`.
+pub fn parameter<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
     report["parameters"]
         .as_array()
         .expect("parameters array")
         .iter()
         .find(|p| p["name"] == name)
-        .and_then(|p| p["estimate"].as_f64())
+        .unwrap_or_else(|| panic!("no {name} in {report}"))
+}
+
+/// The estimate of parameter `name` in a report.
+pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
+    parameter(report, name)["estimate"]
+        .as_f64()
         .unwrap_or_else(|| panic!("no estimate for {name}"))
 }
 
