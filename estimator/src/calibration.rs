@@ -5,7 +5,7 @@
 //! holds the resolved `Calibration` and the helpers the models' `derive` use.
 
 use physvid_shared::cli::num;
-use physvid_shared::AffineFit;
+use physvid_shared::{AffineFit, SimilarityFit};
 
 /// What turns latent units into SI units, resolved from the flags and meta.json.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
@@ -233,6 +233,45 @@ pub fn needs_reference(what: &str) -> String {
          CLIP:FRAME=VALUE,... to get it in SI units"
     )
 }
+
+/// The scale of the similarity from the bodies' true positions to their latents at the
+/// reference frames (every body's point of every frame), and the fit's R²; `None` with fewer
+/// than two frames or without spread. All the points, not only the relative vectors: twice
+/// the points and the wider spread of the positions (measured: the rest length's calibration
+/// error from five frames +0.65 % with the positions, +1.9 % with the relative vectors alone;
+/// the centre of mass comes out on the relative vector's scale, 0.0318 against 0.0316–0.0318
+/// over the validation clips).
+pub fn position_scale(cal: &Calibration, latents: &[Vec<f64>]) -> Option<(f64, f64)> {
+    if cal.positions.len() < 2 || latents.len() != cal.positions.len() {
+        return None;
+    }
+    let points = |v: &[f64]| -> Vec<[f64; 2]> { v.chunks(2).map(|c| [c[0], c[1]]).collect() };
+    let latent: Vec<[f64; 2]> = latents.iter().flat_map(|v| points(v)).collect();
+    // The encoder may have either body first: the better of both pairings.
+    [false, true]
+        .into_iter()
+        .filter_map(|swap| {
+            let truth: Vec<[f64; 2]> = cal
+                .positions
+                .iter()
+                .flat_map(|p| {
+                    let mut q = points(&p.2);
+                    if swap {
+                        q.reverse();
+                    }
+                    q
+                })
+                .collect();
+            SimilarityFit::of(&truth, &latent)
+        })
+        .filter(|f| f.scale > 0.0)
+        .max_by(|a, b| a.r2.total_cmp(&b.r2))
+        .map(|f| (f.scale, f.r2))
+}
+
+/// Below this R² the reference frames' relative vectors are not a similarity of the latent's:
+/// the rest length in pixels is then suspect.
+pub const POSITION_FIT_R2: f64 = 0.98;
 
 #[cfg(test)]
 mod tests {

@@ -14,7 +14,9 @@ mod system;
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, Settles, TruthKey};
 use super::{Bounds, ModelRef};
-use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
+use crate::calibration::{
+    needs_reference, position_scale, Calibration, DerivedValue, Readings, POSITION_FIT_R2,
+};
 use crate::encoder::EncoderKind;
 use crate::spectral::spectral_start;
 use block::FileBlock;
@@ -140,6 +142,41 @@ impl FileModel {
     }
 }
 
+impl FileModel {
+    /// The parameters in the units of the bodies' known positions at reference frames, for a
+    /// latent of (x, y) pairs whose law no common shift changes (see [`FileModel::derive`]).
+    fn scaled_by_positions(
+        &self,
+        p: &[f64],
+        cal: &Calibration,
+        readings: &Readings,
+        warnings: &mut Vec<String>,
+    ) -> Option<Vec<f64>> {
+        let d = self.file.observed.len();
+        let shift_free = self
+            .symmetries
+            .shift
+            .as_ref()
+            .is_some_and(|s| !s.contains(&true));
+        if d < 2 || d % 2 != 0 || !shift_free || self.symmetries.scale.is_none() {
+            return None;
+        }
+        let (scale, r2) = position_scale(cal, &readings.positions)?;
+        if r2 < POSITION_FIT_R2 {
+            warnings.push(format!(
+                "the reference frames' positions fit the latent only with R² {r2:.3} (a \
+                 similarity should fit exactly): the values converted with its scale are suspect"
+            ));
+        }
+        transformed(
+            &self.file,
+            &self.system.compiled,
+            p,
+            Transform::Scale(1.0 / scale),
+        )
+    }
+}
+
 impl Model for FileModel {
     fn info(&self) -> &ModelInfo {
         &self.info
@@ -243,9 +280,20 @@ impl Model for FileModel {
         Some((1.5 * std::f64::consts::TAU / (w * dt)).ceil().max(4.0) as usize)
     }
 
-    fn derive(&self, params: &[f64], cal: &Calibration, _readings: &Readings) -> Derived {
+    /// The file's parameters, and values derived from them: SI where the data determine them,
+    /// where reference frames calibrated the map, or where bodies' known positions give the
+    /// latent's scale (a vector latent of (x, y) pairs, a law that no shift of the positions
+    /// changes: the parameters are then rescaled as the law demands); latent units otherwise.
+    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
         let m = self.file.parameters.len();
-        let calibrated = self.calibrated(cal);
+        let mut warnings = Vec::new();
+        let scaled = self.scaled_by_positions(&params[..m], cal, readings, &mut warnings);
+        let calibrated = self.calibrated(cal) || scaled.is_some();
+        let params: Vec<f64> = scaled
+            .unwrap_or_else(|| params[..m].to_vec())
+            .into_iter()
+            .chain(params[m..].iter().copied())
+            .collect();
         let latent = |j: usize| !calibrated && self.symmetries.latent_units(j);
         let unit = |u: &Option<String>| leak(u.clone().unwrap_or_else(|| "-".into()));
         let mut values = Vec::new();
@@ -285,7 +333,6 @@ impl Model for FileModel {
         for (spec, v) in self.info.parameters[m..].iter().zip(&params[m..]) {
             values.push(DerivedValue::latent(spec.name, *v));
         }
-        let mut warnings = Vec::new();
         if !in_latent.is_empty() {
             warnings.push(needs_reference(&in_latent.join(", ")));
         }
