@@ -33,6 +33,8 @@ pub struct FileModel {
     system: FileSystem,
     info: ModelInfo,
     symmetries: Symmetries,
+    /// The parameters' units, then the derived values' ("-" where the file gives none).
+    units: Vec<&'static str>,
 }
 
 fn leak(s: String) -> &'static str {
@@ -128,7 +130,15 @@ impl FileModel {
                 (20, 0.1),
             )
         };
+        let units = file
+            .parameters
+            .iter()
+            .map(|p| &p.unit)
+            .chain(file.derived.iter().map(|d| &d.unit))
+            .map(|u| leak(u.clone().unwrap_or_else(|| "-".into())))
+            .collect();
         let model: &'static FileModel = Box::leak(Box::new(FileModel {
+            units,
             file,
             system,
             info,
@@ -295,7 +305,6 @@ impl Model for FileModel {
             .chain(params[m..].iter().copied())
             .collect();
         let latent = |j: usize| !calibrated && self.symmetries.latent_units(j);
-        let unit = |u: &Option<String>| leak(u.clone().unwrap_or_else(|| "-".into()));
         let mut values = Vec::new();
         let mut in_latent = Vec::new();
         for (j, p) in self.file.parameters.iter().enumerate() {
@@ -305,7 +314,7 @@ impl Model for FileModel {
             } else {
                 values.push(DerivedValue::si(
                     &p.name,
-                    unit(&p.unit),
+                    self.units[j],
                     params[j],
                     Some(self.info.truth[j].name),
                 ));
@@ -324,7 +333,7 @@ impl Model for FileModel {
             } else {
                 values.push(DerivedValue::si(
                     &d.name,
-                    unit(&d.unit),
+                    self.units[m + k],
                     v,
                     Some(self.info.truth[m + k].name),
                 ));
