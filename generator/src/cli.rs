@@ -1,11 +1,12 @@
 //! `GenArgs`: `gen`'s command line (clap), and its resolution into a `GenConfig`: the scene's
-//! defaults, `--setting`, `--set`, `--omega` and `--zeta`. Scene names and help come from
+//! defaults, `--setting`, `--set`, `--omega`, `--zeta` and `--model` (a model file's system on a
+//! disc scene, its map onto z fitted after validation). Scene names and help come from
 //! `scenes::SCENES`. `reproduce` and the tests build datasets from the same arguments.
 
 use crate::config::GenConfig;
 use crate::error::{invalid, ConfigError};
 use crate::scenes::file::FileScene;
-use crate::scenes::{Scene, SceneRef, SCENES};
+use crate::scenes::{SceneRef, SCENES};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::Parser;
 use physvid_shared::cli::parse_name_values;
@@ -165,7 +166,7 @@ impl GenArgs {
             Some(path) => Some(self.file_scene(path, (0.0, 1.0))?),
             None => None,
         };
-        let scene = file.map_or(self.scenario, |f| SceneRef(f.0));
+        let scene = file.map_or(self.scenario, |f| SceneRef(f));
         let mut cfg = GenConfig::new(scene, self.out.clone());
         if let Some(s) = self.setting.filter(|_| !scene.has_settings()) {
             let with: Vec<&str> = SCENES
@@ -189,7 +190,14 @@ impl GenArgs {
             ("--zeta", "zeta", self.zeta),
         ] {
             let Some(v) = value else { continue };
-            if !cfg.params.contains_key(name) || self.model.is_some() {
+            if self.model.is_some() {
+                return Err(invalid(
+                    flag,
+                    v,
+                    "a model file's parameters are set with --set NAME=VALUE,...",
+                ));
+            }
+            if !cfg.params.contains_key(name) {
                 return Err(invalid(
                     flag,
                     scene.name(),
@@ -244,9 +252,8 @@ impl GenArgs {
         let mut cfg = cfg.validate()?;
         if let (Some(f), Some(path)) = (file, &self.model) {
             // The map from the observed variable onto z, from every clip's trajectory.
-            let map =
-                f.1.fit_map(&cfg.params, cfg.samples, cfg.seed, cfg.frames, cfg.dt)?;
-            cfg.scene = SceneRef(self.file_scene(path, map)?.0);
+            let map = f.fit_map(&cfg.params, cfg.samples, cfg.seed, cfg.frames, cfg.dt)?;
+            cfg.scene = SceneRef(self.file_scene(path, map)?);
         }
         Ok(cfg)
     }
@@ -256,7 +263,7 @@ impl GenArgs {
         &self,
         path: &std::path::Path,
         map: (f64, f64),
-    ) -> Result<(&'static dyn Scene, &'static FileScene), ConfigError> {
+    ) -> Result<&'static FileScene, ConfigError> {
         let picture = self.scenario.0.picture().ok_or_else(|| {
             invalid(
                 "--scenario",
@@ -271,8 +278,7 @@ impl GenArgs {
                 format!("{}: {}", e.key, e.problem),
             )
         })?;
-        let scene: &'static FileScene = Box::leak(Box::new(FileScene::new(file, picture, map)?));
-        Ok((scene, scene))
+        Ok(Box::leak(Box::new(FileScene::new(file, picture, map)?)))
     }
 
     /// Parses `gen` arguments (without the program name) into a validated configuration: what
