@@ -12,8 +12,8 @@ use physvid_shared::model_file::ModelFile;
 use tch::nn;
 use tch::Tensor;
 
-/// Longest RK4 sub-step as a fraction of the motion's period at the start (at most 1/40: a
-/// relative phase error below 1e-5 per period).
+/// Sub-steps per period of the motion at the start (RK4 at 1/40 of a period: a relative phase
+/// error of about 3e-5 per period).
 const STEPS_PER_PERIOD: f64 = 40.0;
 /// Sub-steps per frame when the motion does not oscillate.
 const DEFAULT_SUBSTEPS: usize = 4;
