@@ -200,10 +200,10 @@ pub fn initial_values(model: ModelRef, init: &[(String, f64)]) -> Result<Vec<f64
                 model.parameter_names().join(", ")
             ))
         })?;
-        if specs[i].positive && *v <= 0.0 {
+        let b = specs[i].bounds;
+        if b.is_positive() && *v <= 0.0 {
             return Err(input_error(format!("--init {name}={v}: must be > 0")));
         }
-        let b = specs[i].bounds;
         if !b.contains(*v) {
             return Err(input_error(format!(
                 "--init {name}={v}: must lie strictly inside its bounds ({}, {})",

@@ -163,7 +163,7 @@ impl GenArgs {
     /// The configuration these arguments describe (validated).
     pub fn into_config(self) -> Result<GenConfig, ConfigError> {
         let file = match &self.model {
-            Some(path) => Some(self.file_scene(path, (0.0, 1.0))?),
+            Some(path) => Some(self.file_scene(path)?),
             None => None,
         };
         let scene = file.map_or(self.scenario, |f| SceneRef(f));
@@ -250,20 +250,17 @@ impl GenArgs {
         cfg.noise = self.noise;
         cfg.force = self.force;
         let mut cfg = cfg.validate()?;
-        if let (Some(f), Some(path)) = (file, &self.model) {
+        if let Some(f) = file {
             // The map from the observed variable onto z, from every clip's trajectory.
             let map = f.fit_map(&cfg.params, cfg.samples, cfg.seed, cfg.frames, cfg.dt)?;
-            cfg.scene = SceneRef(self.file_scene(path, map)?);
+            cfg.scene = SceneRef(Box::leak(Box::new(f.with_map(map))));
         }
         Ok(cfg)
     }
 
-    /// The scene of `--model`'s file on `--scenario`'s picture with the map `map`.
-    fn file_scene(
-        &self,
-        path: &std::path::Path,
-        map: (f64, f64),
-    ) -> Result<&'static FileScene, ConfigError> {
+    /// The scene of `--model`'s file on `--scenario`'s picture (its map fitted once the
+    /// configuration is valid).
+    fn file_scene(&self, path: &std::path::Path) -> Result<&'static FileScene, ConfigError> {
         let picture = self.scenario.0.picture().ok_or_else(|| {
             invalid(
                 "--scenario",
@@ -278,7 +275,7 @@ impl GenArgs {
                 format!("{}: {}", e.key, e.problem),
             )
         })?;
-        Ok(Box::leak(Box::new(FileScene::new(file, picture, map)?)))
+        Ok(Box::leak(Box::new(FileScene::new(file, picture)?)))
     }
 
     /// Parses `gen` arguments (without the program name) into a validated configuration: what

@@ -37,15 +37,15 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
             ds.shape
         )));
     }
-    let (dt, model) = match &ds.meta {
-        Some(meta) if args.model.model.is_some_and(|m| m.info().file.is_some()) => {
+    let model_file = args.model.model.filter(|m| m.info().file.is_some());
+    let (dt, model) = match (&ds.meta, model_file) {
+        (Some(meta), Some(model)) => {
             // A model file may be tried on any data: meta.json's model is not checked against
             // it (its ground truth is compared by name where the names agree).
             check_dt(args, meta.dt)?;
-            let model = args.model.model.expect("a model file");
             (meta.dt, model)
         }
-        Some(meta) => {
+        (Some(meta), None) => {
             let meta_model = ModelRef::by_name(&meta.model.name).ok_or_else(|| {
                 input_error(format!(
                     "meta.json names model '{}', which estimate does not know (known: {}); for \
@@ -67,7 +67,7 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
             check_truth(&meta.model.parameters, meta_model)?;
             (meta.dt, meta_model)
         }
-        None => {
+        (None, _) => {
             let dt = args.model.dt.ok_or_else(|| {
                 input_error(format!(
                     "{source} has no meta.json beside it: pass --dt (seconds between frames)"

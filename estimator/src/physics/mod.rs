@@ -75,7 +75,7 @@ mod tests {
         for m in MODELS {
             assert_eq!(ModelRef::by_name(m.name()).unwrap().name(), m.name());
             for p in m.parameters() {
-                assert!(!p.positive || p.start > 0.0, "{}: {}", m.name(), p.name);
+                assert!(p.bounds.contains(p.start), "{}: {}", m.name(), p.name);
             }
             let (frames, dt) = m.table5_clip();
             assert!(frames >= 3 && dt > 0.0);

@@ -14,9 +14,8 @@ pub struct ParamSpec {
     pub name: &'static str,
     /// The default start (`--init` overrides it).
     pub start: f64,
-    /// Learned as a logarithm, so it stays > 0 and must start > 0.
-    pub positive: bool,
-    /// The interval it is learned in (positive: (0, ∞)); the start must lie inside.
+    /// The interval it is learned in (positive: (0, ∞), as a logarithm); the start must lie
+    /// inside.
     pub bounds: Bounds,
     /// How the early stop judges that it has converged.
     pub settles: Settles,
@@ -41,7 +40,6 @@ impl ParamSpec {
         ParamSpec {
             name,
             start,
-            positive,
             bounds: if positive {
                 Bounds::POSITIVE
             } else {

@@ -19,8 +19,11 @@ use rand_chacha::ChaCha8Rng;
 const SUBSTEPS: usize = 32;
 
 /// A model file on a disc picture, with the map x = centre + half·z.
+#[derive(Clone)]
 pub struct FileScene {
     file: ModelFile,
+    /// The file's name (meta.json's model).
+    name: &'static str,
     system: CompiledSystem,
     picture: &'static dyn DiscPicture,
     map: (f64, f64),
@@ -33,11 +36,11 @@ fn leak(s: String) -> &'static str {
 }
 
 impl FileScene {
-    /// The scene of `file` on `picture`, with the map `(centre, half)` (x = centre + half·z).
+    /// The scene of `file` on `picture`, with the identity map (z = x) until
+    /// [`FileScene::with_map`] gives the one fitted to the clips ([`FileScene::fit_map`]).
     pub fn new(
         file: ModelFile,
         picture: &'static dyn DiscPicture,
-        map: (f64, f64),
     ) -> Result<FileScene, ConfigError> {
         if file.observed.len() != 1 {
             return Err(invalid(
@@ -56,25 +59,36 @@ impl FileScene {
                 format!("initial.{}: gen needs a range [min, max] for every state variable to draw clips from", file.states[i]),
             ));
         }
-        let x = &file.states[file.observed[0]];
-        let mapping = leak(format!(
-            "{}; z = (x - {}) / {} for the model file's observed variable x = {x}",
-            picture.info().mapping_text,
-            num(map.0),
-            num(map.1)
-        ));
         let sampling = leak(format!(
             "each state variable's initial value uniform in its [initial] range, in the order {}, from ChaCha8 stream i (seeded with --seed) for sample i, then the pixel noise; RK4 with {SUBSTEPS} steps per frame",
             file.states.join(", ")
         ));
-        Ok(FileScene {
+        let scene = FileScene {
             system: CompiledSystem::new(&file),
+            name: leak(file.name.clone()),
             file,
             picture,
+            map: (0.0, 1.0),
+            mapping: "",
+            sampling,
+        };
+        Ok(scene.with_map((0.0, 1.0)))
+    }
+
+    /// The same scene with the map `(centre, half)`.
+    pub fn with_map(&self, map: (f64, f64)) -> FileScene {
+        let x = &self.file.states[self.file.observed[0]];
+        let mapping = leak(format!(
+            "{}; z = (x - {}) / {} for the model file's observed variable x = {x}",
+            self.picture.info().mapping_text,
+            num(map.0),
+            num(map.1)
+        ));
+        FileScene {
             map,
             mapping,
-            sampling,
-        })
+            ..self.clone()
+        }
     }
 
     fn parameter_values(&self, p: &Params) -> Vec<f64> {
@@ -163,7 +177,7 @@ impl Scene for FileScene {
         self.picture.info().help
     }
     fn model_name(&self) -> &'static str {
-        leak(self.file.name.clone())
+        self.name
     }
     fn default_clip(&self) -> (usize, f64) {
         (20, 0.2)

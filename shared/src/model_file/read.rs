@@ -185,8 +185,18 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
                 .message
                 .strip_prefix("unknown name '")
                 .and_then(|n| n.strip_suffix('\''))
-                .filter(|n| mentioned.iter().any(|m| m == n))
-                .map(|n| format!(" ('{n}' is a state variable without an equation: add {n} = \"...\" under [state])"))
+                .map(|n| {
+                    if file.states.iter().any(|s| s == n) {
+                        format!(
+                            " ('{n}' is a state variable, which {key} cannot read: kl reads the \
+                             observed ones, derived values the parameters)"
+                        )
+                    } else if mentioned.iter().any(|m| m == n) {
+                        format!(" ('{n}' is a state variable without an equation: add {n} = \"...\" under [state])")
+                    } else {
+                        String::new()
+                    }
+                })
                 .unwrap_or_default();
             file.error(key, format!("column {}: {}{hint} in \"{text}\"", e.column, e.message))
         })?;
@@ -263,7 +273,14 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
         };
         let mut kl = Vec::new();
         for item in items {
-            kl.push(expression(&file, "observed.kl", item, &observed_only)?);
+            let e = expression(&file, "observed.kl", item, &observed_only)?;
+            if !file.observed.iter().any(|&i| e.uses(i)) {
+                return Err(file.error(
+                    "observed.kl",
+                    "each expression must read an observed variable (a constant has no spread)",
+                ));
+            }
+            kl.push(e);
         }
         file.kl = kl;
     }

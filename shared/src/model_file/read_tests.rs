@@ -91,6 +91,16 @@ fn each_mistake_names_the_key_and_the_problem() {
             "initial.x: min 1 > max 0.5",
         ),
         ("[observed]", "[observed", "toml: line"),
+        (
+            "latent = [\"x\"]",
+            "latent = [\"x\"]\nkl = [\"2\"]",
+            "observed.kl: each expression must read an observed variable",
+        ),
+        (
+            "latent = [\"x\"]",
+            "latent = [\"x\"]\nkl = [\"v\"]",
+            "observed.kl: column 1: unknown name 'v' ('v' is a state variable, which observed.kl cannot read",
+        ),
     ];
     for (from, to, want) in cases {
         assert!(super::parse_text(DUFFING).is_ok());

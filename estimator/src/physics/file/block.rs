@@ -35,7 +35,7 @@ pub struct FileBlock {
     /// Latent coordinates per frame.
     dims: i64,
     file: ModelFile,
-    /// The file's system, for the scan (the shooting block owns its own copy).
+    /// The file's system, for the scan (the shooting block owns another copy).
     system: FileSystem,
     dt: f64,
 }
@@ -46,13 +46,12 @@ impl FileBlock {
     pub fn new(
         path: &nn::Path,
         file: &ModelFile,
+        system: &FileSystem,
         specs: &[ParamSpec],
         init: &[f64],
         opts: BlockOptions,
         learn: (bool, bool),
     ) -> FileBlock {
-        let system = FileSystem::new(file);
-        let scan_system = FileSystem::new(file);
         let m = file.parameters.len();
         let d = file.observed.len() as i64;
         let (s, c) = (init[m], init[m + d as usize]);
@@ -72,7 +71,7 @@ impl FileBlock {
         };
         let shooting = ShootingBlock::new(
             path,
-            Box::new(system),
+            Box::new(system.clone()),
             &specs[..m],
             &init[..m],
             map,
@@ -84,7 +83,7 @@ impl FileBlock {
             shooting,
             dims: d,
             file: file.clone(),
-            system: scan_system,
+            system: system.clone(),
             dt: opts.dt,
         }
     }

@@ -51,10 +51,8 @@ pub fn kl_coordinates(kl: &[Expr], observed: &[usize], z: &Tensor) -> Tensor {
             .expect("kl reads observed variables");
         z.select(-1, k as i64)
     };
-    let parts: Vec<Tensor> = kl
-        .iter()
-        .map(|e| tensor(e, &var) * z.ones_like().select(-1, 0))
-        .collect();
+    // Each reads an observed variable (the file's reader refuses constants), so each is [B, T].
+    let parts: Vec<Tensor> = kl.iter().map(|e| tensor(e, &var)).collect();
     Tensor::stack(&parts, -1)
 }
 

@@ -69,11 +69,7 @@ impl FileModel {
                     } else {
                         Settles::Relative
                     },
-                    ..ParamSpec::new(
-                        leak(p.name.clone()),
-                        p.start,
-                        Bounds::new(p.min, p.max).is_positive(),
-                    )
+                    ..ParamSpec::new(leak(p.name.clone()), p.start, false)
                 }
             })
             .collect();
@@ -200,6 +196,7 @@ impl Model for FileModel {
         Box::new(FileBlock::new(
             path,
             &self.file,
+            &self.system,
             self.info.parameters,
             init,
             opts,

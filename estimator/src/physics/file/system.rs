@@ -7,7 +7,9 @@ use physvid_shared::model_file::{CompiledSystem, ModelFile};
 use physvid_shared::recurrence::fit_two_step_recurrence;
 
 /// The compiled equations, and for each state the observed coordinate it is the time derivative
-/// of (a velocity `v` where the file says `x = "v"`), for the first guess.
+/// of (a velocity `v` where the file says `x = "v"`), for the first guess. Compiled once per
+/// model; each block takes a copy.
+#[derive(Clone)]
 pub struct FileSystem {
     pub compiled: CompiledSystem,
     derivative_of: Vec<Option<usize>>,

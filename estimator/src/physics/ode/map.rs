@@ -18,20 +18,12 @@ impl ObservationMap {
     /// The map of `d` latent coordinates under `path`, starting at scale `s` and offset `c`.
     pub fn new(path: &nn::Path, d: i64, s: f64, c: f64, calibrated: bool) -> ObservationMap {
         if calibrated {
-            let buffer = |name: &str, v: f64| {
-                let mut t = path.zeros_no_train(name, &[d]);
-                let _ = tch::no_grad(|| t.fill_(v));
-                t
-            };
             ObservationMap::Calibrated {
-                scale: buffer("scale", s),
-                offset: buffer("offset", c),
+                scale: buffer(path, "scale", d, s),
+                offset: buffer(path, "offset", d, c),
             }
         } else {
-            ObservationMap::Learned {
-                log_scale: path.var("log_scale", &[d], nn::Init::Const(s.ln())),
-                offset: path.var("offset", &[d], nn::Init::Const(c)),
-            }
+            ObservationMap::partly_learned(path, d, (s, true), (c, true))
         }
     }
 
@@ -47,9 +39,7 @@ impl ObservationMap {
             if learn {
                 path.var(name, &[d], nn::Init::Const(v))
             } else {
-                let mut t = path.zeros_no_train(name, &[d]);
-                let _ = tch::no_grad(|| t.fill_(v));
-                t
+                buffer(path, name, d, v)
             }
         };
         ObservationMap::Learned {
@@ -70,4 +60,11 @@ impl ObservationMap {
             }
         }
     }
+}
+
+/// A variable `name` [d] under `path` that training does not move, at `v`.
+fn buffer(path: &nn::Path, name: &str, d: i64, v: f64) -> Tensor {
+    let mut t = path.zeros_no_train(name, &[d]);
+    let _ = tch::no_grad(|| t.fill_(v));
+    t
 }
