@@ -2,9 +2,9 @@
 //! parameters (`[parameters]`), what the latent observes (`[observed]`), the initial ranges `gen`
 //! draws from (`[initial]`) and values derived from the parameters (`[derived]`). `load` reads
 //! and checks it (every error names the file, the key and the problem; `parameters.rs` the
-//! `[parameters]` table); `system.rs` compiles
-//! it for integration with exact Jacobians; `symmetry.rs` finds which parameters the latent's
-//! arbitrary scale and offset (or a change of time unit) move.
+//! numeric tables `[parameters]` and `[initial]`); `system.rs` compiles it for integration with
+//! exact Jacobians; `symmetry.rs` finds which parameters the latent's arbitrary scale and offset
+//! (or a change of time unit) move.
 
 pub mod expr;
 mod parameters;

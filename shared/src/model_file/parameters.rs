@@ -1,7 +1,8 @@
-//! The `[parameters]` table of a model file: each a start, optional bounds (`positive`, `min`,
-//! `max`; the start strictly inside) and a unit.
+//! The numeric tables of a model file: `[parameters]` (each a start, optional bounds
+//! (`positive`, `min`, `max`; the start strictly inside) and a unit) and `[initial]` (the ranges
+//! `gen` draws initial states from).
 
-use super::{ModelFileError, Parameter};
+use super::{ModelFile, ModelFileError, Parameter};
 use crate::cli::num;
 use toml::{Table, Value};
 
@@ -101,4 +102,37 @@ pub(super) fn parameters(
         });
     }
     Ok(parameters)
+}
+
+/// The `[initial]` table: a range [min, max] for each state variable it names, `None` for the
+/// others, in the order of `file`'s states.
+pub(super) fn initial_ranges(
+    file: &ModelFile,
+    table: &Table,
+) -> Result<Vec<Option<(f64, f64)>>, ModelFileError> {
+    let mut initial = vec![None; file.states.len()];
+    for (s, v) in table {
+        let key = format!("initial.{s}");
+        let i = file.states.iter().position(|x| x == s).ok_or_else(|| {
+            file.error(
+                &key,
+                format!(
+                    "'{s}' is not a state variable (they are: {})",
+                    file.states.join(", ")
+                ),
+            )
+        })?;
+        let range: Vec<f64> = v
+            .as_array()
+            .map(|a| a.iter().filter_map(number).collect())
+            .unwrap_or_default();
+        match range[..] {
+            [lo, hi] if lo.is_finite() && hi.is_finite() && lo <= hi => initial[i] = Some((lo, hi)),
+            [lo, hi] if lo > hi => {
+                return Err(file.error(&key, format!("min {} > max {}", num(lo), num(hi))))
+            }
+            _ => return Err(file.error(&key, "must be a range [min, max] of two finite numbers")),
+        }
+    }
+    Ok(initial)
 }

@@ -2,10 +2,9 @@
 //! key.
 
 use super::expr::{parse, Expr, FUNCTIONS};
-use super::parameters::{number, parameters};
+use super::parameters::{initial_ranges, number, parameters};
 use super::system::MAX_VARIABLES;
 use super::{DerivedDef, ModelFile, ModelFileError};
-use crate::cli::num;
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -285,32 +284,7 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
         file.kl = kl;
     }
 
-    file.initial = vec![None; n];
-    for (s, v) in &initial_table {
-        let key = format!("initial.{s}");
-        let i = file.states.iter().position(|x| x == s).ok_or_else(|| {
-            file.error(
-                &key,
-                format!(
-                    "'{s}' is not a state variable (they are: {})",
-                    file.states.join(", ")
-                ),
-            )
-        })?;
-        let range: Vec<f64> = v
-            .as_array()
-            .map(|a| a.iter().filter_map(number).collect())
-            .unwrap_or_default();
-        match range[..] {
-            [lo, hi] if lo.is_finite() && hi.is_finite() && lo <= hi => {
-                file.initial[i] = Some((lo, hi))
-            }
-            [lo, hi] if lo > hi => {
-                return Err(file.error(&key, format!("min {} > max {}", num(lo), num(hi))))
-            }
-            _ => return Err(file.error(&key, "must be a range [min, max] of two finite numbers")),
-        }
-    }
+    file.initial = initial_ranges(&file, &initial_table)?;
 
     for (d, v) in section("derived")? {
         let key = format!("derived.{d}");
