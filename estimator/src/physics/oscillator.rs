@@ -4,6 +4,7 @@
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::smooth_map::solve_with_smooth_map;
 use super::two_step::{impulse_responses, least_squares_start, safely_complex};
 use super::two_step_solve::{euler_gammas, exact_gammas, solve_two_step, StateFit};
 use crate::calibration::{Calibration, DerivedValue, Readings};
@@ -202,8 +203,7 @@ impl DampedOscillatorBlock {
         z0.unsqueeze(1) * p.unsqueeze(0) + z1.unsqueeze(1) * q.unsqueeze(0)
     }
 
-    /// (γ0, γ1) solved on latents `z` [B, T] through the two-step coefficients, the encoder
-    /// held.
+    /// (γ0, γ1) solved on latents `z` [B, T], the encoder held (see [`solve_with_smooth_map`]).
     fn solve(&self, z: &Tensor) -> Option<Vec<f64>> {
         let rows: Vec<Vec<f64>> =
             Vec::<Vec<f32>>::try_from(&z.detach().to_device(tch::Device::Cpu))
@@ -213,11 +213,12 @@ impl DampedOscillatorBlock {
                 .collect();
         let current = self.values(z);
         let (a, b) = tch::no_grad(|| self.coefficients());
-        let fit = match self.start {
-            RolloutStart::Fit => StateFit::LeastSquares,
-            RolloutStart::Frames => StateFit::FirstFrames,
+        let start = [a.double_value(&[]), b.double_value(&[])];
+        let ab = match self.start {
+            RolloutStart::Fit => solve_two_step(&rows, start, StateFit::LeastSquares)
+                .map(|ab| solve_with_smooth_map(&rows, ab).unwrap_or(ab))?,
+            RolloutStart::Frames => solve_two_step(&rows, start, StateFit::FirstFrames)?,
         };
-        let ab = solve_two_step(&rows, [a.double_value(&[]), b.double_value(&[])], fit)?;
         match self.integrator {
             Integrator::Exact => exact_gammas(ab, self.dt, current[0]),
             Integrator::Euler => euler_gammas(ab, self.dt),
