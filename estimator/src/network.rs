@@ -115,8 +115,13 @@ impl Network {
             .flatten()
     }
 
-    /// The block's final refinement on latents `z` (see [`PhysicsBlock::refine`]).
+    /// The block's final refinement on latents `z` (see [`PhysicsBlock::refine`]), the map
+    /// calibrated again on the held encoder's latents of the reference frames first.
     pub fn refine(&self, z: &Tensor, clips: Clips) -> bool {
+        if let Some(r) = &self.reference {
+            let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
+            self.block.calibrate(&z_ref, &r.values);
+        }
         self.block.refine(z, clips)
     }
 

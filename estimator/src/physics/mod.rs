@@ -12,7 +12,7 @@ pub mod model;
 pub mod ode;
 pub mod oscillator;
 pub mod pendulum;
-mod smooth_map;
+pub(crate) mod smooth_map;
 pub mod spring;
 pub mod torricelli;
 mod two_step;

@@ -13,13 +13,68 @@ use crate::linalg::solve;
 
 /// Highest power of the map's polynomial.
 const DEGREE: usize = 5;
-/// Global unknowns: the recurrence's (a, b), the offset c and k_2..k_DEGREE.
-const GLOBALS: usize = 3 + DEGREE - 1;
+/// The map's terms: the offset c and k_2..k_DEGREE.
+pub(crate) const MAP_TERMS: usize = DEGREE;
+/// Global unknowns: the recurrence's (a, b) and the map's terms.
+const GLOBALS: usize = 2 + MAP_TERMS;
 /// The map must keep at least this slope (h' = 1 is affine) over the fitted trajectories'
 /// values between the [`TAIL`] and 1 − [`TAIL`] quantiles (a polynomial bends most in the
 /// sparse tails, where it matters least).
 const MIN_SLOPE: f64 = 0.1;
 const TAIL: f64 = 0.005;
+
+/// The polynomial c + h(x), h(x) = k_1·x + s·Σ_{j=2..DEGREE} k_j·(x/s)^j, with its terms
+/// `k` = [c, k_2, …, k_DEGREE] and, after them, k_1 where it is free (1 otherwise).
+pub(crate) struct SmoothRead {
+    /// s: the spread of the values read, which keeps every term of order one.
+    pub scale: f64,
+}
+
+impl SmoothRead {
+    pub fn value(&self, k: &[f64], x: f64) -> f64 {
+        let h: f64 = self
+            .powers(x)
+            .iter()
+            .zip(&k[1..MAP_TERMS])
+            .map(|(p, kj)| p * kj)
+            .sum();
+        k[0] + k.get(MAP_TERMS).unwrap_or(&1.0) * x + h
+    }
+
+    /// h'(x).
+    pub fn slope(&self, k: &[f64], x: f64) -> f64 {
+        let u = x / self.scale;
+        let mut power = 1.0;
+        let mut d = *k.get(MAP_TERMS).unwrap_or(&1.0);
+        for (j, kj) in k[1..MAP_TERMS].iter().enumerate() {
+            power *= u;
+            d += (j + 2) as f64 * kj * power;
+        }
+        d
+    }
+
+    /// s·(x/s)^j for j = 2..DEGREE: the value's derivatives in k_2..k_DEGREE.
+    pub fn powers(&self, x: f64) -> [f64; DEGREE - 1] {
+        let u = x / self.scale;
+        let mut power = u;
+        std::array::from_fn(|_| {
+            power *= u;
+            self.scale * power
+        })
+    }
+
+    /// Whether h stays increasing (slope at least [`MIN_SLOPE`]) between the [`TAIL`] and
+    /// 1 − [`TAIL`] quantiles of `values`.
+    pub fn increasing(&self, k: &[f64], mut values: Vec<f64>) -> bool {
+        if values.is_empty() {
+            return false;
+        }
+        values.sort_by(f64::total_cmp);
+        let at = |f: f64| values[((values.len() - 1) as f64 * f).round() as usize];
+        let (lo, hi) = (at(TAIL), at(1.0 - TAIL));
+        (0..=100).all(|i| self.slope(k, lo + (hi - lo) * i as f64 / 100.0) >= MIN_SLOPE)
+    }
+}
 
 /// The two-step coefficients (a, b) that best fit `clips` [N][T] with each clip's initial
 /// state fitted and the latent read through the smooth map, searched from `ab` (the affine
@@ -41,7 +96,10 @@ pub fn solve_with_smooth_map(clips: &[Vec<f64>], ab: [f64; 2]) -> Option<[f64; 2
     if !(scale.is_finite() && scale > 0.0) {
         return None;
     }
-    let fit = Fit { clips, scale };
+    let fit = Fit {
+        clips,
+        read: SmoothRead { scale },
+    };
     let mut g = [0.0; GLOBALS];
     g[..2].copy_from_slice(&ab);
     let mut states = fit.affine_states(ab)?;
@@ -86,58 +144,37 @@ pub fn solve_with_smooth_map(clips: &[Vec<f64>], ab: [f64; 2]) -> Option<[f64; 2
             break;
         }
     }
-    let range = fit.central_range(&g, &states);
-    let monotone = (0..=100).all(|i| {
-        let x = range.0 + (range.1 - range.0) * i as f64 / 100.0;
-        fit.slope(&g, x) >= MIN_SLOPE
-    });
+    let monotone = fit.read.increasing(&g[2..], fit.trajectories(&g, &states));
     (monotone && cost < affine_cost && g.iter().all(|v| v.is_finite())).then(|| [g[0], g[1]])
 }
 
-/// The clips and the scale that keeps the polynomial's terms of order one.
+/// The clips and the map's polynomial.
 struct Fit<'a> {
     clips: &'a [Vec<f64>],
-    scale: f64,
+    read: SmoothRead,
 }
 
 impl Fit<'_> {
     fn map(&self, g: &[f64; GLOBALS], x: f64) -> f64 {
-        let u = x / self.scale;
-        let mut power = u;
-        let mut h = g[2] + x;
-        for k in &g[3..] {
-            power *= u;
-            h += self.scale * k * power;
-        }
-        h
+        self.read.value(&g[2..], x)
     }
 
     fn slope(&self, g: &[f64; GLOBALS], x: f64) -> f64 {
-        let u = x / self.scale;
-        let mut power = 1.0;
-        let mut d = 1.0;
-        for (j, k) in g[3..].iter().enumerate() {
-            power *= u;
-            d += (j + 2) as f64 * k * power;
-        }
-        d
+        self.read.slope(&g[2..], x)
     }
 
-    /// The [`TAIL`] and 1 − [`TAIL`] quantiles of the trajectories of `states`.
-    fn central_range(&self, g: &[f64; GLOBALS], states: &[[f64; 2]]) -> (f64, f64) {
+    /// Every frame's value of the trajectories of `states`.
+    fn trajectories(&self, g: &[f64; GLOBALS], states: &[[f64; 2]]) -> Vec<f64> {
         let steps = self.clips[0].len();
         let (p, q) = responses(g[0], g[1], steps);
-        let mut x: Vec<f64> = states
+        states
             .iter()
             .flat_map(|s| {
                 (0..steps)
                     .map(|t| s[0] * p[t] + s[1] * q[t])
                     .collect::<Vec<_>>()
             })
-            .collect();
-        x.sort_by(f64::total_cmp);
-        let at = |f: f64| x[((x.len() - 1) as f64 * f).round() as usize];
-        (at(TAIL), at(1.0 - TAIL))
+            .collect()
     }
 
     /// Each clip's least-squares state with the affine map (the start of the inner fits).
@@ -218,11 +255,8 @@ impl Fit<'_> {
                 row[0] = -d * (s[0] * sens[0][t] + s[1] * sens[2][t]);
                 row[1] = -d * (s[0] * sens[1][t] + s[1] * sens[3][t]);
                 row[2] = -1.0;
-                let u = x / self.scale;
-                let mut power = u;
-                for v in &mut row[3..] {
-                    power *= u;
-                    *v = -self.scale * power;
+                for (v, p) in row[3..].iter_mut().zip(self.read.powers(x)) {
+                    *v = -p;
                 }
             }
             // (JsᵀJs)⁻¹·JsᵀJg, then the projected rows Jg − Js·that.
@@ -278,46 +312,5 @@ fn sensitivities(a: f64, b: f64, p: &[f64], q: &[f64]) -> [Vec<f64>; 4] {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Clips of the recurrence (a, b) read through `read`.
-    fn clips(a: f64, b: f64, read: impl Fn(f64) -> f64) -> Vec<Vec<f64>> {
-        (0..60)
-            .map(|i| {
-                let (p, q) = responses(a, b, 20);
-                let amp = 0.5 + 0.5 * (i as f64 * 0.618).fract();
-                let (z0, z1) = (amp * (i as f64).cos(), amp * (i as f64 + 0.4).cos());
-                (0..20).map(|t| read(z0 * p[t] + z1 * q[t])).collect()
-            })
-            .collect()
-    }
-
-    #[test]
-    fn recovers_the_recurrence_through_a_compressing_read() {
-        // A damped oscillation (γ1 = 0.08 at dt 0.2) read through a map that flattens the
-        // extremes: the affine solve sees too little decay, the smooth map removes the bias.
-        let (a, b) = (1.8275, -(-0.016f64).exp());
-        let data = clips(a, b, |x| 0.1 + x - 0.08 * x * x * x);
-        let affine = crate::physics::two_step_solve::solve_two_step(
-            &data,
-            [a, b],
-            crate::physics::two_step_solve::StateFit::LeastSquares,
-        )
-        .unwrap();
-        let smooth = solve_with_smooth_map(&data, affine).unwrap();
-        assert!((affine[1] - b).abs() > 1e-4, "{affine:?}");
-        assert!(
-            (smooth[0] - a).abs() < 1e-6 && (smooth[1] - b).abs() < 1e-6,
-            "{smooth:?} vs {a} {b}"
-        );
-    }
-
-    #[test]
-    fn an_affine_read_is_left_where_the_affine_solve_put_it() {
-        let (a, b) = (1.8275, -(-0.016f64).exp());
-        let data = clips(a, b, |x| 0.3 * x);
-        // Exact data: nothing to improve, so no answer; the caller keeps the affine one.
-        assert!(solve_with_smooth_map(&data, [a, b]).is_none_or(|s| (s[1] - b).abs() < 1e-9));
-    }
-}
+#[path = "smooth_map_tests.rs"]
+mod tests;

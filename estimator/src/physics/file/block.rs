@@ -21,6 +21,8 @@ const DEFAULT_SUBSTEPS: usize = 4;
 const MAX_SUBSTEPS: usize = 200;
 /// Levenberg–Marquardt iterations of the final refinement of the parameters.
 const REFINE_ITERATIONS: usize = 10;
+/// Levenberg–Marquardt iterations of the solve through the smooth map (`ode/smooth.rs`).
+const SMOOTH_ITERATIONS: usize = 20;
 
 /// Clips the final scan of time scales looks at.
 const SCAN_CLIPS: i64 = 64;
@@ -157,7 +159,8 @@ impl PhysicsBlock for FileBlock {
             ids: None,
         };
         let scanned = self.shooting.scan(&z.narrow(0, 0, n), subset, &candidates);
-        self.shooting.refine(&z, clips, REFINE_ITERATIONS) || scanned
+        let refined = self.shooting.refine(&z, clips, REFINE_ITERATIONS);
+        self.shooting.refine_smooth(&z, clips, SMOOTH_ITERATIONS) || refined || scanned
     }
 
     fn calibrate(&self, latents: &Tensor, values: &Tensor) {

@@ -90,6 +90,9 @@ pub struct ShootingBlock {
     pub(super) substeps: usize,
     /// Each clip's last fitted initial state, by clip index: the next fit's warm start.
     pub(super) warm: RefCell<HashMap<usize, Vec<f64>>>,
+    /// The last reference frames' latents and known values [R] (no host copy per step): they
+    /// fix the units of the final solve through a smooth map (`smooth.rs`).
+    pub(super) references: RefCell<Option<(Tensor, Tensor)>>,
 }
 
 impl ShootingBlock {
@@ -122,6 +125,7 @@ impl ShootingBlock {
             dt,
             substeps: substeps.max(1),
             warm: RefCell::new(HashMap::new()),
+            references: RefCell::new(None),
         }
     }
 
@@ -274,6 +278,7 @@ impl ShootingBlock {
         };
         tch::no_grad(|| {
             let (z, th) = (latents.detach().view([-1]), values.view([-1]));
+            *self.references.borrow_mut() = Some((z.shallow_clone(), th.shallow_clone()));
             let (zm, tm) = (z.mean(Kind::Float), th.mean(Kind::Float));
             let s = ((&z - &zm) * (&th - &tm)).sum(Kind::Float)
                 / (&th - &tm).square().sum(Kind::Float).clamp_min(1e-12);

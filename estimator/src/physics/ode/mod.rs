@@ -11,6 +11,7 @@ pub mod map;
 mod refine;
 pub mod rk4;
 pub mod shooting;
+mod smooth;
 
 pub use block::ShootingBlock;
 pub use map::ObservationMap;

@@ -125,7 +125,7 @@ impl ShootingBlock {
     }
 
     /// Sets the physical parameters to `p` (through their raw values).
-    fn set_physical(&self, p: &[f64]) {
+    pub(super) fn set_physical(&self, p: &[f64]) {
         tch::no_grad(|| {
             for ((raw, &v), b) in self.raw.iter().zip(p).zip(&self.bounds) {
                 let _ = raw.shallow_clone().fill_(b.raw(v));
