@@ -99,10 +99,7 @@ impl Network {
 
     /// Encodes clips `x` [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
     pub fn forward(&self, x: &Tensor, clips: Clips, steps: i64) -> (Tensor, Tensor) {
-        if let Some(r) = &self.reference {
-            let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
-            self.block.calibrate(&z_ref, &r.values);
-        }
+        self.calibrate();
         let z = self.encoder.encode(x);
         let z_hat = self.block.rollout(&z, clips, steps);
         (z, z_hat)
@@ -118,11 +115,16 @@ impl Network {
     /// The block's final refinement on latents `z` (see [`PhysicsBlock::refine`]), the map
     /// calibrated again on the held encoder's latents of the reference frames first.
     pub fn refine(&self, z: &Tensor, clips: Clips) -> bool {
+        self.calibrate();
+        self.block.refine(z, clips)
+    }
+
+    /// Fits the block's map to the reference frames' latents under the current encoder.
+    fn calibrate(&self) {
         if let Some(r) = &self.reference {
             let z_ref = tch::no_grad(|| self.encoder.encode(&r.frames));
             self.block.calibrate(&z_ref, &r.values);
         }
-        self.block.refine(z, clips)
     }
 
     /// The block's extra loss term for latents `z`, if any.

@@ -31,6 +31,14 @@ pub(crate) struct SmoothRead {
 }
 
 impl SmoothRead {
+    /// The read of `values`, scaled by their spread; `None` when they do not spread.
+    pub fn of(values: &[f64]) -> Option<SmoothRead> {
+        let n = values.len() as f64;
+        let mean = values.iter().sum::<f64>() / n;
+        let scale = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+        (scale.is_finite() && scale > 0.0).then_some(SmoothRead { scale })
+    }
+
     pub fn value(&self, k: &[f64], x: f64) -> f64 {
         let h: f64 = self
             .powers(x)
@@ -84,56 +92,67 @@ pub fn solve_with_smooth_map(clips: &[Vec<f64>], ab: [f64; 2]) -> Option<[f64; 2
     if steps < 3 || clips.len() * steps < 10 * GLOBALS {
         return None;
     }
-    let n = clips.len() as f64 * steps as f64;
-    let mean = clips.iter().flatten().sum::<f64>() / n;
-    let scale = (clips
-        .iter()
-        .flatten()
-        .map(|z| (z - mean).powi(2))
-        .sum::<f64>()
-        / n)
-        .sqrt();
-    if !(scale.is_finite() && scale > 0.0) {
-        return None;
-    }
+    let values: Vec<f64> = clips.iter().flatten().copied().collect();
     let fit = Fit {
         clips,
-        read: SmoothRead { scale },
+        read: SmoothRead::of(&values)?,
     };
-    let mut g = [0.0; GLOBALS];
+    let mut g = vec![0.0; GLOBALS];
     g[..2].copy_from_slice(&ab);
     let mut states = fit.affine_states(ab)?;
-    let r = fit.residuals(&g, &mut states)?;
-    let affine_cost = dot(&r, &r);
-    let mut cost = affine_cost;
+    let affine_cost = fit.cost(&g, &mut states)?;
+    let cost = levenberg_marquardt(
+        &mut g,
+        &mut states,
+        affine_cost,
+        60,
+        |g, states| Some(fit.normal_equations(g, states)),
+        |g, step| g.iter().zip(step).map(|(v, s)| v + s).collect(),
+        |g, states| fit.cost(g, states),
+    );
+    let monotone = fit.read.increasing(&g[2..], fit.trajectories(&g, &states));
+    (monotone && cost < affine_cost && g.iter().all(|v| v.is_finite())).then(|| [g[0], g[1]])
+}
+
+/// Levenberg–Marquardt over the unknowns `g` from the misfit `cost` at `g`, for at most
+/// `iterations` accepted steps: `normal` gives JᵀJ and Jᵀr at (g, states), `step` the unknowns
+/// after a step, `eval` the misfit at trial unknowns with inner `states` refitted from the
+/// current ones (kept when the step is). Returns the final misfit.
+pub(crate) fn levenberg_marquardt<S: Clone>(
+    g: &mut Vec<f64>,
+    states: &mut S,
+    mut cost: f64,
+    iterations: usize,
+    normal: impl Fn(&[f64], &S) -> Option<(Vec<f64>, Vec<f64>)>,
+    step: impl Fn(&[f64], &[f64]) -> Vec<f64>,
+    eval: impl Fn(&[f64], &mut S) -> Option<f64>,
+) -> f64 {
+    let w = g.len();
     let mut lambda = 1e-3;
-    for _ in 0..60 {
-        let (jtj, jtr) = fit.normal_equations(&g, &states);
+    for _ in 0..iterations {
+        let Some((jtj, jtr)) = normal(g, states) else {
+            break;
+        };
         let mut improved = false;
         while lambda < 1e12 {
             let mut m = jtj.clone();
-            for a in 0..GLOBALS {
-                m[a * GLOBALS + a] = m[a * GLOBALS + a] * (1.0 + lambda) + 1e-300;
+            for a in 0..w {
+                m[a * w + a] = m[a * w + a] * (1.0 + lambda) + 1e-300;
             }
-            let Some(step) = solve(&m, &jtr, GLOBALS) else {
+            let Some(delta) = solve(&m, &jtr, w) else {
                 lambda *= 4.0;
                 continue;
             };
-            let mut trial = g;
-            trial.iter_mut().zip(&step).for_each(|(v, s)| *v += s);
+            let trial = step(g, &delta);
             let mut trial_states = states.clone();
-            if let Some(rt) = fit
-                .residuals(&trial, &mut trial_states)
-                .filter(|rt| dot(rt, rt) < cost)
-            {
-                let next = dot(&rt, &rt);
+            if let Some(next) = eval(&trial, &mut trial_states).filter(|c| *c < cost) {
                 let converged = cost - next <= 1e-10 * cost
-                    || step
+                    || delta
                         .iter()
-                        .zip(&g)
-                        .all(|(s, v)| s.abs() <= 1e-10 * v.abs().max(1e-3));
+                        .zip(g.iter())
+                        .all(|(d, v)| d.abs() <= 1e-10 * v.abs().max(1e-3));
                 cost = next;
-                (g, states) = (trial, trial_states);
+                (*g, *states) = (trial, trial_states);
                 lambda = (lambda / 3.0).max(1e-12);
                 improved = !converged;
                 break;
@@ -144,8 +163,18 @@ pub fn solve_with_smooth_map(clips: &[Vec<f64>], ab: [f64; 2]) -> Option<[f64; 2
             break;
         }
     }
-    let monotone = fit.read.increasing(&g[2..], fit.trajectories(&g, &states));
-    (monotone && cost < affine_cost && g.iter().all(|v| v.is_finite())).then(|| [g[0], g[1]])
+    cost
+}
+
+/// Adds a row of J and its residual to JᵀJ [w × w] and Jᵀr [w].
+pub(crate) fn add_row(jtj: &mut [f64], jtr: &mut [f64], row: &[f64], res: f64) {
+    let w = row.len();
+    for a in 0..w {
+        jtr[a] += row[a] * res;
+        for b in 0..w {
+            jtj[a * w + b] += row[a] * row[b];
+        }
+    }
 }
 
 /// The clips and the map's polynomial.
@@ -155,16 +184,16 @@ struct Fit<'a> {
 }
 
 impl Fit<'_> {
-    fn map(&self, g: &[f64; GLOBALS], x: f64) -> f64 {
+    fn map(&self, g: &[f64], x: f64) -> f64 {
         self.read.value(&g[2..], x)
     }
 
-    fn slope(&self, g: &[f64; GLOBALS], x: f64) -> f64 {
+    fn slope(&self, g: &[f64], x: f64) -> f64 {
         self.read.slope(&g[2..], x)
     }
 
     /// Every frame's value of the trajectories of `states`.
-    fn trajectories(&self, g: &[f64; GLOBALS], states: &[[f64; 2]]) -> Vec<f64> {
+    fn trajectories(&self, g: &[f64], states: &[[f64; 2]]) -> Vec<f64> {
         let steps = self.clips[0].len();
         let (p, q) = responses(g[0], g[1], steps);
         states
@@ -197,9 +226,9 @@ impl Fit<'_> {
         )
     }
 
-    /// The residuals z − c − h(x) of every clip with its state fitted by Gauss–Newton from
-    /// `states` (updated in place).
-    fn residuals(&self, g: &[f64; GLOBALS], states: &mut [[f64; 2]]) -> Option<Vec<f64>> {
+    /// The summed squared residuals z − c − h(x) of every clip with its state fitted by
+    /// Gauss–Newton from `states` (updated in place).
+    fn cost(&self, g: &[f64], states: &mut [[f64; 2]]) -> Option<f64> {
         let steps = self.clips[0].len();
         let (p, q) = responses(g[0], g[1], steps);
         let mut out = Vec::with_capacity(self.clips.len() * steps);
@@ -230,13 +259,13 @@ impl Fit<'_> {
                 out.push(z[t] - self.map(g, x));
             }
         }
-        out.iter().all(|r| r.is_finite()).then_some(out)
+        out.iter().all(|r| r.is_finite()).then(|| dot(&out, &out))
     }
 
     /// JᵀJ and −Jᵀr of the profiled residuals in the global unknowns at the fitted `states`:
     /// each clip's Jacobian with its two state columns projected out (variable projection),
     /// the recurrence's sensitivities to (a, b) unrolled beside it.
-    fn normal_equations(&self, g: &[f64; GLOBALS], states: &[[f64; 2]]) -> (Vec<f64>, Vec<f64>) {
+    fn normal_equations(&self, g: &[f64], states: &[[f64; 2]]) -> (Vec<f64>, Vec<f64>) {
         let steps = self.clips[0].len();
         let (p, q) = responses(g[0], g[1], steps);
         let sens = sensitivities(g[0], g[1], &p, &q);
@@ -286,12 +315,7 @@ impl Fit<'_> {
                 let row: Vec<f64> = (0..GLOBALS)
                     .map(|k| jg[t][k] - js[t][0] * coef[k][0] - js[t][1] * coef[k][1])
                     .collect();
-                for k in 0..GLOBALS {
-                    jtr[k] -= row[k] * r[t];
-                    for l in 0..GLOBALS {
-                        jtj[k * GLOBALS + l] += row[k] * row[l];
-                    }
-                }
+                add_row(&mut jtj, &mut jtr, &row, -r[t]);
             }
         }
         (jtj, jtr)

@@ -137,29 +137,40 @@ impl ShootingBlock {
 /// (I − Jx·(JxᵀJx)⁻¹·Jxᵀ)·Jp [R × m] of a clip's fit, with the columns of bounded parameters
 /// scaled by d(value)/d(raw) (derivatives with respect to their raw variable).
 fn projected_jacobian(f: &ClipFit, n: usize, m: usize, p: &[f64], bounds: &[Bounds]) -> Vec<f64> {
-    let rows = f.y.len();
-    // Jxᵀ·Jp [n × m], then ainv·(Jxᵀ·Jp).
-    let mut xtp = vec![0.0; n * m];
-    for r in 0..rows {
-        for i in 0..n {
-            for a in 0..m {
-                xtp[i * m + a] += f.jx[r * n + i] * f.jp[r * m + a];
-            }
-        }
-    }
-    let mut coef = vec![0.0; n * m];
-    for i in 0..n {
-        for a in 0..m {
-            coef[i * m + a] = (0..n).map(|j| f.ainv[i * n + j] * xtp[j * m + a]).sum();
-        }
-    }
-    let mut jr = vec![0.0; rows * m];
-    for r in 0..rows {
-        for a in 0..m {
-            let along: f64 = (0..n).map(|i| f.jx[r * n + i] * coef[i * m + a]).sum();
-            let scale = bounds[a].slope(p[a]);
-            jr[r * m + a] = (f.jp[r * m + a] - along) * scale;
+    let mut jr = project_out(&f.jx, &f.ainv, &f.jp, n, m);
+    for row in jr.chunks_exact_mut(m) {
+        for (v, (b, pa)) in row.iter_mut().zip(bounds.iter().zip(p)) {
+            *v *= b.slope(*pa);
         }
     }
     jr
+}
+
+/// (I − Jx·ainv·Jxᵀ)·J [R × w]: the columns of `j` with their part along the state columns
+/// `jx` [R × n] taken out (variable projection), `ainv` = (JxᵀJx)⁻¹ [n × n].
+pub(super) fn project_out(jx: &[f64], ainv: &[f64], j: &[f64], n: usize, w: usize) -> Vec<f64> {
+    let rows = jx.len() / n.max(1);
+    // Jxᵀ·J [n × w], then ainv·(Jxᵀ·J).
+    let mut xtp = vec![0.0; n * w];
+    for r in 0..rows {
+        for i in 0..n {
+            for a in 0..w {
+                xtp[i * w + a] += jx[r * n + i] * j[r * w + a];
+            }
+        }
+    }
+    let mut coef = vec![0.0; n * w];
+    for i in 0..n {
+        for a in 0..w {
+            coef[i * w + a] = (0..n).map(|k| ainv[i * n + k] * xtp[k * w + a]).sum();
+        }
+    }
+    let mut out = vec![0.0; rows * w];
+    for r in 0..rows {
+        for a in 0..w {
+            let along: f64 = (0..n).map(|i| jx[r * n + i] * coef[i * w + a]).sum();
+            out[r * w + a] = j[r * w + a] - along;
+        }
+    }
+    out
 }

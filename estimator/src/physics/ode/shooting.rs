@@ -191,7 +191,7 @@ fn normal_equations(
 }
 
 /// (a + ridge·I)⁻¹ for an n×n `a`.
-fn inverse(a: &[f64], n: usize, ridge: f64) -> Option<Vec<f64>> {
+pub(super) fn inverse(a: &[f64], n: usize, ridge: f64) -> Option<Vec<f64>> {
     let mut m = a.to_vec();
     for i in 0..n {
         m[i * n + i] += ridge;

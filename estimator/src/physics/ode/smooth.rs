@@ -8,9 +8,11 @@
 //! then free and the references' known values must read through the same map.
 
 use super::block::{host, ShootingBlock};
+use super::refine::project_out;
 use super::rk4::{integrate, Span};
+use super::shooting::inverse;
 use crate::linalg::solve;
-use crate::physics::smooth_map::{SmoothRead, MAP_TERMS};
+use crate::physics::smooth_map::{add_row, levenberg_marquardt, SmoothRead, MAP_TERMS};
 use crate::physics::Clips;
 use tch::Tensor;
 
@@ -35,12 +37,9 @@ impl ShootingBlock {
             return false;
         }
         let target = host(&tch::no_grad(|| self.to_observed(z)));
-        let n = target.len() as f64;
-        let mean = target.iter().sum::<f64>() / n;
-        let scale = (target.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-        if !(scale.is_finite() && scale > 0.0) {
+        let Some(read) = SmoothRead::of(&target) else {
             return false;
-        }
+        };
         let refs = self
             .references
             .borrow()
@@ -58,11 +57,10 @@ impl ShootingBlock {
                 .map(host)
                 .unwrap_or_else(|| vec![0.0; n_clips as usize]),
             frames: t as usize,
-            read: SmoothRead { scale },
+            read,
             refs,
         };
         let m = self.system.params();
-        let unknowns = fit.unknowns();
         let mut g = host(&self.physical());
         g.extend([0.0; MAP_TERMS]);
         if fit.refs.is_some() {
@@ -84,43 +82,22 @@ impl ShootingBlock {
         let Some(affine_cost) = fit.cost(&g, &mut states) else {
             return false;
         };
-        let mut cost = affine_cost;
-        let mut lambda = 1e-3;
-        for _ in 0..iterations {
-            let Some((jtj, jtr)) = fit.normal_equations(&g, &states) else {
-                break;
-            };
-            let mut improved = false;
-            while lambda < 1e12 {
-                let mut a = jtj.clone();
-                for k in 0..unknowns {
-                    a[k * unknowns + k] = a[k * unknowns + k] * (1.0 + lambda) + 1e-300;
-                }
-                let Some(step) = solve(&a, &jtr, unknowns) else {
-                    lambda *= 4.0;
-                    continue;
-                };
-                let mut trial = g.clone();
-                for (k, s) in step.iter().enumerate() {
-                    trial[k] = match self.bounds.get(k) {
-                        Some(b) => b.step(g[k], *s),
-                        None => g[k] + s,
-                    };
-                }
-                let mut trial_states = states.clone();
-                if let Some(c) = fit.cost(&trial, &mut trial_states).filter(|c| *c < cost) {
-                    let flat = cost - c <= 1e-10 * cost;
-                    (g, states, cost) = (trial, trial_states, c);
-                    lambda = (lambda / 3.0).max(1e-12);
-                    improved = !flat;
-                    break;
-                }
-                lambda *= 4.0;
-            }
-            if !improved {
-                break;
-            }
-        }
+        let step = |g: &[f64], delta: &[f64]| -> Vec<f64> {
+            g.iter()
+                .zip(delta)
+                .enumerate()
+                .map(|(k, (v, d))| self.bounds.get(k).map_or(v + d, |b| b.step(*v, *d)))
+                .collect()
+        };
+        let cost = levenberg_marquardt(
+            &mut g,
+            &mut states,
+            affine_cost,
+            iterations,
+            |g, states| fit.normal_equations(g, states),
+            step,
+            |g, states| fit.cost(g, states),
+        );
         let monotone = fit.read.increasing(&g[m..], fit.trajectories(&g, &states));
         let usable = monotone && cost < affine_cost && g.iter().all(|v| v.is_finite());
         if usable {
@@ -249,43 +226,19 @@ impl Smooth<'_> {
                     jg[r * w + m + MAP_TERMS] = y;
                 }
             }
-            // (JxᵀJx)⁻¹·JxᵀJg, then the rows of Jg with it taken out along Jx.
             let mut a = vec![0.0; n * n];
-            let mut xg = vec![0.0; n * w];
             for r in 0..rows {
                 for u in 0..n {
                     for v in 0..n {
                         a[u * n + v] += jx[r * n + u] * jx[r * n + v];
                     }
-                    for c in 0..w {
-                        xg[u * w + c] += jx[r * n + u] * jg[r * w + c];
-                    }
                 }
             }
             let trace = (0..n).map(|u| a[u * n + u]).sum::<f64>();
-            for u in 0..n {
-                a[u * n + u] += 1e-12 * trace + 1e-300;
-            }
-            let mut coef = vec![0.0; n * w];
-            for c in 0..w {
-                let col: Vec<f64> = (0..n).map(|u| xg[u * w + c]).collect();
-                let sol = solve(&a, &col, n)?;
-                for u in 0..n {
-                    coef[u * w + c] = sol[u];
-                }
-            }
-            for r in 0..rows {
-                let row: Vec<f64> = (0..w)
-                    .map(|c| {
-                        jg[r * w + c] - (0..n).map(|u| jx[r * n + u] * coef[u * w + c]).sum::<f64>()
-                    })
-                    .collect();
-                for c in 0..w {
-                    jtr[c] += row[c] * res[r];
-                    for e in 0..w {
-                        jtj[c * w + e] += row[c] * row[e];
-                    }
-                }
+            let ainv = inverse(&a, n, 1e-12 * trace + 1e-300)?;
+            let projected = project_out(&jx, &ainv, &jg, n, w);
+            for (row, res) in projected.chunks_exact(w).zip(&res) {
+                add_row(&mut jtj, &mut jtr, row, *res);
             }
         }
         // The references' rows: the map's terms only.
@@ -296,13 +249,7 @@ impl Smooth<'_> {
             if w > m + MAP_TERMS {
                 row[m + MAP_TERMS] = *x;
             }
-            let res = read - self.map(k, *x);
-            for c in 0..w {
-                jtr[c] += row[c] * res;
-                for e in 0..w {
-                    jtj[c * w + e] += row[c] * row[e];
-                }
-            }
+            add_row(&mut jtj, &mut jtr, &row, read - self.map(k, *x));
         }
         jtj.iter().all(|v| v.is_finite()).then_some((jtj, jtr))
     }

@@ -1,42 +1,14 @@
-//! Tests of `smooth.rs`: the map takes a compressed read out of the damping.
-use super::super::{ObservationMap, OdeSystem};
+//! Tests of `smooth.rs`: the map takes a compressed read out of the damping (the pendulum's
+//! law, as the shooting blocks integrate it).
+use super::super::ObservationMap;
 use super::*;
+use crate::physics::pendulum::PendulumSystem;
 use crate::physics::{Bounds, ParamSpec, Settles};
 use tch::nn;
 
-/// x'' = −w²·x − 2γ·x' (parameters w², γ).
-struct Linear;
-
-impl OdeSystem for Linear {
-    fn states(&self) -> usize {
-        2
-    }
-    fn params(&self) -> usize {
-        2
-    }
-    fn eval(
-        &self,
-        x: &[f64],
-        p: &[f64],
-        _t: f64,
-        f: &mut [f64],
-        jac: Option<(&mut [f64], &mut [f64])>,
-    ) {
-        f[0] = x[1];
-        f[1] = -p[0] * x[0] - 2.0 * p[1] * x[1];
-        if let Some((jx, jp)) = jac {
-            jx.copy_from_slice(&[0.0, 1.0, -p[0], -2.0 * p[1]]);
-            jp.copy_from_slice(&[0.0, 0.0, -x[0], -2.0 * x[1]]);
-        }
-    }
-    fn guess(&self, obs: &[f64], _observed: &[usize], dt: f64) -> Vec<f64> {
-        vec![obs[0], (obs[1] - obs[0]) / dt]
-    }
-}
-
 #[test]
 fn the_smooth_map_takes_a_compressed_read_out_of_the_damping() {
-    let (w2, gamma, dt, frames) = (4.0, 0.04, 0.2, 20);
+    let (w2, zeta, dt, frames) = (4.0, 0.08, 0.2, 20);
     let span = Span {
         t0: 0.0,
         dt,
@@ -48,7 +20,7 @@ fn the_smooth_map_takes_a_compressed_read_out_of_the_damping() {
         .flat_map(|i| {
             let amp = 0.5 + 0.5 * (i as f64 * 0.618).fract();
             let x0 = [amp * (i as f64).cos(), 2.0 * amp * (i as f64).sin()];
-            integrate(&Linear, &x0, &[w2, gamma], span, &[0], false).y
+            integrate(&PendulumSystem, &x0, &[w2, zeta], span, &[0], false).y
         })
         .map(|x| (0.1 + x - 0.08 * x * x * x) as f32)
         .collect();
@@ -62,9 +34,9 @@ fn the_smooth_map_takes_a_compressed_read_out_of_the_damping() {
     };
     let block = ShootingBlock::new(
         &vs.root(),
-        Box::new(Linear),
-        &[spec("w2", w2), spec("gamma", gamma)],
-        &[w2, gamma],
+        Box::new(PendulumSystem),
+        &[spec("g_over_l", w2), spec("zeta", zeta)],
+        &[w2, zeta],
         ObservationMap::Identity,
         vec![0],
         dt,
@@ -77,11 +49,11 @@ fn the_smooth_map_takes_a_compressed_read_out_of_the_damping() {
     };
     block.refine(&z, clips, 20);
     let affine = host(&block.physical());
-    assert!((affine[1] / gamma - 1.0).abs() > 0.01, "{affine:?}");
+    assert!((affine[1] / zeta - 1.0).abs() > 0.01, "{affine:?}");
     assert!(block.refine_smooth(&z, clips, 40));
     let smooth = host(&block.physical());
     assert!(
-        (smooth[0] / w2 - 1.0).abs() < 1e-4 && (smooth[1] / gamma - 1.0).abs() < 1e-3,
+        (smooth[0] / w2 - 1.0).abs() < 1e-4 && (smooth[1] / zeta - 1.0).abs() < 1e-3,
         "{smooth:?}"
     );
 }
