@@ -34,6 +34,10 @@ pub enum EstimateError {
         total: usize,
         summary: PathBuf,
     },
+    /// An estimate whose verdict is `unreliable` (exit code 4): its files are written, and the
+    /// verdict's reasons say why it should not be used.
+    #[error("the answer is unreliable (the verdict's reasons are above and in {0})")]
+    Unreliable(PathBuf),
     /// Training ran but gave no estimate (exit code 3); nothing is written.
     #[error("no estimate: {0}; nothing written")]
     NoEstimate(String),
@@ -58,7 +62,8 @@ pub fn input_error(msg: impl Into<String>) -> EstimateError {
     EstimateError::Input(msg.into())
 }
 
-/// Prints a binary's error on one line and picks its exit code: 2 for bad input, 1 otherwise.
+/// Prints a binary's error on one line and picks its exit code: 2 for bad input, 3 for no
+/// estimate, 4 for an unreliable one, 1 otherwise.
 pub fn exit_with(program: &str, result: anyhow::Result<()>) -> std::process::ExitCode {
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -67,6 +72,7 @@ pub fn exit_with(program: &str, result: anyhow::Result<()>) -> std::process::Exi
             let code = match e.downcast_ref::<EstimateError>() {
                 Some(e) if e.is_bad_input() => 2,
                 Some(EstimateError::NoEstimate(_)) => 3,
+                Some(EstimateError::Unreliable(_)) => 4,
                 _ => 1,
             };
             std::process::ExitCode::from(code)

@@ -105,6 +105,32 @@ impl Network {
         (z, z_hat)
     }
 
+    /// The block's rollout of held latents `z` over `steps` frames, without recalibrating the
+    /// map from the reference frames (the verdict's refits move the block's variables one by
+    /// one and must see each move).
+    pub fn rollout_held(&self, z: &Tensor, clips: Clips, steps: i64) -> Tensor {
+        self.block.rollout(z, clips, steps)
+    }
+
+    /// The block's own final refinement on held latents, without recalibrating the map first;
+    /// false when the block has none (or it changed nothing).
+    pub fn refine_held(&self, z: &Tensor, clips: Clips) -> bool {
+        self.block.refine(z, clips)
+    }
+
+    /// The block's trainable variables (maps calibrated from references excluded), sorted by
+    /// name.
+    pub fn physics_variables(&self) -> Vec<Tensor> {
+        let mut named: Vec<(String, Tensor)> = self
+            .phys_vs
+            .variables()
+            .into_iter()
+            .filter(|(_, t)| t.requires_grad())
+            .collect();
+        named.sort_by(|a, b| a.0.cmp(&b.0));
+        named.into_iter().map(|(_, t)| t).collect()
+    }
+
     /// The block's ODE residual of `z` when the loss needs it.
     pub fn residual(&self, kind: LossKind, z: &Tensor) -> Option<Tensor> {
         (kind == LossKind::ResidualFloor)

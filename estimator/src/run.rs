@@ -12,6 +12,7 @@ use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
 use crate::train::{fit, StopReason};
+use crate::verdict::Grade;
 use std::time::Instant;
 
 /// An estimation's report with the clips it was trained on.
@@ -36,11 +37,15 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }
+    println!("{}", report.verdict.text());
     if !cfg.quiet {
         eprintln!(
             "report: {}  (report.json, metrics.csv and the plots beside it)",
             cfg.out.join("report.html").display()
         );
+    }
+    if report.verdict.grade == Grade::Unreliable {
+        return Err(EstimateError::Unreliable(cfg.out.join("report.json")).into());
     }
     Ok(())
 }

@@ -9,11 +9,10 @@
 //! spurious modes of the fit decay within a few frames). A start there keeps training away from the
 //! harmonics (latents like |z| or z², at 2ω) that a start far off can lock onto.
 
+use crate::pca::{principal_directions, project};
 use crate::physics::block::Integrator;
 use tch::{Device, Kind, Tensor};
 
-/// Frames used for the principal components (evenly spaced over the training clips).
-const PCA_FRAMES: i64 = 512;
 /// Principal components fed to the recurrence.
 const COMPONENTS: i64 = 16;
 
@@ -46,40 +45,9 @@ fn spectral_mode(train: &Tensor, dt: f64) -> Option<(f64, f64)> {
         return None;
     }
     let frames = train.reshape([n * t, d]);
-    let take = PCA_FRAMES.min(n * t);
-    let idx = Tensor::arange(take, (Kind::Int64, Device::Cpu))
-        .multiply_scalar((n * t) as f64 / take as f64)
-        .to_kind(Kind::Int64)
-        .to_device(train.device());
-    let sample = frames.index_select(0, &idx).to_kind(Kind::Double);
-    let sample = &sample - sample.mean_dim(0, true, Kind::Double);
-    // The principal directions from the sample's Gram matrix [take, take] (a frame has
-    // thousands of pixels, the sample hundreds of frames): eigenvalues σ², directions Sᵀu/σ.
-    let (evals, u) = sample.matmul(&sample.tr()).linalg_eigh("L");
-    let evals = Vec::<f64>::try_from(&evals.to_device(Device::Cpu)).ok()?;
-    let top = evals.last().copied().filter(|&e| e > 0.0)?;
-    // Keep components with real variance (relative to the first), largest first.
-    let k = evals
-        .iter()
-        .rev()
-        .take(COMPONENTS as usize)
-        .take_while(|&&e| e.sqrt() > 1e-6 * top.sqrt())
-        .count() as i64;
-    if k == 0 {
-        return None;
-    }
-    let order = Tensor::arange_start_step(take - 1, take - 1 - k, -1, (Kind::Int64, Device::Cpu))
-        .to_device(train.device());
-    let sigma = Tensor::from_slice(&evals[(take - k) as usize..])
-        .flip([0])
-        .sqrt()
-        .to_device(train.device());
-    let v = sample.tr().matmul(&u.index_select(1, &order)) / sigma.unsqueeze(0);
-    // Projected in single precision (the frames' own), the few components then in double.
-    let y = frames
-        .matmul(&v.to_kind(train.kind()))
-        .to_kind(Kind::Double)
-        .view([n, t, k]);
+    let (v, _) = principal_directions(&frames, COMPONENTS)?;
+    let k = v.size()[1];
+    let y = project(&frames, &v).view([n, t, k]);
     // Regress y[t+1] on [y[t], y[t−1], 1] over every window of every clip.
     let next = y.narrow(1, 2, t - 2).reshape([-1, k]);
     let now = y.narrow(1, 1, t - 2).reshape([-1, k]);

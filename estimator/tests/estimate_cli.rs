@@ -86,7 +86,9 @@ fn mse_only_loss_collapses_the_latent_and_the_report_says_so() {
         .out(&out)
         .args(["--loss", "mse", "--single-start", "--epochs", "40"])
         .args(["--threads", "2"])
-        .ok();
+        .output();
+    // Graded unreliable: exit code 4, the files written.
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
     let r = read_report(&out);
     assert!(
         r["latent_collapsed"].as_bool().unwrap(),
@@ -97,7 +99,13 @@ fn mse_only_loss_collapses_the_latent_and_the_report_says_so() {
     let first_std = history[0]["latent_std"].as_f64().unwrap();
     let last_std = history.last().unwrap()["latent_std"].as_f64().unwrap();
     assert!(last_std < 0.1 * first_std, "{first_std} → {last_std}");
-    assert!(stderr(&o).contains("collapsed"), "{}", stderr(&o));
+    assert_eq!(r["verdict"]["grade"], "unreliable");
+    assert!(
+        r["verdict"]["reasons"].to_string().contains("collapsed"),
+        "{}",
+        r["verdict"]
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains("collapsed"));
 }
 
 #[test]

@@ -151,7 +151,11 @@ fn a_missing_calibration_gives_latent_units_and_says_why() {
     let npy = format!("{data}/frames.npy");
     let out = tmp.path().join("run");
     let torricelli = || Estimate::new(&npy).args(["--model", "torricelli", "--dt", "1"]);
-    let o = torricelli().args(["--epochs", "3"]).out(&out).quiet().ok();
+    let o = torricelli()
+        .args(["--epochs", "3"])
+        .out(&out)
+        .quiet()
+        .estimated();
     assert!(stderr(&o).contains("--reference"), "{}", stderr(&o));
     let r = read_report(&out);
     let units: Vec<&str> = r["parameters"]
@@ -166,7 +170,7 @@ fn a_missing_calibration_gives_latent_units_and_says_why() {
         .args(["--epochs", "3", "--reference", "0:0=0.05,1:19=0.02"])
         .out(&out)
         .quiet()
-        .ok();
+        .estimated();
     let r = read_report(&out);
     assert_eq!(r["parameters"][0]["name"], "k");
     assert_eq!(r["parameters"][0]["units"], "SI");

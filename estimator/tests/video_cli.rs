@@ -9,8 +9,13 @@ use std::process::Command;
 use util::{estimate_of, ffmpeg_available, read_report, real_video, stderr, Estimate};
 
 fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
-    let o = Estimate::bare().args(args).out(out).quiet().ok();
+    let o = Estimate::bare().args(args).out(out).quiet().estimated();
     (read_report(out), stderr(&o))
+}
+
+/// The verdict's grade of a report.
+fn grade(r: &serde_json::Value) -> &str {
+    r["verdict"]["grade"].as_str().unwrap()
 }
 
 #[test]
@@ -36,6 +41,8 @@ fn real_pendulum_gives_g_over_l_from_its_period() {
     let zeta = estimate_of(&r, "damping");
     assert!((zeta / 0.017 - 1.0).abs() < 0.25, "damping {zeta}");
     assert_eq!(r["cross_check"]["agrees"], true, "{}", r["cross_check"]);
+    // The verdict agrees: nothing against this answer.
+    assert_eq!(grade(&r), "ok", "{}", r["verdict"]);
     for f in ["timeline.png", "timeline.csv", "clips.png", "latents.png"] {
         assert!(tmp.path().join("run").join(f).exists(), "{f}");
     }
@@ -289,7 +296,7 @@ fn references_by_time_land_on_the_clip_frame_at_that_time() {
             .args(["--epochs", "1", "--threads", "1"])
             .out(&out)
     };
-    run("1.0s=0.2,3.5s=-0.1").quiet().ok();
+    run("1.0s=0.2,3.5s=-0.1").quiet().estimated();
     let r = read_report(&out);
     let refs = r["calibration"]["reference"].as_array().unwrap();
     assert_eq!(refs.len(), 2, "{refs:?}");
@@ -349,4 +356,5 @@ fn real_torricelli_with_time_references_gives_k_in_si() {
         (k / two_point - 1.0).abs() < 0.05,
         "k {k} against {two_point}"
     );
+    assert_eq!(grade(&r), "ok", "{}", r["verdict"]);
 }

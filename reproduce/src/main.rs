@@ -12,6 +12,7 @@ mod spring;
 mod table;
 mod table3;
 mod table6;
+mod verdict;
 
 use clap::Parser;
 use estimator::cli::DeviceChoice;
@@ -43,12 +44,15 @@ enum TableKind {
     /// Appendix A.5's two-body spring: k and the rest length from two starts, without
     /// clutter, in colour, on 30-frame clips.
     Spring,
+    /// The verdict on default runs of every scene (its false alarms) and on constructed
+    /// failures (a harmonic, frames out of order, a still scene, the wrong law, short clips).
+    Verdict,
     /// Every table above, one after another.
     All,
 }
 
 impl TableKind {
-    const EACH: [TableKind; 7] = [
+    const EACH: [TableKind; 8] = [
         TableKind::Table3,
         TableKind::Table6,
         TableKind::Init,
@@ -56,6 +60,7 @@ impl TableKind {
         TableKind::Noise,
         TableKind::Coverage,
         TableKind::Spring,
+        TableKind::Verdict,
     ];
 
     fn name(self) -> &'static str {
@@ -67,6 +72,7 @@ impl TableKind {
             TableKind::Noise => "noise",
             TableKind::Coverage => "coverage",
             TableKind::Spring => "spring",
+            TableKind::Verdict => "verdict",
             TableKind::All => "all",
         }
     }
@@ -80,6 +86,7 @@ impl TableKind {
             TableKind::Noise => noise::make(r),
             TableKind::Coverage => coverage::make(r),
             TableKind::Spring => spring::make(r),
+            TableKind::Verdict => verdict::make(r),
             TableKind::All => unreachable!("expanded before"),
         }
     }

@@ -69,6 +69,20 @@ impl TestCommand {
         o
     }
 
+    /// Runs `estimate` and asserts it gave an estimate and wrote its files: exit code 0, or 4
+    /// when the verdict graded the answer unreliable (runs of a few epochs that test the
+    /// plumbing, not the answer, are often that).
+    pub fn estimated(&self) -> Output {
+        let o = self.output();
+        assert!(
+            matches!(o.status.code(), Some(0 | 4)),
+            "{:?}: {}",
+            self.args,
+            stderr(&o)
+        );
+        o
+    }
+
     /// Runs and asserts the bad-input contract: exit code 2 and one line on stderr that
     /// contains `needle`.
     pub fn bad_input(&self, needle: &str) {

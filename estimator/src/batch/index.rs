@@ -12,7 +12,9 @@ pub fn index_page(summary: &Summary) -> String {
             context! {
                 row => r.row, name => r.name, input => r.input, model => r.model,
                 status => r.status.word(), status_class => r.status.word().replace(' ', "-"),
-                link => (r.status == RowStatus::Ok).then(|| format!("{}/report.html", r.dir)),
+                link => matches!(r.status, RowStatus::Ok | RowStatus::Unreliable)
+                    .then(|| format!("{}/report.html", r.dir)),
+                verdict => r.verdict.clone().unwrap_or_default(), reasons => r.reasons,
                 estimates => r.estimates.iter().map(|e| e.text()).collect::<Vec<_>>(),
                 epochs => r.epochs.map_or(String::new(), |e| e.to_string()),
                 wall => r.wall_s.map_or(String::new(), |w| format!("{w:.1}")),

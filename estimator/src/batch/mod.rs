@@ -99,6 +99,8 @@ fn pending(row: &BatchRow, shard: Option<crate::cli::Shard>) -> RowResult {
         epochs: None,
         wall_s: None,
         warnings: Vec::new(),
+        verdict: None,
+        reasons: Vec::new(),
         dir: row.dir.clone(),
         command: String::new(),
     }
@@ -149,8 +151,15 @@ fn run_row(
     };
     result.exit_code = output.status.code();
     let report = std::fs::read(dir.join("report.json")).ok();
-    match (output.status.success(), report) {
-        (true, Some(bytes)) => read_report(&mut result, &bytes, &row.truth),
+    // Exit code 4: an estimate graded unreliable; its report is complete.
+    let unreliable = output.status.code() == Some(4);
+    match (output.status.success() || unreliable, report) {
+        (true, Some(bytes)) => {
+            read_report(&mut result, &bytes, &row.truth);
+            if unreliable && result.status == RowStatus::Ok {
+                result.status = RowStatus::Unreliable;
+            }
+        }
         (success, _) => {
             let stderr = String::from_utf8_lossy(&output.stderr);
             let last = stderr
@@ -190,6 +199,20 @@ fn read_report(result: &mut RowResult, bytes: &[u8], truth: &[(String, f64)]) {
         .flatten()
         .filter_map(|w| w.as_str().map(String::from))
         .collect();
+    result.verdict = report["verdict"]["grade"].as_str().map(String::from);
+    result.reasons = report["verdict"]["reasons"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|r| {
+            format!(
+                "{} ({}): {}",
+                r["check"].as_str().unwrap_or_default(),
+                r["grade"].as_str().unwrap_or_default(),
+                r["detail"].as_str().unwrap_or_default()
+            )
+        })
+        .collect();
     for p in report["parameters"].as_array().into_iter().flatten() {
         let name = p["name"].as_str().unwrap_or_default().to_string();
         let value = p["estimate"].as_f64().unwrap_or(f64::NAN);
@@ -199,6 +222,7 @@ fn read_report(result: &mut RowResult, bytes: &[u8], truth: &[(String, f64)]) {
             unit: p["unit"].as_str().unwrap_or_default().to_string(),
             truth: t,
             relative_error: t.filter(|t| *t != 0.0).map(|t| (value - t) / t),
+            standard_error: p["standard_error"].as_f64(),
             name,
             value,
         });

@@ -4,6 +4,7 @@
 
 use crate::cli::Shard;
 use crate::html::sig;
+use crate::report::text::significant;
 use serde::{Deserialize, Serialize};
 
 /// What summary.json holds.
@@ -22,6 +23,8 @@ pub struct Summary {
 #[serde(rename_all = "kebab-case")]
 pub enum RowStatus {
     Ok,
+    /// An estimate graded `unreliable` (exit code 4): counted as failed.
+    Unreliable,
     Failed,
     /// Not yet run (the batch is under way or was stopped).
     Pending,
@@ -35,6 +38,7 @@ impl RowStatus {
     pub fn word(self) -> &'static str {
         match self {
             RowStatus::Ok => "ok",
+            RowStatus::Unreliable => "unreliable",
             RowStatus::Failed => "failed",
             RowStatus::Pending => "pending",
             RowStatus::OtherShard => "other shard",
@@ -51,6 +55,8 @@ pub struct Estimate {
     pub unit: String,
     pub truth: Option<f64>,
     pub relative_error: Option<f64>,
+    #[serde(default)]
+    pub standard_error: Option<f64>,
 }
 
 /// One row's outcome.
@@ -71,6 +77,11 @@ pub struct RowResult {
     pub epochs: Option<usize>,
     pub wall_s: Option<f64>,
     pub warnings: Vec<String>,
+    /// The verdict's grade (`ok`, `doubtful`, `unreliable`) and its reasons, one line each.
+    #[serde(default)]
+    pub verdict: Option<String>,
+    #[serde(default)]
+    pub reasons: Vec<String>,
     /// The row's directory, relative to the summary's.
     pub dir: String,
     /// The command that ran the row.
@@ -99,7 +110,12 @@ impl Summary {
 
     pub fn failed(&self) -> usize {
         self.own_rows()
-            .filter(|r| matches!(r.status, RowStatus::Failed | RowStatus::NotRun))
+            .filter(|r| {
+                matches!(
+                    r.status,
+                    RowStatus::Failed | RowStatus::NotRun | RowStatus::Unreliable
+                )
+            })
             .count()
     }
 
@@ -114,25 +130,27 @@ impl Summary {
         names
     }
 
-    /// summary.csv: row, name, input, model, status, epochs, wall_s; for each reported value
-    /// NAME, NAME_unit, NAME_truth, NAME_rel_error; warnings (joined by " | "); error.
+    /// summary.csv: row, name, input, model, status, verdict, epochs, wall_s; for each reported
+    /// value NAME, NAME_se, NAME_unit, NAME_truth, NAME_rel_error; the verdict's reasons and
+    /// the warnings (each joined by " | "); error.
     pub fn csv(&self) -> String {
         let names = self.value_names();
         let mut w = csv::Writer::from_writer(Vec::new());
         let mut header: Vec<String> = [
-            "row", "name", "input", "model", "status", "epochs", "wall_s",
+            "row", "name", "input", "model", "status", "verdict", "epochs", "wall_s",
         ]
         .map(String::from)
         .to_vec();
         for n in &names {
             header.extend([
                 n.clone(),
+                format!("{n}_se"),
                 format!("{n}_unit"),
                 format!("{n}_truth"),
                 format!("{n}_rel_error"),
             ]);
         }
-        header.extend(["warnings".into(), "error".into()]);
+        header.extend(["reasons".into(), "warnings".into(), "error".into()]);
         w.write_record(&header).expect("in memory");
         let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
         for r in self.own_rows() {
@@ -142,6 +160,7 @@ impl Summary {
                 r.input.clone(),
                 r.model.clone(),
                 r.status.word().to_string(),
+                r.verdict.clone().unwrap_or_default(),
                 r.epochs.map_or(String::new(), |e| e.to_string()),
                 r.wall_s.map_or(String::new(), |w| format!("{w:.2}")),
             ];
@@ -149,13 +168,15 @@ impl Summary {
                 match r.estimates.iter().find(|e| &e.name == n) {
                     Some(e) => rec.extend([
                         format!("{}", e.value),
+                        opt(e.standard_error),
                         e.unit.clone(),
                         opt(e.truth),
                         opt(e.relative_error),
                     ]),
-                    None => rec.extend(std::iter::repeat_n(String::new(), 4)),
+                    None => rec.extend(std::iter::repeat_n(String::new(), 5)),
                 }
             }
+            rec.push(r.reasons.join(" | "));
             rec.push(r.warnings.join(" | "));
             rec.push(r.error.clone().unwrap_or_default());
             w.write_record(&rec).expect("in memory");
@@ -167,8 +188,8 @@ impl Summary {
     pub fn markdown(&self) -> String {
         let mut s = format!(
             "# Batch {}\n\n{} of {} rows failed{}.\n\n\
-             | row | name | model | status | estimates | epochs | wall (s) | warnings, error |\n\
-             |---:|---|---|---|---|---:|---:|---|\n",
+             | row | name | model | status | verdict | estimates | epochs | wall (s) | reasons, warnings, error |\n\
+             |---:|---|---|---|---|---|---:|---:|---|\n",
             self.batch_file,
             self.failed(),
             self.own_rows().count(),
@@ -179,20 +200,22 @@ impl Summary {
         );
         let cell = |t: &str| t.replace('|', "\\|").replace('\n', " ");
         for r in self.own_rows() {
-            let name = if r.status == RowStatus::Ok {
+            let name = if matches!(r.status, RowStatus::Ok | RowStatus::Unreliable) {
                 format!("[{}]({}/report.html)", r.name, r.dir)
             } else {
                 r.name.clone()
             };
             let estimates: Vec<String> = r.estimates.iter().map(Estimate::text).collect();
-            let mut notes = r.warnings.clone();
+            let mut notes = r.reasons.clone();
+            notes.extend(r.warnings.iter().cloned());
             notes.extend(r.error.iter().map(|e| format!("**error**: {e}")));
             s += &format!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                 r.row,
                 cell(&name),
                 r.model,
                 r.status.word(),
+                r.verdict.as_deref().unwrap_or(""),
                 cell(&estimates.join("<br>")),
                 r.epochs.map_or(String::new(), |e| e.to_string()),
                 r.wall_s.map_or(String::new(), |w| format!("{w:.1}")),
@@ -206,7 +229,11 @@ impl Summary {
 impl Estimate {
     /// `g = 9.87 m/s^2 (truth 9.81, +0.61 %)`.
     pub fn text(&self) -> String {
-        let mut s = format!("{} = {} {}", self.name, sig(self.value), self.unit);
+        let mut s = format!("{} = {}", self.name, sig(self.value));
+        if let Some(se) = self.standard_error {
+            s += &format!(" ± {}", significant(se));
+        }
+        s += &format!(" {}", self.unit);
         if let Some(t) = self.truth {
             s += &format!(" (truth {}", sig(t));
             if let Some(e) = self.relative_error {
@@ -235,6 +262,8 @@ mod tests {
             epochs: Some(12),
             wall_s: Some(1.5),
             warnings: vec![],
+            verdict: Some("ok".into()),
+            reasons: vec![],
             dir: format!("0{n}-x"),
             command: String::new(),
         }
@@ -248,6 +277,7 @@ mod tests {
             unit: "m/s^2".into(),
             truth: Some(9.81),
             relative_error: Some(0.006),
+            standard_error: Some(0.0123),
         };
         let s = Summary {
             format: "x".into(),
@@ -262,10 +292,13 @@ mod tests {
         let csv = s.csv();
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3, "{csv}");
-        assert!(lines[0].contains("g,g_unit,g_truth,g_rel_error,warnings,error"));
+        assert!(lines[0].contains("g,g_se,g_unit,g_truth,g_rel_error,reasons,warnings,error"));
         assert!(lines[2].ends_with("no such file, x\""), "{csv}");
         assert_eq!(s.failed(), 1);
         assert!(s.markdown().contains("[01-x](01-x/report.html)"));
-        assert_eq!(g.text(), "g = 9.87000 m/s^2 (truth 9.81000, +0.60 %)");
+        assert_eq!(
+            g.text(),
+            "g = 9.87000 ± 0.012 m/s^2 (truth 9.81000, +0.60 %)"
+        );
     }
 }

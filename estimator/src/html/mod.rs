@@ -3,6 +3,7 @@
 //! shares. One self-contained file each, plain HTML and CSS from minijinja templates; nothing
 //! is fetched from the network.
 
+use crate::report::text::significant;
 use crate::report::Report;
 use base64::Engine;
 use minijinja::{context, Environment};
@@ -26,6 +27,7 @@ pub fn render(name: &str, source: &'static str, ctx: minijinja::Value) -> String
 struct Row {
     name: String,
     estimate: String,
+    error_bar: String,
     unit: String,
     truth: String,
     error: String,
@@ -55,6 +57,9 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         .map(|p| Row {
             name: p.name.clone(),
             estimate: sig(p.estimate),
+            error_bar: p
+                .standard_error
+                .map_or("–".into(), |e| format!("± {}", significant(e))),
             unit: p.unit.clone(),
             truth: p.truth.map_or("–".into(), sig),
             error: p
@@ -186,6 +191,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             style => style(),
             model => report.model, input => report.input, headline,
             parameters, ensemble, cross_check, warnings => report.warnings, facts, recording,
+            grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
             version => report.version, libtorch => report.libtorch_version,
         },

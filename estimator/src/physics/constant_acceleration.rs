@@ -3,10 +3,16 @@
 //! differ in what their SI answers are.
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
+use physvid_shared::cli::approx;
 use tch::nn;
 use tch::Tensor;
+
+/// Earth's gravity (m/s²), and how far from it a measured g may lie before it is doubtful
+/// (a camera's perspective biases a fall by 10–15 %; a wrong frame rate by 4× or more).
+const EARTH_G: f64 = 9.81;
+const G_TOLERANCE: f64 = 0.3;
 
 const PARAMETERS: [ParamSpec; 1] = [ParamSpec::new("acceleration_latent", 0.0, false)];
 
@@ -96,6 +102,48 @@ impl Model for ConstantAcceleration {
             ),
         }
         (values, warnings)
+    }
+    /// A negative friction coefficient (the block slides faster than without friction), a
+    /// fall upwards, or a g far from Earth's.
+    fn implausible(&self, values: &[(&str, f64, f64)]) -> Vec<Implausible> {
+        let mut out = Vec::new();
+        for &(name, v, se) in values {
+            match name {
+                "mu" if v + 2.0 * se < 0.0 => out.push(Implausible {
+                    forbidden: true,
+                    detail: format!(
+                        "mu = {} ± {} is negative: the block would slide faster than without \
+                         friction; check --incline-deg, the reference values and that the \
+                         release is the first frame kept (--start)",
+                        approx(v),
+                        approx(se)
+                    ),
+                }),
+                "g" if v - 2.0 * se <= 0.0 => out.push(Implausible {
+                    forbidden: true,
+                    detail: format!(
+                        "g = {} ± {} m/s^2 is not positive: the latent does not follow the fall; \
+                         check the framing (--preview) and the reference values",
+                        approx(v),
+                        approx(se)
+                    ),
+                }),
+                "g" if ((v / EARTH_G) - 1.0).abs() > G_TOLERANCE + 2.0 * se / EARTH_G => {
+                    out.push(Implausible {
+                        forbidden: false,
+                        detail: format!(
+                            "g = {} ± {} m/s^2 is far from Earth's 9.81: check the frame rate \
+                             (--fps for slow motion), the reference values and the release \
+                             (--start)",
+                            approx(v),
+                            approx(se)
+                        ),
+                    })
+                }
+                _ => {}
+            }
+        }
+        out
     }
     fn data_warnings(&self, timed: bool) -> Vec<String> {
         if timed {

@@ -15,6 +15,7 @@ pub struct Led;
 const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Linear,
     truth: &[TruthKey::positive("gamma")],
+    affine_picture: Some("an LED's brightness scales the light of every pixel"),
     ..ModelInfo::new(
         "led",
         "I' = −γ·I (gamma, offset)",

@@ -20,7 +20,7 @@ mod two_step_solve;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use bounds::Bounds;
-pub use model::{Derived, Model, ModelInfo, ModelRef, ParamSpec, Settles};
+pub use model::{Derived, Implausible, Model, ModelInfo, ModelRef, ParamSpec, Settles};
 
 /// Every model, in the order `--help` lists them.
 pub static MODELS: &[&dyn Model] = &[

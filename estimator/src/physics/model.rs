@@ -92,6 +92,14 @@ impl TruthKey {
     }
 }
 
+/// A value the model forbids (`forbidden`: no such system has it) or finds implausible, with
+/// the fix in words (the verdict's physics check).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Implausible {
+    pub forbidden: bool,
+    pub detail: String,
+}
+
 /// What the report shows of a trained block: values (SI or latent units) and warnings about
 /// answers left in latent units.
 pub type Derived = (Vec<DerivedValue>, Vec<String>);
@@ -139,6 +147,9 @@ pub struct ModelInfo {
     pub max_dt: (f64, &'static str),
     /// The model file it was read from (`None`: built in).
     pub file: Option<&'static str>,
+    /// What makes every pixel an affine function of the modelled quantity, when the model
+    /// assumes it (an LED's brightness scales its light): the verdict checks the frames.
+    pub affine_picture: Option<&'static str>,
 }
 
 pub use physvid_shared::dynamics::DT_RANGE;
@@ -170,6 +181,7 @@ impl ModelInfo {
             nonnegative_reference: None,
             truth: &[],
             file: None,
+            affine_picture: None,
         }
     }
 }
@@ -216,6 +228,17 @@ pub trait Model: Sync {
     /// (a constant acceleration, a draining tank).
     fn rate(&self, _params: &[f64]) -> Option<f64> {
         None
+    }
+    /// Whether the motion the parameters describe oscillates (swings and springs; a decay, a
+    /// drain or a fall does not): the verdict compares small and large motions for those,
+    /// low and high levels for the others.
+    fn oscillates(&self, _params: &[f64]) -> bool {
+        false
+    }
+    /// Values of the report (name, estimate, standard error; 0 where unknown) that the model
+    /// forbids or finds implausible.
+    fn implausible(&self, _values: &[(&str, f64, f64)]) -> Vec<Implausible> {
+        Vec::new()
     }
     /// Warnings about the data: `timed` says whether the clips' start times are known.
     fn data_warnings(&self, _timed: bool) -> Vec<String> {

@@ -3,7 +3,7 @@
 //! Euler step) from each clip's least-squares initial state (or its first two frames).
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
 use super::smooth_map::solve_with_smooth_map;
 use super::two_step::{impulse_responses, least_squares_start, safely_complex};
 use super::two_step_solve::{euler_gammas, exact_gammas, solve_two_step, StateFit};
@@ -11,6 +11,7 @@ use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
+use physvid_shared::cli::approx;
 use std::cell::Cell;
 use tch::nn;
 use tch::Tensor;
@@ -72,12 +73,32 @@ impl Model for DampedOscillator {
     ) -> Vec<Vec<f64>> {
         spectral_start(train, dt, integrator).into_iter().collect()
     }
+    fn oscillates(&self, _params: &[f64]) -> bool {
+        true
+    }
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some(params[0].max(0.0).sqrt())
     }
     /// γ1 from the decay of the swing peaks (the envelope is e^(−γ1·t/2)).
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("gamma1", params[1], latents, dt, 0.0)
+    }
+    /// A damping below zero by more than two standard errors: an amplitude that grows.
+    fn implausible(&self, values: &[(&str, f64, f64)]) -> Vec<Implausible> {
+        values
+            .iter()
+            .filter(|(name, v, se)| *name == "gamma1" && *v + 2.0 * se < 0.0)
+            .map(|(_, v, se)| Implausible {
+                forbidden: true,
+                detail: format!(
+                    "gamma1 = {} ± {} is negative: an amplitude that grows, which a damped \
+                     oscillator cannot do; the latent follows something else (a drift of the \
+                     light, the camera or a distractor): crop to the object (--crop)",
+                    approx(*v),
+                    approx(*se)
+                ),
+            })
+            .collect()
     }
     fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         (

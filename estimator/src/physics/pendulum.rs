@@ -69,6 +69,9 @@ impl Model for Pendulum {
         ]
     }
     /// The small-angle frequency √(g/L), the fastest it swings.
+    fn oscillates(&self, _params: &[f64]) -> bool {
+        true
+    }
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some(params[0].max(0.0).sqrt())
     }

@@ -114,6 +114,8 @@ mod tests {
             unit: "m/s^2".into(),
             truth: Some(4.0),
             relative_error: None,
+            standard_error: None,
+            splits: Vec::new(),
         }
     }
 

@@ -2,19 +2,20 @@
 //! the clips and the training outcome: the derived values with ground truth and errors, the
 //! warnings, the latent's check against the truth. `text.rs` prints it; `output.rs` writes it.
 
-mod checks;
 pub mod ensemble;
 pub mod parameters;
-mod text;
+pub mod text;
 pub mod truth;
+pub mod uncertainty;
 
 use crate::calibration::Calibration;
 use crate::config::RunConfig;
 use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
-use crate::loss::LossKind;
+use crate::evidence::Evidence;
 use crate::peaks::PeakDecay;
 use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
+use crate::verdict::{Grade, Verdict};
 use ensemble::Ensemble;
 use parameters::ParameterResult;
 use serde::Serialize;
@@ -86,6 +87,10 @@ pub struct Report {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ensemble: Option<Ensemble>,
     pub warnings: Vec<String>,
+    /// `ok`, `doubtful` or `unreliable`, with the reasons.
+    pub verdict: Verdict,
+    /// What the verdict weighs (the covariance itself is in the parameters' errors).
+    pub evidence: Evidence,
     pub history: Vec<EpochRecord>,
     #[serde(skip)]
     pub outcome: TrainOutcome,
@@ -108,20 +113,33 @@ impl Report {
         let calibration = cfg.calibration.clone();
         let (rows, calibration_warnings) =
             model.derive(&outcome.parameters, &calibration, &outcome.readings);
-        let parameters: Vec<ParameterResult> = rows
+        let mut parameters: Vec<ParameterResult> = rows
             .into_iter()
             .map(|r| ParameterResult::new(r, &data.truth))
             .collect();
+        let evidence = &outcome.evidence;
+        let errors = uncertainty::standard_errors(
+            model,
+            &outcome.parameters,
+            evidence.covariance.as_deref(),
+            &calibration,
+            &outcome.readings,
+        );
+        let names: Vec<String> = parameters.iter().map(|p| p.name.clone()).collect();
+        let splits = uncertainty::splits(
+            model,
+            &evidence.splits,
+            &names,
+            &calibration,
+            &outcome.readings,
+        );
+        for ((p, se), s) in parameters.iter_mut().zip(errors).zip(splits) {
+            p.standard_error = se;
+            p.splits = s;
+        }
         let mut warnings = data.warnings.clone();
         warnings.extend(calibration_warnings);
         warnings.extend(model.data_warnings(data.train_start.is_some()));
-        warnings.extend(checks::answer_warnings(
-            model,
-            &outcome.parameters,
-            init,
-            data.frames_per_clip as usize,
-            data.dt,
-        ));
         let peak_std = outcome
             .history
             .iter()
@@ -133,40 +151,7 @@ impl Report {
             .history
             .last()
             .map_or(outcome.latent_std, |h| h.latent_std);
-        let low_std = outcome.latent_std.min(last_std);
-        let collapsed = low_std < COLLAPSE_FRACTION * peak_std;
-        if collapsed {
-            let remedy = match cfg.loss {
-                LossKind::MseKl => {
-                    "even with the KL term: check that the frames show the motion (--preview for \
-                     a recording: crop, stride) or try another --seed"
-                }
-                _ => "train with --loss mse+kl",
-            };
-            warnings.push(format!(
-                "the latent collapsed towards a constant (std {low_std:.2e} over the validation \
-                 clips, down from {peak_std:.2e}): a constant latent makes the rollout error \
-                 vanish whatever the parameters, so these estimates are not determined by the \
-                 video; {remedy}"
-            ));
-        }
-        match outcome.stop {
-            StopReason::NonFiniteLoss { epoch } => warnings.push(format!(
-                "the loss became NaN or infinite in epoch {epoch}; training stopped and the \
-                 parameters are {} (lower --lr or --lr-phys)",
-                if outcome.best_epoch == 0 {
-                    "the starting values: no epoch finished with a finite loss".to_string()
-                } else {
-                    format!("those of epoch {}, the best before it", outcome.best_epoch)
-                }
-            )),
-            StopReason::MaxEpochs => warnings.push(format!(
-                "the validation rollout error was still improving after --epochs {}; the estimate \
-                 may not have converged (raise --epochs)",
-                cfg.epochs
-            )),
-            StopReason::EarlyStop { .. } | StopReason::Converged { .. } => {}
-        }
+        let collapsed = outcome.latent_std.min(last_std) < COLLAPSE_FRACTION * peak_std;
         Report {
             tool: "estimate".into(),
             command: None,
@@ -206,9 +191,21 @@ impl Report {
             wall_time_s: wall.as_secs_f64(),
             ensemble: None,
             warnings,
+            evidence: outcome.evidence.clone(),
             history: outcome.history.clone(),
+            verdict: Verdict {
+                grade: Grade::Ok,
+                reasons: Vec::new(),
+            },
             outcome,
         }
+        .judged()
+    }
+
+    /// The report with its verdict computed.
+    pub fn judged(mut self) -> Report {
+        self.verdict = Verdict::of(&self);
+        self
     }
 
     /// Records the starts of a multi-start fit.

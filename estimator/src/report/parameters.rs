@@ -1,6 +1,7 @@
 //! `ParameterResult`: one reported value with its units and, when the data's metadata knows
 //! it, the ground truth and the relative error.
 
+use super::uncertainty::SplitValue;
 use crate::calibration::DerivedValue;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -17,6 +18,12 @@ pub struct ParameterResult {
     pub truth: Option<f64>,
     /// (estimate − truth) / truth.
     pub relative_error: Option<f64>,
+    /// Its standard error from the final fit's curvature with the encoder held (clusters of
+    /// clips as independent draws); `None` where it could not be computed.
+    pub standard_error: Option<f64>,
+    /// The value refitted on halves of the training clips (see `evidence::SplitBy`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub splits: Vec<SplitValue>,
 }
 
 impl ParameterResult {
@@ -30,6 +37,8 @@ impl ParameterResult {
             units: value.units.into(),
             unit: value.unit.into(),
             truth: t,
+            standard_error: None,
+            splits: Vec::new(),
         }
     }
 }

@@ -17,17 +17,20 @@ impl Report {
             self.device
         );
         s += &format!(
-            "{:<20} {:>12} {:>8} {:>12} {:>12}\n",
-            "parameter", "estimate", "unit", "truth", "rel. error"
+            "{:<20} {:>12} {:>12} {:>8} {:>12} {:>12}\n",
+            "parameter", "estimate", "± std. err.", "unit", "truth", "rel. error"
         );
         for p in &self.parameters {
             let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
             let err = p
                 .relative_error
                 .map_or("-".into(), |e| format!("{:+.3} %", e * 100.0));
+            let se = p
+                .standard_error
+                .map_or("-".into(), |e| format!("± {}", significant(e)));
             s += &format!(
-                "{:<20} {:>12.6} {:>8} {:>12} {:>12}\n",
-                p.name, p.estimate, p.unit, truth, err
+                "{:<20} {:>12.6} {:>12} {:>8} {:>12} {:>12}\n",
+                p.name, p.estimate, se, p.unit, truth, err
             );
         }
         if let Some(c) = &self.cross_check {
@@ -74,5 +77,18 @@ impl Report {
             );
         }
         s
+    }
+}
+
+/// A standard error to two significant digits.
+pub fn significant(e: f64) -> String {
+    if !e.is_finite() || e == 0.0 {
+        return format!("{e}");
+    }
+    let digits = (1 - e.abs().log10().floor() as i32).max(0) as usize;
+    if digits > 8 || e.abs() >= 1e6 {
+        format!("{e:.1e}")
+    } else {
+        format!("{e:.digits$}")
     }
 }

@@ -2,6 +2,7 @@
 //! `TrainOutcome` of the kept checkpoint.
 
 use crate::calibration::Readings;
+use crate::evidence::Evidence;
 use crate::timeline::Timeline;
 use serde::Serialize;
 
@@ -72,4 +73,7 @@ pub struct TrainOutcome {
     /// For a recording: the latent of every frame, and the rollouts of clips that tile it.
     #[serde(skip)]
     pub timeline: Option<Timeline>,
+    /// What the verdict weighs (see `evidence`).
+    #[serde(skip)]
+    pub evidence: Evidence,
 }

@@ -8,6 +8,7 @@ use super::{readings, refine};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
+use crate::evidence;
 use crate::loss::{loss, LossKind};
 use crate::network::{to_rows, Network};
 use crate::physics::{Clips, Settles};
@@ -290,14 +291,14 @@ impl<'a> Trainer<'a> {
         }
         let data = self.data;
         let steps = data.frames_per_clip;
+        let val_ids: Vec<usize> = (data.n_train() as usize..data.shape[0]).collect();
+        let clips = Clips {
+            start: data.val_start.as_ref(),
+            ids: Some(&val_ids),
+        };
+        let (z, z_hat) = tch::no_grad(|| network.forward(&data.val, clips, steps));
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {
             let k = data.n_val().min(4);
-            let val_ids: Vec<usize> = (data.n_train() as usize..data.shape[0]).collect();
-            let clips = Clips {
-                start: data.val_start.as_ref(),
-                ids: Some(&val_ids),
-            };
-            let (z, z_hat) = network.forward(&data.val, clips, steps);
             (
                 to_rows(&z.narrow(0, 0, k)),
                 to_rows(&z_hat.narrow(0, 0, k)),
@@ -306,6 +307,7 @@ impl<'a> Trainer<'a> {
                 network.values(&z),
             )
         });
+        let evidence = evidence::gather(network, data, (&z, &z_hat), recording_latents.as_deref());
         let readings = readings::read(network, data, &self.cfg.calibration);
         let timeline = data
             .recording
@@ -325,6 +327,7 @@ impl<'a> Trainer<'a> {
             example_rollouts: rollouts,
             val_latents,
             readings,
+            evidence,
         }
     }
 }

@@ -27,8 +27,13 @@ pub struct PictureInfo {
 /// How a disc shows z (|z| ≤ 1 keeps it inside the frame and its grey level in [0, 1]).
 pub trait DiscPicture: Sync {
     fn info(&self) -> &PictureInfo;
-    /// The disc that shows `z` in a `size`×`size` frame.
+    /// The disc that shows `z` in a `size`×`size` frame (the moving part of the picture).
     fn disc(&self, z: f64, size: usize) -> Disc;
+    /// Draws the frame for `z` into `out` (size² values): the disc on black, unless the
+    /// picture draws more than its disc.
+    fn draw(&self, z: f64, size: usize, canvas: &mut Canvas, out: &mut [f32]) {
+        canvas.render_frame(&self.disc(z, size), out);
+    }
 }
 
 /// A damped-oscillator scene drawn by picture `P`.
@@ -144,7 +149,7 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
     }
 
     fn render(&self, _p: &Params, z: &[f64], size: usize, canvas: &mut Canvas, out: &mut [f32]) {
-        canvas.render_frame(&self.0.disc(z[0], size), out);
+        self.0.draw(z[0], size, canvas, out);
     }
 
     fn mapping_text(&self) -> &'static str {
@@ -180,12 +185,12 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{intensity::Intensity, position::Position, scale::Scale};
+    use super::super::{intensity::Intensity, position::Position, rod::Rod, scale::Scale};
     use super::DiscPicture;
 
     #[test]
     fn discs_stay_inside_the_frame_and_in_range_for_unit_latents() {
-        let pictures: [&dyn DiscPicture; 3] = [&Intensity, &Position, &Scale];
+        let pictures: [&dyn DiscPicture; 4] = [&Intensity, &Position, &Scale, &Rod];
         for size in [8usize, 50, 128] {
             for pic in pictures {
                 for z in [-1.0, -0.3, 0.0, 0.7, 1.0] {

@@ -242,7 +242,7 @@ impl Scene for FileScene {
         (truth, xs.iter().map(|x| (x - c) / h).collect())
     }
     fn render(&self, _p: &Params, z: &[f64], size: usize, canvas: &mut Canvas, out: &mut [f32]) {
-        canvas.render_frame(&self.picture.disc(z[0].clamp(-1.0, 1.0), size), out);
+        self.picture.draw(z[0].clamp(-1.0, 1.0), size, canvas, out);
     }
     fn mapping_text(&self) -> &'static str {
         self.mapping

@@ -16,6 +16,7 @@ pub mod intensity;
 pub mod led;
 pub mod pendulum;
 pub mod position;
+pub mod rod;
 pub mod scale;
 pub mod sliding_block;
 pub mod spring;
@@ -118,6 +119,7 @@ pub static SCENES: &[&dyn Scene] = &[
     &DiscScene(intensity::Intensity),
     &DiscScene(position::Position),
     &DiscScene(scale::Scale),
+    &DiscScene(rod::Rod),
     &Delfys(pendulum::Pendulum),
     &Delfys(torricelli::Torricelli),
     &Delfys(sliding_block::SlidingBlock),

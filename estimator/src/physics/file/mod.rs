@@ -272,6 +272,10 @@ impl Model for FileModel {
         kl::kl_coordinates(&self.file.kl, &self.file.observed, z)
     }
 
+    /// When the file's motion has a frequency at these parameters.
+    fn oscillates(&self, params: &[f64]) -> bool {
+        self.rate(params).is_some()
+    }
     fn rate(&self, params: &[f64]) -> Option<f64> {
         // The frequency needs a dt to sample at; the frames' own is unknown here: 0.01 s, then
         // finer.

@@ -148,6 +148,9 @@ impl Model for Spring {
         Some((1.5 * period).ceil().max(4.0) as usize)
     }
     /// The relative vector's oscillation √(2k) (two unit masses).
+    fn oscillates(&self, _params: &[f64]) -> bool {
+        true
+    }
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some((2.0 * params[0]).max(0.0).sqrt())
     }

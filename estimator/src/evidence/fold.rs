@@ -1,0 +1,168 @@
+//! Whether the latent folds the picture: a latent that is an even function of the motion (the
+//! height of a swinging bob, |x|, x²) oscillates at twice the motion's frequency and fits a
+//! law at 2ω as well as the motion fits it at ω. Frames on either side of the swing then give
+//! one latent value: the part of the picture the latent does not explain is an odd function of
+//! the motion, whose size the latent does determine (on the side of the swing where the bob is
+//! high, the picture differs from the mean of both sides by a fixed amount, one way or the
+//! other).
+//!
+//! Measured on the frames' leading principal components y_k: each is regressed on the latent
+//! (nearest neighbours in the latent's order), e_k = y_k − E[y_k | z] is what the latent leaves
+//! unexplained, and R²(e_k² | z) says how much of its size the latent determines. The folded
+//! share Σ var(e_k)·R²(e_k² | z) / Σ var(y_k) is near zero for a faithful latent, even when
+//! clutter, noise or light leave much of the picture unexplained (that part does not depend on
+//! the latent), and a large part of the picture for a folded one.
+
+use crate::pca::{principal_directions, project};
+use serde::Serialize;
+use tch::{Kind, Tensor};
+
+/// Leading principal components examined.
+pub const COMPONENTS: i64 = 6;
+
+/// How much of the picture the latent folds.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fold {
+    /// The share of the leading components' variance that is folded (see the module's text).
+    pub folded_share: f64,
+    /// The share the latent explains as a function of it.
+    pub explained_share: f64,
+    /// The share an affine function of the latent explains (the whole explained share when
+    /// the picture is affine in the latent, as an LED's brightness makes it).
+    pub affine_share: f64,
+    /// The components examined and their share of the frames' variance.
+    pub components: usize,
+    pub variance_share: f64,
+}
+
+/// The fold of latent `z` (one per frame) in the principal components of `frames` [M, D];
+/// `None` when the frames do not vary.
+pub fn fold(frames: &Tensor, z: &[f64]) -> Option<Fold> {
+    let m = z.len();
+    if m < 20 || frames.size()[0] as usize != m {
+        return None;
+    }
+    let (v, shares) = tch::no_grad(|| principal_directions(frames, COMPONENTS))?;
+    let y = tch::no_grad(|| project(frames, &v));
+    let k = y.size()[1] as usize;
+    let y = Vec::<f64>::try_from(&y.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
+    let neighbours = (m / 200).clamp(3, 20);
+    let order = sorted(z);
+    let (mut total, mut unexplained, mut folded, mut off_line) = (0.0, 0.0, 0.0, 0.0);
+    for c in 0..k {
+        let yc: Vec<f64> = (0..m).map(|i| y[i * k + c]).collect();
+        let fit = neighbour_means(&order, &yc, neighbours);
+        let e: Vec<f64> = yc.iter().zip(&fit).map(|(a, b)| a - b).collect();
+        let e2: Vec<f64> = e.iter().map(|v| v * v).collect();
+        let size = r2(&e2, &neighbour_means(&order, &e2, neighbours)).clamp(0.0, 1.0);
+        let (vy, ve) = (variance(&yc), variance(&e));
+        off_line += vy * (1.0 - affine_r2(z, &yc));
+        total += vy;
+        unexplained += ve;
+        folded += ve * size;
+    }
+    (total > 0.0).then(|| Fold {
+        folded_share: folded / total,
+        explained_share: 1.0 - unexplained / total,
+        affine_share: 1.0 - off_line / total,
+        components: k,
+        variance_share: shares.iter().sum(),
+    })
+}
+
+/// R² of `y` explained by an affine function of `x`.
+fn affine_r2(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len().max(1) as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx).powi(2);
+        syy += (b - my).powi(2);
+    }
+    if sxx <= 0.0 || syy <= 0.0 {
+        return 0.0;
+    }
+    sxy * sxy / (sxx * syy)
+}
+
+/// Indices of `x` in increasing order.
+fn sorted(x: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..x.len()).collect();
+    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
+    order
+}
+
+/// Each value of `y` predicted by the mean of the `k` values on either side of it in `order`
+/// (itself left out), in `y`'s own order.
+fn neighbour_means(order: &[usize], y: &[f64], k: usize) -> Vec<f64> {
+    let n = order.len();
+    let mut cum = vec![0.0; n + 1];
+    for (i, &o) in order.iter().enumerate() {
+        cum[i + 1] = cum[i] + y[o];
+    }
+    let mut out = vec![0.0; n];
+    for (i, &o) in order.iter().enumerate() {
+        let lo = i.saturating_sub(k);
+        let hi = (i + k + 1).min(n);
+        let count = (hi - lo - 1).max(1) as f64;
+        out[o] = (cum[hi] - cum[lo] - y[o]) / count;
+    }
+    out
+}
+
+fn variance(x: &[f64]) -> f64 {
+    let n = x.len().max(1) as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n
+}
+
+/// 1 − Σ(y − fit)² / Σ(y − ȳ)² (0 when y does not vary).
+fn r2(y: &[f64], fit: &[f64]) -> f64 {
+    let v = variance(y) * y.len() as f64;
+    if v <= 0.0 {
+        return 0.0;
+    }
+    1.0 - y.iter().zip(fit).map(|(a, b)| (a - b).powi(2)).sum::<f64>() / v
+}
+
+/// R² of `y` explained by a smooth function of `x`: each value predicted by the mean of the
+/// `k` values on either side of it in the order of `x` (itself left out).
+pub fn smooth_r2(x: &[f64], y: &[f64], k: usize) -> f64 {
+    r2(y, &neighbour_means(&sorted(x), y, k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_even_latent_folds_the_picture_and_an_odd_one_does_not() {
+        // A picture of two pixels that follow x and x² (the bob's horizontal and vertical
+        // position), x sweeping back and forth.
+        let n = 600;
+        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+        let pix: Vec<f32> = x
+            .iter()
+            .flat_map(|&v| [v as f32, (0.4 * v * v) as f32, 0.1 * (v as f32).powi(3)])
+            .collect();
+        let frames = Tensor::from_slice(&pix).view([n as i64, 3]);
+        let faithful = fold(&frames, &x).unwrap();
+        assert!(faithful.folded_share < 0.02, "{faithful:?}");
+        assert!(faithful.explained_share > 0.98, "{faithful:?}");
+        let height: Vec<f64> = x.iter().map(|v| v * v).collect();
+        let folded = fold(&frames, &height).unwrap();
+        assert!(folded.folded_share > 0.5, "{folded:?}");
+    }
+
+    #[test]
+    fn smooth_r2_is_one_for_a_function_and_zero_for_noise() {
+        let x: Vec<f64> = (0..500).map(|i| i as f64 / 500.0).collect();
+        let y: Vec<f64> = x.iter().map(|v| (3.0 * v).sin()).collect();
+        assert!(smooth_r2(&x, &y, 5) > 0.99);
+        let noise: Vec<f64> = (0..500)
+            .map(|i| ((i * 7919 % 1000) as f64 / 1000.0) - 0.5)
+            .collect();
+        assert!(smooth_r2(&x, &noise, 5) < 0.2);
+    }
+}

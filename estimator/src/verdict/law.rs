@@ -1,0 +1,70 @@
+//! The law fits: the rollout must explain the latent's motion within clips. A latent that
+//! follows something the law does not describe (frames out of order, flicker, a static scene's
+//! noise, a different law) leaves residuals as large as the motion itself, or a misfit that is
+//! smooth in time rather than noise.
+
+use super::{Check, Grade, Reason};
+use crate::report::Report;
+use physvid_shared::cli::approx;
+
+pub struct LawFits;
+
+/// The share of the latent's motion within clips the law may leave unexplained before the fit
+/// is doubtful, and before it is unreliable.
+pub const DOUBTFUL_UNEXPLAINED: f64 = 0.15;
+pub const UNRELIABLE_UNEXPLAINED: f64 = 0.5;
+/// A misfit at least this large that is also smooth in time (residual autocorrelation above
+/// [`STRUCTURED`]) says the law's shape is wrong rather than the frames noisy.
+pub const STRUCTURED_UNEXPLAINED: f64 = 0.02;
+pub const STRUCTURED: f64 = 0.7;
+
+impl Check for LawFits {
+    fn name(&self) -> &'static str {
+        "law"
+    }
+    fn judge(&self, r: &Report) -> Vec<Reason> {
+        let Some(law) = &r.evidence.law else {
+            return Vec::new();
+        };
+        let u = law.unexplained_within;
+        let pct = approx(100.0 * u);
+        if u >= UNRELIABLE_UNEXPLAINED {
+            return vec![Reason::new(
+                self.name(),
+                Grade::Unreliable,
+                format!(
+                    "the law explains little of the latent's motion within clips ({pct} % left \
+                     unexplained on the validation clips): the latent does not follow a motion \
+                     of this law (frames out of order, flicker, a scene that does not move, or \
+                     another model)"
+                ),
+            )
+            .measured(u, UNRELIABLE_UNEXPLAINED)];
+        }
+        if u >= DOUBTFUL_UNEXPLAINED {
+            return vec![Reason::new(
+                self.name(),
+                Grade::Doubtful,
+                format!(
+                    "the law leaves {pct} % of the latent's motion within clips unexplained on \
+                     the validation clips: noisy frames, a distracting motion, or another model"
+                ),
+            )
+            .measured(u, DOUBTFUL_UNEXPLAINED)];
+        }
+        if u >= STRUCTURED_UNEXPLAINED && law.residual_autocorrelation >= STRUCTURED {
+            return vec![Reason::new(
+                self.name(),
+                Grade::Doubtful,
+                format!(
+                    "the rollout misses the latent by a smooth curve, not noise ({pct} % of the \
+                     motion within clips, residual autocorrelation {}): the law's shape does \
+                     not match the motion; check the model",
+                    approx(law.residual_autocorrelation)
+                ),
+            )
+            .measured(law.residual_autocorrelation, STRUCTURED)];
+        }
+        Vec::new()
+    }
+}

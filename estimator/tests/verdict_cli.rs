@@ -1,0 +1,257 @@
+//! The verdict end to end: a right answer is graded `ok` and exits 0; constructed failures are
+//! never graded `ok` (issue 17's list: a harmonic, frames out of order, a scene that does not
+//! move, one law's data read with another, clips too short for the damping), and an
+//! `unreliable` answer still writes its files and exits with code 4.
+
+mod util;
+
+use physvid_shared::npy::{read_npy, write_npy};
+use std::path::{Path, PathBuf};
+use util::{gen_dataset, read_report, stderr, Estimate};
+
+/// The verdict's grade and the names of the checks that gave reasons.
+fn verdict(out: &Path) -> (String, Vec<String>) {
+    let r = read_report(out);
+    let v = &r["verdict"];
+    let checks = v["reasons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["check"].as_str().unwrap().to_string())
+        .collect();
+    (v["grade"].as_str().unwrap().to_string(), checks)
+}
+
+/// Runs `estimate` on `input` with `args` into `out`; returns the exit code.
+fn run(input: &str, args: &[&str], out: &Path) -> i32 {
+    let o = Estimate::new(input)
+        .args(args)
+        .args(["--threads", "2"])
+        .out(out)
+        .quiet()
+        .output();
+    let code = o.status.code().unwrap();
+    assert!(
+        code == 0 || code == 4,
+        "{input} {args:?}: exit {code}: {}",
+        stderr(&o)
+    );
+    code
+}
+
+/// A data set's frames, changed by `f` (clip length, pixels per frame, frames), as a bare
+/// `.npy` at `path`.
+fn altered(data: &str, path: &Path, mut f: impl FnMut(usize, usize, &mut [f32])) -> String {
+    let mut a = read_npy(&Path::new(data).join("frames.npy")).unwrap();
+    let frames = a.shape[1];
+    let pixels: usize = a.shape[2..].iter().product();
+    f(frames, pixels, &mut a.data);
+    write_npy(std::fs::File::create(path).unwrap(), &a.shape, &a.data).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// A seeded stream of numbers in [0, 1) (a 64-bit LCG: enough to shuffle and to make noise).
+fn stream(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+    move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn tmp_paths() -> (tempfile::TempDir, PathBuf) {
+    let tmp = tempfile::tempdir().unwrap();
+    let p = tmp.path().to_path_buf();
+    (tmp, p)
+}
+
+#[test]
+fn a_right_answer_is_ok_with_errors_and_exits_zero() {
+    let (_tmp, dir) = tmp_paths();
+    let data = gen_dataset(
+        &dir.join("data"),
+        "intensity",
+        &["--samples", "200", "--size", "32"],
+    );
+    let out = dir.join("run");
+    let o = Estimate::new(&data).args(["--threads", "2"]).out(&out).ok();
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        table.contains("± std. err.") && table.contains("verdict: ok"),
+        "{table}"
+    );
+    let r = read_report(&out);
+    assert_eq!(r["verdict"]["grade"], "ok", "{}", r["verdict"]);
+    let g0 = util::parameter(&r, "gamma0");
+    let se = g0["standard_error"].as_f64().unwrap();
+    assert!(se > 0.0 && se < 0.01 * 4.0016, "{se}");
+    // The error bar covers the truth to within a few of itself on a clean set.
+    let err = (g0["estimate"].as_f64().unwrap() - 4.0016).abs();
+    assert!(err < 10.0 * se, "{err} vs {se}");
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(page.contains("data-grade=\"ok\""));
+}
+
+#[test]
+fn the_oscillator_forced_onto_its_harmonic_is_not_ok() {
+    // A rod and bob swinging to 60°: its height swings at 2ω. Started at 4× γ0 alone, the
+    // encoder learns it.
+    let (_tmp, dir) = tmp_paths();
+    let data = gen_dataset(
+        &dir.join("data"),
+        "rod",
+        &["--samples", "200", "--size", "48"],
+    );
+    let out = dir.join("run");
+    let code = run(
+        &data,
+        &["--single-start", "--init", "gamma0=16,gamma1=0.16"],
+        &out,
+    );
+    let r = read_report(&out);
+    let g0 = util::estimate_of(&r, "gamma0");
+    assert!(g0 > 10.0, "did not land on the harmonic: {g0}");
+    let (grade, checks) = verdict(&out);
+    assert_ne!(grade, "ok", "{checks:?}");
+    assert!(checks.contains(&"harmonic".to_string()), "{checks:?}");
+    assert_eq!(code == 4, grade == "unreliable");
+}
+
+#[test]
+fn frames_out_of_order_are_unreliable_and_exit_four_with_files_written() {
+    let (_tmp, dir) = tmp_paths();
+    let data = gen_dataset(
+        &dir.join("data"),
+        "intensity",
+        &["--samples", "200", "--size", "32"],
+    );
+    let mut next = stream(1);
+    let npy = altered(&data, &dir.join("shuffled.npy"), |t, px, x| {
+        for clip in x.chunks_mut(t * px) {
+            // Fisher–Yates over the clip's frames.
+            for i in (1..t).rev() {
+                let j = (next() * (i + 1) as f64) as usize;
+                for p in 0..px {
+                    clip.swap(i * px + p, j * px + p);
+                }
+            }
+        }
+    });
+    let out = dir.join("run");
+    let o = Estimate::new(&npy)
+        .args([
+            "--dt",
+            "0.2",
+            "--model",
+            "damped-oscillator",
+            "--threads",
+            "2",
+        ])
+        .out(&out)
+        .output();
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    assert!(stderr(&o).contains("unreliable"), "{}", stderr(&o));
+    let (grade, checks) = verdict(&out);
+    assert_eq!(grade, "unreliable");
+    assert!(checks.contains(&"law".to_string()), "{checks:?}");
+    for f in ["report.json", "report.html", "metrics.csv"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+}
+
+#[test]
+fn a_scene_that_does_not_move_is_unreliable() {
+    let (_tmp, dir) = tmp_paths();
+    let data = gen_dataset(
+        &dir.join("data"),
+        "position",
+        &["--samples", "200", "--size", "32"],
+    );
+    // Each clip's first frame held still, with sensor noise; and held still under a
+    // flickering light.
+    let mut noise = stream(2);
+    let still = altered(&data, &dir.join("noise.npy"), |t, px, x| {
+        for clip in x.chunks_mut(t * px) {
+            for k in 1..t {
+                for p in 0..px {
+                    let gauss: f64 = (0..12).map(|_| noise()).sum::<f64>() - 6.0;
+                    clip[k * px + p] = clip[p] + (0.05 * gauss) as f32;
+                }
+            }
+        }
+    });
+    let mut light = stream(3);
+    let flicker = altered(&data, &dir.join("flicker.npy"), |t, px, x| {
+        for clip in x.chunks_mut(t * px) {
+            for k in 1..t {
+                let gain = 1.0 + 0.4 * (light() - 0.5);
+                for p in 0..px {
+                    clip[k * px + p] = clip[p] * gain as f32;
+                }
+            }
+        }
+    });
+    for (npy, name) in [(still, "noise"), (flicker, "flicker")] {
+        let out = dir.join(name);
+        run(&npy, &["--dt", "0.2", "--model", "damped-oscillator"], &out);
+        let (grade, checks) = verdict(&out);
+        assert_eq!(grade, "unreliable", "{name}: {checks:?}");
+    }
+}
+
+#[test]
+fn one_laws_data_read_with_another_is_not_ok() {
+    let (_tmp, dir) = tmp_paths();
+    let tank = gen_dataset(
+        &dir.join("tank"),
+        "torricelli",
+        &["--samples", "200", "--size", "32"],
+    );
+    let out = dir.join("tank-as-led");
+    run(
+        &format!("{tank}/frames.npy"),
+        &["--dt", "1", "--model", "led"],
+        &out,
+    );
+    let (grade, checks) = verdict(&out);
+    assert_ne!(grade, "ok", "{checks:?}");
+    let fall = gen_dataset(
+        &dir.join("fall"),
+        "free-fall",
+        &["--samples", "200", "--size", "32"],
+    );
+    let out = dir.join("fall-as-oscillator");
+    run(
+        &format!("{fall}/frames.npy"),
+        &["--dt", "0.0333333", "--model", "damped-oscillator"],
+        &out,
+    );
+    let (grade, checks) = verdict(&out);
+    assert_ne!(grade, "ok", "{checks:?}");
+}
+
+#[test]
+fn clips_too_short_for_the_damping_are_not_ok() {
+    // 20 clips of 6 frames over 0.25 s: the amplitude decays by 1 % within a clip.
+    let (_tmp, dir) = tmp_paths();
+    let data = gen_dataset(
+        &dir.join("data"),
+        "intensity",
+        &[
+            "--samples",
+            "20",
+            "--frames",
+            "6",
+            "--dt",
+            "0.05",
+            "--size",
+            "32",
+        ],
+    );
+    let out = dir.join("run");
+    run(&data, &[], &out);
+    let (grade, checks) = verdict(&out);
+    assert_ne!(grade, "ok", "{checks:?}");
+}
