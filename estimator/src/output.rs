@@ -98,7 +98,8 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
             write_file(out, "clips.png", png)?;
         }
         figures.push(Figure {
-            caption: "The first clips as the model saw them",
+            caption: "The first clips as the model saw them (above them, for --crop auto, where \
+                      the picture moves: the motion map, the part kept in red)",
             png: png.clone(),
             pixels: true,
         });

@@ -11,7 +11,7 @@ use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
-use crate::train::{fit, StopReason};
+use crate::train::{fit, fit_fundamental, StopReason};
 use crate::verdict::Grade;
 use std::time::Instant;
 
@@ -85,9 +85,19 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     }
     let names = model.parameter_names();
     let progress = Progress::new(cfg.epochs, cfg.quiet);
-    let (outcome, probes) = fit(cfg, &data, device, &starts, &mut |rec| {
-        progress.epoch(rec, &names)
-    })?;
+    let quiet = cfg.quiet;
+    let (outcome, probes) = fit_fundamental(
+        cfg,
+        &data,
+        device,
+        &starts,
+        &mut |rec| progress.epoch(rec, &names),
+        &mut |msg| {
+            if !quiet {
+                eprintln!("{msg}");
+            }
+        },
+    )?;
     progress.finish();
     let chosen = probes
         .iter()
@@ -99,11 +109,16 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         threads: cfg.threads,
         wall: start.elapsed(),
     };
+    // Further members of an ensemble: the same clips and starts (the half-frequency start
+    // alone where it won), seeds --seed+1 … --seed+K−1.
+    let member_starts = match probes.iter().find(|p| p.chosen && p.note.is_some()) {
+        Some(p) => vec![p.initial.clone()],
+        None => starts.clone(),
+    };
     let mut report = Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
     if let Some(why) = failure(&report) {
         return Err(EstimateError::NoEstimate(why).into());
     }
-    // Further members of an ensemble: the same clips and starts, seeds --seed+1 … --seed+K−1.
     let (mut members, mut failed) = (Vec::new(), Vec::new());
     for i in 1..cfg.ensemble {
         let member = cfg.with_seed(cfg.seed + i as u64);
@@ -115,7 +130,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
                 member.seed
             );
         }
-        let (o, _) = fit(&member, &data, device, &starts, &mut |_| {})?;
+        let (o, _) = fit(&member, &data, device, &member_starts, &mut |_| {})?;
         let r = Report::new(&member, &data, info(start), &chosen, o);
         match failure(&r) {
             Some(why) => failed.push(format!("seed {}: {why}", member.seed)),

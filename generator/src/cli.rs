@@ -5,6 +5,7 @@
 
 use crate::config::GenConfig;
 use crate::error::{invalid, ConfigError};
+use crate::perturb::{self, MAX_LEVEL, PERTURBATIONS};
 use crate::scenes::file::FileScene;
 use crate::scenes::{SceneRef, SCENES};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
@@ -68,6 +69,8 @@ pub struct GenArgs {
     /// Standard deviation σ of Gaussian pixel noise in [0, 1]; noisy values are clipped to [0, 1].
     #[arg(long, default_value_t = 0.0)]
     pub noise: f64,
+    #[arg(long, value_name = "NAME:LEVEL,...", help = perturb_help())]
+    pub perturb: Option<String>,
     /// Overwrite the dataset files in a non-empty DIR.
     #[arg(long)]
     pub force: bool,
@@ -140,6 +143,18 @@ fn setting_help() -> String {
         .collect();
     format!(
         "Delfys75 scenes: the column of appendix Table 4 ({}) [default: 1]",
+        each.join("; ")
+    )
+}
+
+fn perturb_help() -> String {
+    let each: Vec<String> = PERTURBATIONS
+        .iter()
+        .map(|p| format!("{}: {}", p.name(), p.help()))
+        .collect();
+    format!(
+        "Perturb every clip after rendering, levels 1 to {MAX_LEVEL} (the footage of others: \
+         applied in this order, seeded apart from the scene's draws). {}",
         each.join("; ")
     )
 }
@@ -249,6 +264,9 @@ impl GenArgs {
         cfg.seed = self.seed;
         cfg.noise = self.noise;
         cfg.force = self.force;
+        if let Some(text) = &self.perturb {
+            cfg.perturbations = perturb::parse(text).map_err(|e| invalid("--perturb", text, e))?;
+        }
         let mut cfg = cfg.validate()?;
         if let Some(f) = file {
             // The map from the observed variable onto z, from every clip's trajectory.

@@ -1,6 +1,7 @@
 //! `GenConfig`: the validated settings of one `gen` run.
 
 use crate::error::{invalid, ConfigError};
+use crate::perturb::Perturbed;
 use crate::scenes::{Params, SceneRef};
 use physvid_shared::cli::num;
 use physvid_shared::dynamics::DT_RANGE;
@@ -29,6 +30,8 @@ pub struct GenConfig {
     pub color: bool,
     /// The scene's parameters (SI): the oscillator's omega and zeta, or a Delfys75 system's.
     pub params: Params,
+    /// Perturbations applied to every clip after rendering (`--perturb`).
+    pub perturbations: Vec<Perturbed>,
 }
 
 impl GenConfig {
@@ -48,6 +51,7 @@ impl GenConfig {
             force: false,
             color: false,
             params: scene.params(1),
+            perturbations: Vec::new(),
         }
     }
 

@@ -1,6 +1,7 @@
 //! `generate`: renders every sample of a dataset in parallel (rayon over samples).
 
 use crate::config::GenConfig;
+use crate::perturb::{apply_all, Clip};
 use crate::render::Canvas;
 use crate::sampling::sample_rng;
 use physvid_shared::SampleTruth;
@@ -43,6 +44,17 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
                     .zip(clip.chunks_exact_mut(pixels))
                 {
                     scene.render(&cfg.params, z, cfg.size, canvas, frame);
+                }
+                if !cfg.perturbations.is_empty() {
+                    let mut c = Clip {
+                        frames: clip,
+                        frames_per_clip: cfg.frames,
+                        channels: pixels / (cfg.size * cfg.size),
+                        size: cfg.size,
+                        dt: cfg.dt,
+                        canvas,
+                    };
+                    apply_all(&cfg.perturbations, &mut c, cfg.seed, range.start + i);
                 }
                 if cfg.noise > 0.0 {
                     let sigma = cfg.noise as f32;

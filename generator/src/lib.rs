@@ -6,6 +6,7 @@ pub mod cli;
 pub mod config;
 pub mod error;
 pub mod generate;
+pub mod perturb;
 pub mod render;
 pub mod sampling;
 pub mod scenes;

@@ -4,7 +4,7 @@
 use crate::config::GenConfig;
 use crate::generate::{generate_samples, Generated};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
-use physvid_shared::meta::{GeneratorInfo, FORMAT_NAME, FORMAT_VERSION};
+use physvid_shared::meta::{GeneratorInfo, PerturbationSpec, FORMAT_NAME, FORMAT_VERSION};
 use physvid_shared::{DatasetError, DatasetFiles, DatasetMeta, DatasetWriter, ModelSpec};
 
 /// Version written into `meta.json`.
@@ -42,6 +42,15 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
         samples: g.samples.clone(),
         latent_dims: scene.latent_dims(),
         latents: g.latents.clone(),
+        perturbations: cfg
+            .perturbations
+            .iter()
+            .map(|p| PerturbationSpec {
+                name: p.perturbation.name().into(),
+                level: p.level,
+                description: p.perturbation.help().into(),
+            })
+            .collect(),
     }
 }
 

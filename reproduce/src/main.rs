@@ -7,6 +7,7 @@ mod coverage;
 mod init;
 mod losses;
 mod noise;
+mod robustness;
 mod runner;
 mod spring;
 mod table;
@@ -47,12 +48,15 @@ enum TableKind {
     /// The verdict on default runs of every scene (its false alarms) and on constructed
     /// failures (a harmonic, frames out of order, a still scene, the wrong law, short clips).
     Verdict,
+    /// Perturbed scenes (texture, distractors, shake, drift, light, occluder, noise; levels
+    /// 1–5) on the oscillator's scenes and the pendulum: error and verdict.
+    Robustness,
     /// Every table above, one after another.
     All,
 }
 
 impl TableKind {
-    const EACH: [TableKind; 8] = [
+    const EACH: [TableKind; 9] = [
         TableKind::Table3,
         TableKind::Table6,
         TableKind::Init,
@@ -61,6 +65,7 @@ impl TableKind {
         TableKind::Coverage,
         TableKind::Spring,
         TableKind::Verdict,
+        TableKind::Robustness,
     ];
 
     fn name(self) -> &'static str {
@@ -73,6 +78,7 @@ impl TableKind {
             TableKind::Coverage => "coverage",
             TableKind::Spring => "spring",
             TableKind::Verdict => "verdict",
+            TableKind::Robustness => "robustness",
             TableKind::All => "all",
         }
     }
@@ -87,6 +93,7 @@ impl TableKind {
             TableKind::Coverage => coverage::make(r),
             TableKind::Spring => spring::make(r),
             TableKind::Verdict => verdict::make(r),
+            TableKind::Robustness => robustness::make(r),
             TableKind::All => unreachable!("expanded before"),
         }
     }

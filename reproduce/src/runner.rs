@@ -23,8 +23,8 @@ pub struct DataSpec {
     pub setting: u8,
     pub seed: u64,
     pub noise: f64,
-    /// Further `gen` arguments (`--set NAME=VALUE`, `--color`).
-    pub extra: Vec<&'static str>,
+    /// Further `gen` arguments (`--set NAME=VALUE`, `--color`, `--perturb NAME:LEVEL`).
+    pub extra: Vec<String>,
 }
 
 impl DataSpec {

@@ -36,7 +36,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         ..DataSpec::new("spring", quick)
     };
     let with = |extra: Vec<&'static str>, frames: Option<usize>, samples: usize| DataSpec {
-        extra,
+        extra: extra.into_iter().map(String::from).collect(),
         frames,
         samples,
         ..base.clone()

@@ -76,6 +76,17 @@ pub struct DatasetMeta {
     /// Ground-truth latent of every sample (outer) and frame (inner; `latent_dims` numbers per
     /// frame, frame-major).
     pub latents: Vec<Vec<f64>>,
+    /// Perturbations applied after rendering (`gen --perturb`), in the order applied.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub perturbations: Vec<PerturbationSpec>,
+}
+
+/// One perturbation of a data set: its name, level (1–5) and what it did, in words.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PerturbationSpec {
+    pub name: String,
+    pub level: u8,
+    pub description: String,
 }
 
 fn one() -> usize {

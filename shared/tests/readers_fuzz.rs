@@ -57,6 +57,7 @@ fn valid_meta() -> DatasetMeta {
         samples: vec![SampleTruth::from_pairs([("amplitude", 1.0)]); 2],
         latent_dims: 1,
         latents: vec![vec![0.0; 3]; 2],
+        perturbations: Vec::new(),
     }
 }
 

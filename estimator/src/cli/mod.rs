@@ -12,7 +12,7 @@ mod training;
 
 pub use batch::{parse_shard, BatchArgs, Shard};
 pub use model::{parse_init, parse_reference, ModelArgs};
-pub use recording::{parse_crop, parse_size, RecordingArgs};
+pub use recording::{parse_crop, parse_size, Framing, RecordingArgs};
 pub use training::{DeviceChoice, TrainingArgs};
 
 use crate::error::{input_error, EstimateError};

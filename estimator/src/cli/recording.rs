@@ -23,9 +23,12 @@ pub struct RecordingArgs {
     /// 30 fps for a 120 fps capture); required for an image folder.
     #[arg(long)]
     pub fps: Option<f64>,
-    /// Crop X,Y,W,H in pixels of the displayed (rotated) frame (W, H ≥ 4).
-    #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H")]
-    pub crop: Option<Crop>,
+    /// What part of the frame the encoder sees: X,Y,W,H in pixels of the displayed (rotated)
+    /// frame (W, H ≥ 4); `full` for the whole frame; `auto` (the default for videos) for the
+    /// region where the picture moves, found by a quick low-resolution pass (report.html shows
+    /// it; an image folder keeps its whole frame).
+    #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H|auto|full")]
+    pub crop: Option<Framing>,
     /// First second to use (of the file's own timeline). For sliding-block and free-fall the
     /// first frame kept is taken as the release from rest.
     #[arg(long)]
@@ -64,15 +67,32 @@ fn frames_help() -> String {
     )
 }
 
-/// Parses `--crop X,Y,W,H`.
-pub fn parse_crop(text: &str) -> Result<Crop, String> {
+/// `--crop`'s choice of what the encoder sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Framing {
+    /// Where the picture moves (a survey of the recording).
+    Auto,
+    /// The whole frame.
+    Full,
+    /// The rectangle given.
+    Crop(Crop),
+}
+
+/// Parses `--crop X,Y,W,H|auto|full`.
+pub fn parse_crop(text: &str) -> Result<Framing, String> {
+    match text.trim() {
+        "auto" => return Ok(Framing::Auto),
+        "full" => return Ok(Framing::Full),
+        _ => {}
+    }
     let v: Vec<usize> = text
         .split(',')
         .map(|p| p.trim().parse::<usize>())
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{text}' is not X,Y,W,H in pixels (e.g. 100,0,400,300)"))?;
     match v[..] {
-        [x, y, w, h] if w >= 4 && h >= 4 => Ok(Crop { x, y, w, h }),
+        [x, y, w, h] if w >= 4 && h >= 4 => Ok(Framing::Crop(Crop { x, y, w, h })),
         [_, _, _, _] => Err(format!(
             "'{text}': a crop of W, H ≥ 4 pixels is needed to show a motion (e.g. 100,0,400,300)"
         )),
@@ -163,13 +183,15 @@ mod tests {
     fn crop_and_size_parse_or_say_what_is_expected() {
         assert_eq!(
             parse_crop("1,2,30,40").unwrap(),
-            Crop {
+            Framing::Crop(Crop {
                 x: 1,
                 y: 2,
                 w: 30,
                 h: 40
-            }
+            })
         );
+        assert_eq!(parse_crop("auto").unwrap(), Framing::Auto);
+        assert_eq!(parse_crop("full").unwrap(), Framing::Full);
         assert!(parse_crop("1,2,0,4").unwrap_err().contains("W, H ≥ 4"));
         // A 1×1 crop used to be stretched to the frame size and trained on.
         assert!(parse_crop("10,10,1,1").unwrap_err().contains("W, H ≥ 4"));

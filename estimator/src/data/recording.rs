@@ -3,14 +3,18 @@
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
 use super::Source;
-use crate::cli::{EstimateArgs, RecordingArgs};
+use crate::cli::{EstimateArgs, Framing, RecordingArgs};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::{approx, num};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
-use physvid_shared::video::{self, Crop, VideoInfo, VideoOptions};
+use physvid_shared::video::{self, Crop, Survey, VideoInfo, VideoOptions};
 use serde::Serialize;
 use std::path::Path;
+
+/// An automatic crop covering more of the frame than this is not made (the whole frame is
+/// kept): it would gain little resolution.
+pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
 
 /// At most this many clips by default: the hop between clip starts grows to stay below it.
 pub const MAX_DEFAULT_CLIPS: usize = 1000;
@@ -28,13 +32,21 @@ pub struct RecordingSummary {
     pub hop: usize,
     pub clips: usize,
     pub size: (usize, usize),
+    /// The part of the frame the encoder saw (`None`: all of it), and how it was chosen.
     pub crop: Option<Crop>,
+    pub framing: &'static str,
+    /// `--crop auto`: where the picture moves (the survey's region and its share of the frame
+    /// and of the motion).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub survey: Option<Survey>,
     /// `--preview`: clips.png written beside the report.
     pub preview: bool,
     pub start: Option<f64>,
     pub end: Option<f64>,
-    /// Seconds spent decoding (ffmpeg, the pipe, crop and resize) and frames per second.
+    /// Seconds spent decoding (ffmpeg, the pipe, crop and resize, and the survey of where the
+    /// picture moves) and frames per second.
     pub decode_s: f64,
+    pub survey_s: f64,
     pub decode_fps: f64,
     /// First recording frame of each clip (index into the decoded frames).
     #[serde(skip)]
@@ -204,9 +216,32 @@ pub fn load_recording(
     let stride = flags
         .stride
         .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
+    let started = std::time::Instant::now();
+    // What the encoder sees: the flag's rectangle, the whole frame, or where it moves.
+    let (crop, framing, survey) = match (flags.crop, &info) {
+        (Some(Framing::Crop(c)), _) => (Some(c), "--crop", None),
+        (Some(Framing::Full), _) => (None, "whole frame (--crop full)", None),
+        (_, Some(i)) => {
+            let s = video::survey(input, i, flags.start, flags.end)?;
+            // The region at the encoder's aspect ratio; not worth it over most of the frame.
+            let frame = (i.width, i.height);
+            let crop = s
+                .crop
+                .map(|c| c.with_aspect(size.0 as f64 / size.1 as f64, frame))
+                .filter(|c| c.area_share(frame) <= AUTO_CROP_MAX_SHARE);
+            let how = if crop.is_some() {
+                "where the picture moves (--crop auto)"
+            } else {
+                "whole frame: the motion fills most of it (--crop auto)"
+            };
+            (crop, how, Some(s))
+        }
+        (_, None) => (None, "whole frame (an image folder)", None),
+    };
+    let survey_s = started.elapsed().as_secs_f64();
     let opts = VideoOptions {
         fps: Some(fps),
-        crop: flags.crop,
+        crop,
         start: flags.start,
         end: flags.end,
         size,
@@ -215,7 +250,6 @@ pub fn load_recording(
         hop: flags.hop,
         max_clips: MAX_DEFAULT_CLIPS,
     };
-    let started = std::time::Instant::now();
     let decoded = video::decode(input, &opts, info)?;
     let decode_s = started.elapsed().as_secs_f64();
     let n = decoded.clip_starts.len();
@@ -226,7 +260,11 @@ pub fn load_recording(
         let rows: Vec<usize> = (0..m).map(|k| k * (n - 1) / (m - 1).max(1)).collect();
         let (clips, shape) = decoded.clips(&rows, frames_per_clip, stride);
         let all: Vec<usize> = (0..rows.len()).collect();
-        encode_png(&contact_sheet(&clips, shape, &all, 2))
+        let sheet = contact_sheet(&clips, shape, &all, 2);
+        encode_png(&match &survey {
+            Some(s) => framing_over(s, crop, decoded.info.width, &sheet),
+            None => sheet,
+        })
     });
     let summary = RecordingSummary {
         info: decoded.info.clone(),
@@ -238,11 +276,14 @@ pub fn load_recording(
         hop: decoded.hop,
         clips: decoded.clip_starts.len(),
         size,
-        crop: flags.crop,
+        crop,
+        framing,
+        survey,
         preview: flags.preview,
         start: flags.start,
         end: flags.end,
-        decode_s,
+        decode_s: decode_s + survey_s,
+        survey_s,
         decode_fps: decoded.frame_count() as f64 / decode_s.max(1e-9),
         clip_starts: decoded.clip_starts.clone(),
     };
@@ -264,4 +305,45 @@ pub fn load_recording(
         summary,
         warnings,
     })
+}
+
+/// The survey's motion map (grey) with the crop drawn in red, scaled to the width of `sheet`,
+/// above it.
+fn framing_over(
+    survey: &Survey,
+    crop: Option<Crop>,
+    full_width: usize,
+    sheet: &image::DynamicImage,
+) -> image::DynamicImage {
+    use image::{Rgb, RgbImage};
+    let (w, h) = survey.map_size;
+    let scale = ((sheet.width() as usize / w.max(1)).max(1)).min(4);
+    let (mw, mh) = (w * scale, h * scale);
+    let width = (sheet.width() as usize).max(mw);
+    let mut out = RgbImage::new(width as u32, (mh + 4) as u32 + sheet.height());
+    for y in 0..mh {
+        for x in 0..mw {
+            let v = (survey.map[(y / scale) * w + x / scale].clamp(0.0, 1.0) * 255.0) as u8;
+            out.put_pixel(x as u32, y as u32, Rgb([v, v, v]));
+        }
+    }
+    if let Some(c) = crop {
+        let f = mw as f64 / full_width.max(1) as f64;
+        let (x0, y0) = ((c.x as f64 * f) as u32, (c.y as f64 * f) as u32);
+        let x1 = (((c.x + c.w) as f64 * f) as u32).min(mw as u32 - 1);
+        let y1 = (((c.y + c.h) as f64 * f) as u32).min(mh as u32 - 1);
+        for x in x0..=x1 {
+            out.put_pixel(x, y0, Rgb([230, 40, 30]));
+            out.put_pixel(x, y1, Rgb([230, 40, 30]));
+        }
+        for y in y0..=y1 {
+            out.put_pixel(x0, y, Rgb([230, 40, 30]));
+            out.put_pixel(x1, y, Rgb([230, 40, 30]));
+        }
+    }
+    let sheet = sheet.to_rgb8();
+    for (x, y, p) in sheet.enumerate_pixels() {
+        out.put_pixel(x, y + mh as u32 + 4, *p);
+    }
+    image::DynamicImage::ImageRgb8(out)
 }

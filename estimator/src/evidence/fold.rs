@@ -17,6 +17,12 @@ use crate::pca::{principal_directions, project};
 use serde::Serialize;
 use tch::{Kind, Tensor};
 
+/// Folded shares of the picture above this are a folded latent, between [`MAYBE_FOLDED`] and
+/// it possibly one (measured: faithful latents on every `gen` scene and the shared recordings
+/// below 0.01, a rod-and-bob's 2ω latent 0.15–0.34; docs/verdict.md).
+pub const FOLDED: f64 = 0.1;
+pub const MAYBE_FOLDED: f64 = 0.05;
+
 /// Leading principal components examined.
 pub const COMPONENTS: i64 = 6;
 

@@ -155,10 +155,11 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
                 ),
             ),
             (
-                "crop",
-                r.crop.map_or("none".into(), |c| {
-                    format!("{},{},{},{}", c.x, c.y, c.w, c.h)
-                }),
+                "framing",
+                match r.crop {
+                    Some(c) => format!("{}: {},{},{},{}", r.framing, c.x, c.y, c.w, c.h),
+                    None => r.framing.to_string(),
+                },
             ),
             ("encoder frame size", format!("{}×{}", r.size.0, r.size.1)),
             (

@@ -235,6 +235,12 @@ pub trait Model: Sync {
     fn oscillates(&self, _params: &[f64]) -> bool {
         false
     }
+    /// The parameters of the same law swinging at half the frequency of `params`' motion, for
+    /// a start there when the latent folds the picture (an even function of the motion swings
+    /// at twice its frequency); `None` where the law has no such rescaling.
+    fn subharmonic(&self, _params: &[f64]) -> Option<Vec<f64>> {
+        None
+    }
     /// Values of the report (name, estimate, standard error; 0 where unknown) that the model
     /// forbids or finds implausible.
     fn implausible(&self, _values: &[(&str, f64, f64)]) -> Vec<Implausible> {

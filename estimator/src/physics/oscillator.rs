@@ -73,6 +73,10 @@ impl Model for DampedOscillator {
     ) -> Vec<Vec<f64>> {
         spectral_start(train, dt, integrator).into_iter().collect()
     }
+    /// Half the frequency: γ0/4 (ω² + ζ² with both halved), γ1/2.
+    fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
+        Some(vec![params[0] / 4.0, params[1] / 2.0])
+    }
     fn oscillates(&self, _params: &[f64]) -> bool {
         true
     }

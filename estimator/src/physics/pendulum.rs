@@ -69,6 +69,13 @@ impl Model for Pendulum {
         ]
     }
     /// The small-angle frequency √(g/L), the fastest it swings.
+    /// Half the frequency: g/L/4, the damping halved, the map kept.
+    fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
+        let mut p = params.to_vec();
+        p[0] /= 4.0;
+        p[1] /= 2.0;
+        Some(p)
+    }
     fn oscillates(&self, _params: &[f64]) -> bool {
         true
     }

@@ -10,10 +10,7 @@ use physvid_shared::cli::approx;
 
 pub struct Harmonic;
 
-/// Folded shares of the picture above this are a folded latent, between [`MAYBE_FOLDED`] and
-/// it possibly one (README, "Reading the verdict", has the measurements).
-pub const FOLDED: f64 = 0.1;
-pub const MAYBE_FOLDED: f64 = 0.05;
+use crate::evidence::fold::{FOLDED, MAYBE_FOLDED};
 
 impl Check for Harmonic {
     fn name(&self) -> &'static str {

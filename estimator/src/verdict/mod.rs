@@ -3,6 +3,7 @@
 //! one file implementing [`Check`], listed once in [`CHECKS`]; README's "Reading the verdict"
 //! describes them, and their thresholds are justified there by measurement.
 
+mod calibration;
 mod consistency;
 mod harmonic;
 mod law;
@@ -122,6 +123,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &uncertainty::Determined,
     &consistency::Halves,
     &physics::Plausible,
+    &calibration::References,
 ];
 
 #[cfg(test)]

@@ -208,6 +208,7 @@ mod tests {
             samples: vec![SampleTruth::from_pairs([("amplitude", 1.0), ("phase", 0.0)]); shape[0]],
             latent_dims: 1,
             latents: vec![vec![0.0; shape[1]]; shape[0]],
+        perturbations: Vec::new(),
         }
     }
 

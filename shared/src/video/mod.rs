@@ -7,10 +7,12 @@ mod decode;
 mod folder;
 mod probe;
 mod resize;
+mod survey;
 
 pub use decode::{decode, DecodedVideo};
 pub use probe::{probe, VideoInfo};
 pub use resize::FrameResizer;
+pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 
 use std::path::{Path, PathBuf};
 
@@ -39,6 +41,39 @@ pub struct Crop {
     pub y: usize,
     pub w: usize,
     pub h: usize,
+}
+
+impl Crop {
+    /// The crop widened (about its centre, within the `frame`'s width and height) to the
+    /// aspect ratio `aspect` (width / height), so that resizing it to the encoder's frame
+    /// magnifies both directions alike (a narrow band along a swing would otherwise be
+    /// stretched across, and the bob's rise at the ends of its swing with it).
+    pub fn with_aspect(self, aspect: f64, frame: (usize, usize)) -> Crop {
+        let (fw, fh) = (frame.0 as f64, frame.1 as f64);
+        let (mut w, mut h) = (self.w as f64, self.h as f64);
+        if w / h < aspect {
+            w = (h * aspect).min(fw);
+        } else {
+            h = (w / aspect).min(fh);
+        }
+        let (cx, cy) = (
+            self.x as f64 + self.w as f64 / 2.0,
+            self.y as f64 + self.h as f64 / 2.0,
+        );
+        let x = (cx - w / 2.0).clamp(0.0, fw - w);
+        let y = (cy - h / 2.0).clamp(0.0, fh - h);
+        Crop {
+            x: x.round() as usize,
+            y: y.round() as usize,
+            w: (w.round() as usize).min(frame.0 - x.round() as usize),
+            h: (h.round() as usize).min(frame.1 - y.round() as usize),
+        }
+    }
+
+    /// Its share of a `frame` (w, h).
+    pub fn area_share(&self, frame: (usize, usize)) -> f64 {
+        (self.w * self.h) as f64 / (frame.0 * frame.1).max(1) as f64
+    }
 }
 
 /// How to turn a recording into clips.
@@ -144,6 +179,28 @@ pub fn natural_cmp(a: &str, b: &str) -> std::cmp::Ordering {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_crop_widens_to_the_aspect_within_the_frame() {
+        let band = Crop {
+            x: 0,
+            y: 140,
+            w: 592,
+            h: 116,
+        };
+        let c = band.with_aspect(100.0 / 56.0, (640, 360));
+        assert_eq!((c.w, c.h), (592, 332));
+        assert!(c.y + c.h <= 360);
+        let tall = Crop {
+            x: 300,
+            y: 0,
+            w: 20,
+            h: 100,
+        };
+        let c = tall.with_aspect(2.0, (640, 360));
+        assert_eq!((c.w, c.h), (200, 100));
+        assert_eq!(c.x, 210);
+    }
 
     #[test]
     fn natural_order_sorts_numbers_by_value() {

@@ -272,6 +272,18 @@ impl Model for FileModel {
         kl::kl_coordinates(&self.file.kl, &self.file.observed, z)
     }
 
+    /// The same motion at half its frequency: the law rescaled in time, the map kept.
+    fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
+        let m = self.file.parameters.len();
+        let mut p = transformed(
+            &self.file,
+            &self.system.compiled,
+            &params[..m],
+            Transform::Time(0.5),
+        )?;
+        p.extend_from_slice(&params[m..]);
+        Some(p)
+    }
     /// When the file's motion has a frequency at these parameters.
     fn oscillates(&self, params: &[f64]) -> bool {
         self.rate(params).is_some()

@@ -1,0 +1,284 @@
+//! Framing by itself: a quick pass over a recording at low resolution (the long side at most
+//! [`SURVEY_SIDE`] pixels) that finds where the picture moves, so the encoder sees the moving
+//! object rather than a frame that is mostly wall. Each frame's mean is taken out first (a
+//! flickering light or an auto-exposure moves every pixel alike, not one region), the temporal
+//! standard deviation of every pixel is the motion map, and the region is the bounding box of
+//! the connected part of the map with the most motion (a person walking by elsewhere is a part
+//! of its own), widened by a margin. Where motion fills most of the frame, the whole frame is
+//! kept.
+
+use super::decode::read_full;
+use super::probe::tool;
+use super::{bad, Crop, VideoError, VideoInfo};
+use std::path::Path;
+use std::process::Stdio;
+
+/// The long side of the survey's frames.
+pub const SURVEY_SIDE: usize = 160;
+
+/// A pixel of the map is moving when its motion is at least this fraction of the map's
+/// strongest (after smoothing).
+const MOVING: f32 = 0.2;
+
+/// A region covering more of the frame than this is not worth a crop.
+const WHOLE_FRAME: f64 = 0.6;
+
+/// What the survey found.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Survey {
+    /// The region where the picture moves, in pixels of the displayed frame; `None` when
+    /// motion fills most of the frame (keep it whole) or nothing moves.
+    pub crop: Option<Crop>,
+    /// The region's share of the frame's area, and of all the motion.
+    pub area_share: f64,
+    pub motion_share: f64,
+    /// Separate moving regions found (a second one: something else moves too).
+    pub regions: usize,
+    /// The motion map (width × height, row-major, 0–1) and its size, for a figure.
+    #[serde(skip)]
+    pub map: Vec<f32>,
+    #[serde(skip)]
+    pub map_size: (usize, usize),
+    /// Frames surveyed.
+    pub frames: usize,
+}
+
+/// Surveys `input` (trimmed to `start`..`end` seconds, as the decode will be) for where it
+/// moves.
+pub fn survey(
+    input: &Path,
+    info: &VideoInfo,
+    start: Option<f64>,
+    end: Option<f64>,
+) -> Result<Survey, VideoError> {
+    let scale = SURVEY_SIDE as f64 / info.width.max(info.height) as f64;
+    let scale = scale.min(1.0);
+    let w = ((info.width as f64 * scale).round() as usize).max(2);
+    let h = ((info.height as f64 * scale).round() as usize).max(2);
+    let mut cmd = tool("ffmpeg")?;
+    cmd.args(["-v", "error", "-nostdin"]);
+    if let Some(s) = start {
+        cmd.args(["-ss", &format!("{s}")]);
+    }
+    cmd.arg("-i").arg(input);
+    if let Some(e) = end {
+        cmd.args(["-t", &format!("{}", e - start.unwrap_or(0.0))]);
+    }
+    cmd.args([
+        "-map",
+        "0:v:0",
+        "-fps_mode",
+        "passthrough",
+        "-vf",
+        &format!("scale={w}:{h}:flags=area"),
+        "-f",
+        "rawvideo",
+        "-pix_fmt",
+        "gray",
+        "-",
+    ])
+    .stdout(Stdio::piped())
+    .stderr(Stdio::null())
+    .stdin(Stdio::null());
+    let mut child = cmd
+        .spawn()
+        .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let mut buf = vec![0u8; w * h];
+    let mut stats = MotionStats::new(w * h);
+    while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
+        stats.add(&buf);
+    }
+    let _ = child.wait();
+    Ok(stats.survey((w, h), (info.width, info.height)))
+}
+
+/// Running per-pixel mean and variance of frames with each frame's own mean taken out.
+pub struct MotionStats {
+    n: usize,
+    mean: Vec<f64>,
+    m2: Vec<f64>,
+}
+
+impl MotionStats {
+    pub fn new(pixels: usize) -> MotionStats {
+        MotionStats {
+            n: 0,
+            mean: vec![0.0; pixels],
+            m2: vec![0.0; pixels],
+        }
+    }
+
+    /// Adds a frame (grey bytes).
+    pub fn add(&mut self, frame: &[u8]) {
+        let level = frame.iter().map(|&v| v as f64).sum::<f64>() / frame.len().max(1) as f64;
+        self.n += 1;
+        let n = self.n as f64;
+        for (i, &v) in frame.iter().enumerate() {
+            let x = v as f64 - level;
+            let d = x - self.mean[i];
+            self.mean[i] += d / n;
+            self.m2[i] += d * (x - self.mean[i]);
+        }
+    }
+
+    /// The motion map of `size` (w, h) and the region for a frame of `full` (w, h).
+    pub fn survey(&self, size: (usize, usize), full: (usize, usize)) -> Survey {
+        let (w, h) = size;
+        let std: Vec<f32> = self
+            .m2
+            .iter()
+            .map(|m| (m / self.n.max(1) as f64).sqrt() as f32)
+            .collect();
+        let map = blur(&std, w, h);
+        let top = map.iter().copied().fold(0.0f32, f32::max);
+        let empty = Survey {
+            crop: None,
+            area_share: 1.0,
+            motion_share: 1.0,
+            regions: 0,
+            map: map.iter().map(|v| v / top.max(1e-12)).collect(),
+            map_size: size,
+            frames: self.n,
+        };
+        if self.n < 3 || top <= 0.0 {
+            return empty;
+        }
+        let moving: Vec<bool> = map.iter().map(|&v| v >= MOVING * top).collect();
+        let (labels, count) = components(&moving, w, h);
+        let total: f64 = map.iter().map(|&v| v as f64).sum();
+        // The region with the most motion.
+        let mut energy = vec![0.0f64; count];
+        for (i, &l) in labels.iter().enumerate() {
+            if let Some(l) = l {
+                energy[l] += map[i] as f64;
+            }
+        }
+        let Some(best) = (0..count).max_by(|&a, &b| energy[a].total_cmp(&energy[b])) else {
+            return empty;
+        };
+        let (mut x0, mut y0, mut x1, mut y1) = (w, h, 0, 0);
+        for (i, &l) in labels.iter().enumerate() {
+            if l == Some(best) {
+                let (x, y) = (i % w, i / w);
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+        // A margin of a fifth of the region's size (at least two survey pixels) each side.
+        let (mx, my) = (((x1 - x0 + 1) / 5).max(2), ((y1 - y0 + 1) / 5).max(2));
+        let (x0, y0) = (x0.saturating_sub(mx), y0.saturating_sub(my));
+        let (x1, y1) = ((x1 + mx).min(w - 1), (y1 + my).min(h - 1));
+        let area_share = ((x1 - x0 + 1) * (y1 - y0 + 1)) as f64 / (w * h) as f64;
+        let (sx, sy) = (full.0 as f64 / w as f64, full.1 as f64 / h as f64);
+        let crop = Crop {
+            x: (x0 as f64 * sx).floor() as usize,
+            y: (y0 as f64 * sy).floor() as usize,
+            w: (((x1 + 1) as f64 * sx).ceil() as usize).min(full.0) - (x0 as f64 * sx).floor() as usize,
+            h: (((y1 + 1) as f64 * sy).ceil() as usize).min(full.1) - (y0 as f64 * sy).floor() as usize,
+        };
+        Survey {
+            crop: (area_share <= WHOLE_FRAME && crop.w >= 4 && crop.h >= 4).then_some(crop),
+            area_share,
+            motion_share: energy[best] / total.max(1e-12),
+            regions: count,
+            ..empty
+        }
+    }
+}
+
+/// A 3×3 box blur, twice (spreads a thin moving edge over its neighbours).
+fn blur(map: &[f32], w: usize, h: usize) -> Vec<f32> {
+    let once = |m: &[f32]| -> Vec<f32> {
+        (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as isize, (i / w) as isize);
+                let (mut s, mut n) = (0.0, 0.0);
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let (a, b) = (x + dx, y + dy);
+                        if a >= 0 && b >= 0 && (a as usize) < w && (b as usize) < h {
+                            s += m[b as usize * w + a as usize];
+                            n += 1.0;
+                        }
+                    }
+                }
+                s / n
+            })
+            .collect()
+    };
+    once(&once(map))
+}
+
+/// Labels of the 8-connected components of `on` (None where off) and their count.
+fn components(on: &[bool], w: usize, h: usize) -> (Vec<Option<usize>>, usize) {
+    let mut labels = vec![None; w * h];
+    let mut count = 0;
+    for start in 0..w * h {
+        if !on[start] || labels[start].is_some() {
+            continue;
+        }
+        let mut stack = vec![start];
+        labels[start] = Some(count);
+        while let Some(i) = stack.pop() {
+            let (x, y) = ((i % w) as isize, (i / w) as isize);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (a, b) = (x + dx, y + dy);
+                    if a < 0 || b < 0 || a as usize >= w || b as usize >= h {
+                        continue;
+                    }
+                    let j = b as usize * w + a as usize;
+                    if on[j] && labels[j].is_none() {
+                        labels[j] = Some(count);
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        count += 1;
+    }
+    (labels, count)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 64×36 frame with a bright square of 4 at (x, y).
+    fn frame(x: usize, y: usize, flicker: u8) -> Vec<u8> {
+        let (w, h) = (64, 36);
+        let mut f = vec![40u8 + flicker; w * h];
+        for dy in 0..4 {
+            for dx in 0..4 {
+                f[(y + dy) * w + x + dx] = 200;
+            }
+        }
+        f
+    }
+
+    #[test]
+    fn finds_the_moving_square_despite_a_flicker() {
+        let mut s = MotionStats::new(64 * 36);
+        for k in 0..40 {
+            // Swinging between x = 40 and 52 at y = 20; the whole frame flickers by ±10.
+            let x = 46 + ((k as f64 * 0.7).sin() * 6.0).round() as isize;
+            s.add(&frame(x as usize, 20, if k % 2 == 0 { 0 } else { 20 }));
+        }
+        let r = s.survey((64, 36), (640, 360));
+        let c = r.crop.expect("a region");
+        // In full-frame pixels: the square spans x 400–560, y 200–240.
+        assert!(c.x <= 400 && c.x + c.w >= 560, "{c:?}");
+        assert!(c.y <= 200 && c.y + c.h >= 240, "{c:?}");
+        assert!(r.area_share < 0.3, "{}", r.area_share);
+        assert_eq!(r.regions, 1);
+    }
+
+    #[test]
+    fn a_still_recording_keeps_the_whole_frame() {
+        let mut s = MotionStats::new(64 * 36);
+        for _ in 0..10 {
+            s.add(&frame(10, 10, 0));
+        }
+        assert!(s.survey((64, 36), (64, 36)).crop.is_none());
+    }
+}
