@@ -11,7 +11,7 @@ use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
-use crate::train::{fit, fit_fundamental, StopReason};
+use crate::train::{fit, fit_best, StopReason};
 use crate::verdict::Grade;
 use std::time::Instant;
 
@@ -86,7 +86,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let names = model.parameter_names();
     let progress = Progress::new(cfg.epochs, cfg.quiet);
     let quiet = cfg.quiet;
-    let (outcome, probes) = fit_fundamental(
+    let (outcome, probes) = fit_best(
         cfg,
         &data,
         device,
@@ -109,8 +109,8 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         threads: cfg.threads,
         wall: start.elapsed(),
     };
-    // Further members of an ensemble: the same clips and starts (the half-frequency start
-    // alone where it won), seeds --seed+1 … --seed+K−1.
+    // Further members of an ensemble: the same clips and starts (the start that won alone
+    // where one trained to the end after the probe won), seeds --seed+1 … --seed+K−1.
     let member_starts = match probes.iter().find(|p| p.chosen && p.note.is_some()) {
         Some(p) => vec![p.initial.clone()],
         None => starts.clone(),

@@ -113,7 +113,7 @@ struct Cli {
     #[arg(value_enum)]
     table: TableKind,
     /// Directory for the tables (created; files are replaced).
-    #[arg(long, default_value = "results", value_name = "DIR")]
+    #[arg(long, default_value = "docs/results", value_name = "DIR")]
     out: PathBuf,
     /// Small datasets and grids: every table in about 2.5 minutes (what the tests run).
     #[arg(long)]

@@ -3,6 +3,7 @@
 //! truth resolved.
 
 mod dataset;
+pub mod photometric;
 pub mod recording;
 
 use crate::cli::EstimateArgs;
@@ -42,6 +43,8 @@ pub struct ClipData {
     /// For a recording: its first clips as the model sees them (in report.html, and clips.png
     /// with `--preview`).
     pub preview_png: Option<Vec<u8>>,
+    /// The light's drift divided out of the frames, where it was (see `photometric`).
+    pub photometric: Option<photometric::Photometric>,
 }
 
 impl ClipData {
@@ -160,6 +163,8 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
             ))
         )));
     }
+    let mut src = src;
+    let photometric = photometric::normalise(&mut src.frames, (c, h, w));
     let truth: BTreeMap<String, f64> = src
         .meta
         .as_ref()
@@ -211,6 +216,7 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         recording,
         warnings: src.warnings,
         preview_png: src.preview_png,
+        photometric,
     })
 }
 

@@ -135,6 +135,16 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         ),
         ("wall time", format!("{:.1} s", report.wall_time_s)),
     ];
+    if let Some(p) = &report.photometric {
+        facts.push((
+            "light normalised",
+            format!(
+                "gain varied by {:.1} %, across the frame by up to {:.1} %",
+                100.0 * p.gain_spread,
+                100.0 * p.max_gradient
+            ),
+        ));
+    }
     if let Some(l) = &report.latent_vs_truth {
         facts.push(("latent vs truth R²", format!("{:.4}", l.r2())));
     }

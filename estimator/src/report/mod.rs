@@ -62,6 +62,9 @@ pub struct Report {
     pub initial_values: Vec<f64>,
     pub final_values: Vec<f64>,
     pub calibration: Calibration,
+    /// The light's drift divided out of the frames before training, where it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photometric: Option<crate::data::photometric::Photometric>,
     /// For a video or image folder: what was decoded and how it was cut into clips.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub recording: Option<RecordingSummary>,
@@ -175,6 +178,7 @@ impl Report {
             initial_values: init.to_vec(),
             final_values: outcome.parameters.clone(),
             calibration,
+            photometric: data.photometric.clone(),
             recording: data.recording.as_ref().map(|r| r.0.clone()),
             starts: Vec::new(),
             epochs_run: outcome.epochs_run,
