@@ -17,8 +17,12 @@ pub struct Calibration {
     pub positions: Vec<(usize, usize, Vec<f64>)>,
     pub incline_deg: Option<f64>,
     pub g: f64,
-    /// Where it came from: "flags", "meta.json" or "none".
+    /// Where the reference frames came from: "flags", "meta.json" or "none".
     pub source: String,
+    /// Where the incline's angle and g came from: the flag, "meta.json", or (g) "default".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub incline_source: Option<&'static str>,
+    pub g_source: &'static str,
 }
 
 /// The largest reference value taken (SI): a million metres or radians is no measurement.
@@ -60,11 +64,23 @@ impl Calibration {
         } else {
             (Vec::new(), Vec::new(), "none")
         };
+        let meta_incline = meta.and_then(|m| m.incline_deg);
+        let meta_g = meta.and_then(|m| m.g);
         Calibration {
             reference,
             positions,
-            incline_deg: incline_deg.or_else(|| meta.and_then(|m| m.incline_deg)),
-            g: g.or_else(|| meta.and_then(|m| m.g)).unwrap_or(DEFAULT_G),
+            incline_deg: incline_deg.or(meta_incline),
+            incline_source: match (incline_deg, meta_incline) {
+                (Some(_), _) => Some("--incline-deg"),
+                (None, Some(_)) => Some("meta.json"),
+                (None, None) => None,
+            },
+            g: g.or(meta_g).unwrap_or(DEFAULT_G),
+            g_source: match (g, meta_g) {
+                (Some(_), _) => "--g",
+                (None, Some(_)) => "meta.json",
+                (None, None) => "default",
+            },
             source: source.into(),
         }
     }

@@ -53,13 +53,42 @@ pub fn clear_outputs(out: &Path) -> Result<(), EstimateError> {
     Ok(())
 }
 
-/// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
-/// timeline.csv and clips.png for a recording) into `out`, report.json last.
-pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
+/// An exclusive lock on `out` (its `.lock` file) for as long as it is held: two runs writing
+/// one directory take turns, each clearing and writing its whole set, so the directory never
+/// mixes the two.
+pub fn lock_dir(out: &Path) -> Result<std::fs::File, EstimateError> {
+    let err = |source| EstimateError::Write {
+        path: out.join(".lock"),
+        source,
+    };
     std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
         path: out.to_path_buf(),
         source,
     })?;
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(out.join(".lock"))
+        .map_err(err)?;
+    file.lock().map_err(err)?;
+    Ok(file)
+}
+
+/// Removes an earlier run's files from `out` (if it exists) under its lock: a run that gives
+/// no estimate must not leave another run's complete report.json behind.
+pub fn clear_earlier(out: &Path) -> Result<(), EstimateError> {
+    if !out.is_dir() {
+        return Ok(());
+    }
+    let _lock = lock_dir(out)?;
+    clear_outputs(out)
+}
+
+/// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
+/// timeline.csv and clips.png for a recording) into `out`, report.json last.
+pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(), EstimateError> {
+    let _lock = lock_dir(out)?;
     // The directory becomes wholly this run's.
     clear_outputs(out)?;
     write_file(out, "metrics.csv", report.metrics_csv().as_bytes())?;

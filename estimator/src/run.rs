@@ -6,7 +6,7 @@ use crate::config::RunConfig;
 use crate::data::{load_clips, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
-use crate::output::write_outputs;
+use crate::output::{clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
@@ -24,7 +24,20 @@ pub struct Estimation {
 /// Runs one estimation as the (validated) arguments say, writes its outputs and prints the
 /// table.
 pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
-    let Estimation { mut report, data } = estimate(args)?;
+    let Estimation { mut report, data } = match estimate(args) {
+        Ok(e) => e,
+        Err(e) => {
+            // No estimate: an earlier run's report must not stand in --out as if it were this
+            // run's.
+            if matches!(
+                e.downcast_ref::<EstimateError>(),
+                Some(EstimateError::NoEstimate(_))
+            ) {
+                clear_earlier(&args.output.out)?;
+            }
+            return Err(e);
+        }
+    };
     report.command = Some(shell_words::join(
         std::env::args_os().map(|a| a.to_string_lossy().into_owned()),
     ));

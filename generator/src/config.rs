@@ -57,6 +57,13 @@ impl GenConfig {
 
     /// Checks every field; the first problem found is returned.
     pub fn validate(self) -> Result<GenConfig, ConfigError> {
+        if let Err(e) = physvid_shared::check_output_dir("--out", &self.out) {
+            let reason = e
+                .strip_prefix(&format!("--out {}: ", self.out.display()))
+                .unwrap_or(&e)
+                .to_string();
+            return Err(invalid("--out", self.out.display(), reason));
+        }
         if self.samples == 0 {
             return Err(invalid("--samples", self.samples, "must be at least 1"));
         }

@@ -15,7 +15,14 @@ pub struct Generated {
     pub frames: Vec<f32>,
     pub samples: Vec<SampleTruth>,
     pub latents: Vec<Vec<f64>>,
+    /// The first clip (its index in the data set) whose rendered frames show no motion within
+    /// the frame, with the most any pixel changed in it.
+    pub still: Option<(usize, f32)>,
 }
+
+/// A clip whose frames differ from its first by less than this anywhere (a 512th of the grey
+/// range, below what an 8-bit camera records) shows no motion.
+pub const MIN_CHANGE: f32 = 1.0 / 512.0;
 
 /// Renders the dataset described by `cfg`. The output depends only on `cfg`, never on the
 /// number of threads: sample i uses random stream i and writes only its own slice.
@@ -30,7 +37,7 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
     let dims = cfg.scene.latent_dims();
     let mut frames = vec![0f32; range.len() * per_sample];
     let scene = cfg.scene;
-    let truths: Vec<(SampleTruth, Vec<f64>)> = frames
+    let truths: Vec<(SampleTruth, Vec<f64>, f32)> = frames
         .par_chunks_mut(per_sample)
         .enumerate()
         .map_init(
@@ -45,6 +52,12 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
                 {
                     scene.render(&cfg.params, z, cfg.size, canvas, frame);
                 }
+                // The largest change from the first frame, before any perturbation.
+                let (first, rest) = clip.split_at(pixels);
+                let change = rest
+                    .chunks_exact(pixels)
+                    .flat_map(|f| f.iter().zip(first).map(|(a, b)| (a - b).abs()))
+                    .fold(0.0f32, f32::max);
                 if !cfg.perturbations.is_empty() {
                     let mut c = Clip {
                         frames: clip,
@@ -63,14 +76,20 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
                         *v = (*v + sigma * n).clamp(0.0, 1.0);
                     }
                 }
-                (truth, latents)
+                (truth, latents, change)
             },
         )
         .collect();
-    let (samples, latents) = truths.into_iter().unzip();
+    let still = truths
+        .iter()
+        .enumerate()
+        .find(|(_, t)| t.2 < MIN_CHANGE)
+        .map(|(i, t)| (range.start + i, t.2));
+    let (samples, latents) = truths.into_iter().map(|(s, l, _)| (s, l)).unzip();
     Generated {
         frames,
         samples,
         latents,
+        still,
     }
 }

@@ -30,7 +30,7 @@ fn main() -> ExitCode {
             let bad_input = matches!(
                 e.downcast_ref::<DatasetError>(),
                 Some(DatasetError::NotEmpty { .. })
-            );
+            ) || e.downcast_ref::<generator::ConfigError>().is_some();
             ExitCode::from(if bad_input { 2 } else { 1 })
         }
     }

@@ -2,6 +2,7 @@
 //! while the next piece renders, then writes `meta.json` (`dataset_meta`) and the preview.
 
 use crate::config::GenConfig;
+use crate::error::{invalid, ConfigError};
 use crate::generate::{generate_samples, Generated};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
 use physvid_shared::meta::{GeneratorInfo, PerturbationSpec, FORMAT_NAME, FORMAT_VERSION};
@@ -54,6 +55,31 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
     }
 }
 
+/// The refusal of a data set whose clip `clip` shows no motion within the frame, naming the
+/// flags that set the motion.
+fn still_clip(cfg: &GenConfig, clip: usize, change: f32) -> ConfigError {
+    let (flag, what) = if cfg.scene.accepts_set() {
+        let values: Vec<String> = cfg
+            .params
+            .iter()
+            .map(|(k, v)| format!("{k}={}", physvid_shared::cli::num(*v)))
+            .collect();
+        ("--set", values.join(","))
+    } else {
+        ("--dt", format!("{}", cfg.dt))
+    };
+    invalid(
+        flag,
+        what,
+        format!(
+            "clip {clip} shows no motion within the frame (no pixel changes by more than {} of \
+             the grey range, largest change {:.1e}): the object is outside the frame, too small, \
+             or does not move within a clip at these values",
+            "1/512", change
+        ),
+    )
+}
+
 /// The preview PNG: up to four clips × all frames, magnified 2×, from the frames of the first
 /// clips (at least four, or all of them).
 pub fn preview_png(cfg: &GenConfig, first_frames: &[f32]) -> Vec<u8> {
@@ -71,7 +97,9 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         frames: Vec::new(),
         samples: Vec::with_capacity(cfg.samples),
         latents: Vec::with_capacity(cfg.samples),
+        still: None,
     };
+    let mut still = None;
     let mut preview_frames = Vec::new();
     let preview_samples = cfg.samples.min(4);
     let written: Result<DatasetWriter, DatasetError> = std::thread::scope(|s| {
@@ -85,6 +113,11 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         for start in (0..cfg.samples).step_by(SAMPLES_PER_PIECE) {
             let end = (start + SAMPLES_PER_PIECE).min(cfg.samples);
             let g = generate_samples(cfg, start..end);
+            if g.still.is_some() {
+                // Nothing is renamed into place: the writer's partial files go with it.
+                still = g.still;
+                break;
+            }
             if start == 0 {
                 let [_, t, c, h, w] = cfg.shape();
                 let per_sample = t * c * h * w;
@@ -100,6 +133,10 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         handle.join().expect("writer thread does not panic")
     });
     let writer = written?;
+    if let Some((clip, change)) = still {
+        drop(writer);
+        return Err(still_clip(cfg, clip, change).into());
+    }
     let meta = dataset_meta(cfg, &truth);
     let png = preview_png(cfg, &preview_frames);
     Ok(writer.finish(&meta, &png)?)

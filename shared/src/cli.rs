@@ -13,21 +13,32 @@ pub fn one_line(text: &str) -> String {
         .join(" ")
 }
 
-/// Parses `NAME=VALUE[,NAME=VALUE...]` (as `--init` and `--set` take) into pairs, in order.
+/// Parses `NAME=VALUE[,NAME=VALUE...]` (as `--init` and `--set` take) into pairs, in order. A
+/// name given twice (which value would win?), an empty name and a value that is not a finite
+/// number are refused.
 pub fn parse_name_values(text: &str) -> Result<Vec<(String, f64)>, String> {
-    text.split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|pair| {
-            let (k, v) = pair
-                .split_once('=')
-                .ok_or_else(|| format!("'{pair}' is not NAME=VALUE"))?;
-            let v: f64 = v
-                .trim()
-                .parse()
-                .map_err(|_| format!("'{}' in '{pair}' is not a number", v.trim()))?;
-            Ok((k.trim().to_string(), v))
-        })
-        .collect()
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for pair in text.split(',').filter(|s| !s.trim().is_empty()) {
+        let (k, v) = pair
+            .split_once('=')
+            .ok_or_else(|| format!("'{pair}' is not NAME=VALUE"))?;
+        let k = k.trim();
+        if k.is_empty() {
+            return Err(format!("'{pair}' has no name before '='"));
+        }
+        let v: f64 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{}' in '{pair}' is not a number", v.trim()))?;
+        if !v.is_finite() {
+            return Err(format!("'{pair}': the value must be a finite number"));
+        }
+        if out.iter().any(|(name, _)| name == k) {
+            return Err(format!("'{k}' is given twice; give each name once"));
+        }
+        out.push((k.to_string(), v));
+    }
+    Ok(out)
 }
 
 /// A number for a message: plain when moderate, in scientific notation when huge or tiny
@@ -102,6 +113,15 @@ mod tests {
             .unwrap_err()
             .contains("NAME=VALUE"));
         assert!(super::parse_name_values("a=x").unwrap_err().contains("'x'"));
+        assert!(super::parse_name_values("a=1,a=2")
+            .unwrap_err()
+            .contains("given twice"));
+        assert!(super::parse_name_values("a=nan")
+            .unwrap_err()
+            .contains("finite"));
+        assert!(super::parse_name_values("=3")
+            .unwrap_err()
+            .contains("no name"));
     }
 
     #[test]

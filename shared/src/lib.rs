@@ -10,6 +10,7 @@ pub mod contact_sheet;
 pub mod dataset;
 pub mod dynamics;
 pub mod error;
+pub mod input;
 pub mod linalg;
 pub mod meta;
 pub mod model_file;

@@ -147,10 +147,71 @@ pub struct PositionPoint {
     pub positions: Vec<f64>,
 }
 
+/// The largest gravitational acceleration taken (m/s²): the Sun's surface has 274.
+pub const MAX_G: f64 = 1000.0;
+
+/// The largest length, distance or pixel scale taken (SI units or pixels per metre).
+pub const MAX_SCALE: f64 = 1e9;
+
 impl Calibration {
     /// Whether nothing was measured (the oscillator scenes).
     pub fn is_empty(&self) -> bool {
         *self == Calibration::default()
+    }
+
+    /// Refuses what no measurement gives: g outside (0, [`MAX_G`]], an incline outside
+    /// (0°, 90°) (flat, it does not slide; vertical, it falls), a scale, distance or radius that
+    /// is not positive or beyond [`MAX_SCALE`], reference values or positions that are not
+    /// finite. The message names the key.
+    pub fn check(&self) -> Result<(), String> {
+        if let Some(g) = self.g {
+            if !(g.is_finite() && g > 0.0 && g <= MAX_G) {
+                return Err(format!(
+                    "calibration.g is {g}: gravity must be in (0, {MAX_G}] m/s² (Earth: 9.81)"
+                ));
+            }
+        }
+        if let Some(a) = self.incline_deg {
+            if !(a.is_finite() && a > 0.0 && a < 90.0) {
+                return Err(format!(
+                    "calibration.incline_deg is {a}: an incline must be between 0° and 90° \
+                     (flat, nothing slides; vertical, it falls)"
+                ));
+            }
+        }
+        for (key, v) in [
+            ("focal_px_per_m", self.focal_px_per_m),
+            ("h0", self.h0),
+            ("pixels_per_metre", self.pixels_per_metre),
+            ("radius", self.radius),
+        ] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v > 0.0 && v <= MAX_SCALE) {
+                    return Err(format!(
+                        "calibration.{key} is {v}: must be a positive number up to {MAX_SCALE:e}"
+                    ));
+                }
+            }
+        }
+        if let Some(p) = self.reference_points.iter().find(|p| !p.value.is_finite()) {
+            return Err(format!(
+                "calibration.reference_points: clip {} frame {} has the value {}, not a finite \
+                 number",
+                p.clip, p.frame, p.value
+            ));
+        }
+        if let Some(p) = self
+            .reference_positions
+            .iter()
+            .find(|p| p.positions.iter().any(|v| !v.is_finite()))
+        {
+            return Err(format!(
+                "calibration.reference_positions: clip {} frame {} has a position that is not a \
+                 finite number",
+                p.clip, p.frame
+            ));
+        }
+        Ok(())
     }
 }
 

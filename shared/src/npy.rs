@@ -153,6 +153,7 @@ pub fn read_npy(path: &Path) -> Result<NpyArray, DatasetError> {
     if path.is_dir() {
         return Err(malformed(path, "it is a directory"));
     }
+    crate::input::check_kind(path).map_err(|e| malformed(path, e))?;
     let file = std::fs::File::open(path).map_err(read_err)?;
     let file_len = file.metadata().map_err(read_err)?.len();
     let mut r = std::io::BufReader::new(file);

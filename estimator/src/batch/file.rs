@@ -40,6 +40,7 @@ pub struct BatchRow {
 /// unknown or batch-only column, or a duplicate `name`: an error naming it (exit code 2).
 pub fn read_batch_file(path: &Path) -> Result<Vec<BatchRow>, EstimateError> {
     let bad = |what: String| input_error(format!("--batch {}: {what}", path.display()));
+    physvid_shared::input::check_kind(path).map_err(&bad)?;
     let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it ({e})")))?;
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
@@ -177,6 +178,37 @@ fn settable_flags() -> Vec<(String, String, bool)> {
             })
         })
         .collect()
+}
+
+/// The flags `base` (the command line's) and `row` (a row's) as one list in which each flag is
+/// given once: a flag the row sets replaces the command line's (`estimate` refuses a flag given
+/// twice).
+pub fn merged_flags(base: &[OsString], row: &[OsString]) -> Vec<OsString> {
+    let takes_value: Vec<String> = settable_flags()
+        .into_iter()
+        .filter(|(_, _, v)| *v)
+        .map(|(long, _, _)| format!("--{long}"))
+        .collect();
+    // Each flag with its value, if it takes one.
+    let items = |flags: &[OsString]| -> Vec<Vec<OsString>> {
+        let mut out: Vec<Vec<OsString>> = Vec::new();
+        let mut i = 0;
+        while i < flags.len() {
+            let with_value = takes_value.iter().any(|t| flags[i] == OsString::from(t));
+            let n = if with_value { 2 } else { 1 };
+            out.push(flags[i..(i + n).min(flags.len())].to_vec());
+            i += n;
+        }
+        out
+    };
+    let row_items = items(row);
+    let mut out: Vec<OsString> = items(base)
+        .into_iter()
+        .filter(|b| !row_items.iter().any(|r| r[0] == b[0]))
+        .flatten()
+        .collect();
+    out.extend(row_items.into_iter().flatten());
+    out
 }
 
 /// The flags of the batch's own command line that every row takes (those a row may set, as

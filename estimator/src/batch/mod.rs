@@ -121,8 +121,7 @@ fn run_row(
     let mut result = pending(row, None);
     let dir = out.join(&row.dir);
     let mut argv: Vec<OsString> = vec![row.input.clone().into()];
-    argv.extend(base.iter().cloned());
-    argv.extend(row.flags.iter().cloned());
+    argv.extend(file::merged_flags(base, &row.flags));
     argv.extend(["--out".into(), dir.clone().into(), "--quiet".into()]);
     let words: Vec<String> = std::iter::once(exe.as_os_str())
         .chain(argv.iter().map(OsString::as_os_str))

@@ -34,13 +34,9 @@ use std::path::PathBuf;
 /// timeline.png and timeline.csv for a recording) into --out. With --batch, many inputs in one
 /// command, each row into its own directory, with summary.csv, summary.md and index.html.
 #[derive(Debug, Clone, Parser)]
-// A flag given twice keeps its last value, so a batch row's flags override the command line's.
-#[command(
-    name = "estimate",
-    version,
-    allow_negative_numbers = true,
-    args_override_self = true
-)]
+// A flag given twice is refused (clap's default); a batch row's flags replace the command
+// line's before its process starts (`batch::file::merged_flags`).
+#[command(name = "estimate", version, allow_negative_numbers = true)]
 pub struct EstimateArgs {
     /// A dataset directory written by `gen` (frames.npy + meta.json); a bare float32 .npy of
     /// shape [N, T, C, H, W] (then --dt and --model are required); a video file (anything

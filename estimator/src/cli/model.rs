@@ -131,6 +131,11 @@ pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
                     "'{item}': the time must be >= 0 s and the value a finite number"
                 ));
             }
+            if points.times.iter().any(|&(t2, _)| t2 == t) {
+                return Err(format!(
+                    "'{item}': the time {t} s is given twice; give each once"
+                ));
+            }
             points.times.push((t, v));
             continue;
         }
@@ -146,6 +151,13 @@ pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
             .map_err(|_| bad())?;
         if let Some(x) = numbers.iter().find(|x| !x.is_finite()) {
             return Err(format!("'{item}': {x} is not a finite number"));
+        }
+        let taken = points.values.iter().any(|p| (p.0, p.1) == (c, f))
+            || points.positions.iter().any(|p| (p.0, p.1) == (c, f));
+        if taken {
+            return Err(format!(
+                "'{item}': clip {c} frame {f} is given twice; give each frame once"
+            ));
         }
         match numbers[..] {
             [v] => points.values.push((c, f, v)),
@@ -178,6 +190,13 @@ impl ModelArgs {
         }
         if let Some(g) = self.g {
             positive("--g", g)?;
+            if g > physvid_shared::meta::MAX_G {
+                return Err(input_error(format!(
+                    "--g {}: gravity beyond {} m/s² (the Sun's surface has 274); give it in m/s²",
+                    num(g),
+                    physvid_shared::meta::MAX_G
+                )));
+            }
         }
         if let Some(deg) = self.incline_deg {
             if !(deg.is_finite() && deg > 0.0 && deg < 90.0) {
@@ -221,6 +240,29 @@ impl ModelArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 512, rng_seed: proptest::test_runner::RngSeed::Fixed(31), ..ProptestConfig::default() })]
+
+        /// Any text parses or gives one message; distinct frames read back as written.
+        #[test]
+        fn references_parse_or_say_why(text in ".{0,60}") {
+            if let Err(e) = parse_reference(&text) {
+                prop_assert!(!e.is_empty() && !e.contains('\n'));
+            }
+        }
+
+        #[test]
+        fn distinct_frames_read_back(
+            frames in proptest::collection::btree_map((0usize..50, 0usize..20), -1e6f64..1e6, 1..6),
+        ) {
+            let text: Vec<String> = frames.iter().map(|((c, f), v)| format!("{c}:{f}={v}")).collect();
+            let p = parse_reference(&text.join(",")).unwrap();
+            let expected: Vec<(usize, usize, f64)> = frames.iter().map(|(&(c, f), &v)| (c, f, v)).collect();
+            prop_assert_eq!(p.values, expected);
+        }
+    }
 
     #[test]
     fn init_text_parses_and_rejects_garbage() {
@@ -243,6 +285,12 @@ mod tests {
         assert_eq!(t.times, vec![(3.0, 0.079), (20.5, 0.012)]);
         assert_eq!(t.values, vec![(1, 2, 0.5)]);
         assert!(parse_reference("-1s=0.5").is_err());
+        assert!(parse_reference("0:1=0.5,0:1=0.5")
+            .unwrap_err()
+            .contains("twice"));
+        assert!(parse_reference("3s=0.1,3.0s=0.2")
+            .unwrap_err()
+            .contains("twice"));
         assert!(parse_reference("xs=0.5").is_err());
     }
 }

@@ -90,6 +90,11 @@ fn encoder_help() -> String {
     )
 }
 
+/// The most epochs, ensemble members and clips per batch taken.
+pub const MAX_EPOCHS: usize = 100_000;
+pub const MAX_ENSEMBLE: usize = 100;
+pub const MAX_BATCH: usize = 65_536;
+
 impl TrainingArgs {
     /// CPU threads for libtorch: `--threads`, else every core.
     pub fn thread_count(&self) -> usize {
@@ -99,17 +104,38 @@ impl TrainingArgs {
 
     /// Checks the flags that do not depend on the data.
     pub fn validate(&self) -> Result<(), EstimateError> {
-        if self.epochs == 0 {
-            return Err(input_error("--epochs 0: must be at least 1"));
-        }
-        if self.ensemble == 0 {
-            return Err(input_error("--ensemble 0: must be at least 1"));
-        }
-        if self.patience == Some(0) {
-            return Err(input_error("--patience 0: must be at least 1"));
-        }
-        if self.batch_size == 0 {
-            return Err(input_error("--batch-size 0: must be at least 1"));
+        // Bounded, so that no flag asks for work that never ends.
+        for (flag, v, max, why) in [
+            (
+                "--epochs",
+                self.epochs,
+                MAX_EPOCHS,
+                "the early stop ends most runs within 300",
+            ),
+            (
+                "--ensemble",
+                self.ensemble,
+                MAX_ENSEMBLE,
+                "each member is a whole training",
+            ),
+            (
+                "--patience",
+                self.patience.unwrap_or(1),
+                self.epochs,
+                "it cannot exceed --epochs",
+            ),
+            (
+                "--batch-size",
+                self.batch_size,
+                MAX_BATCH,
+                "a batch larger than this holds more clips than any data set here",
+            ),
+        ] {
+            if v == 0 || v > max {
+                return Err(input_error(format!(
+                    "{flag} {v}: must be from 1 to {max} ({why})"
+                )));
+            }
         }
         for (flag, lr) in [("--lr", self.lr), ("--lr-phys", self.lr_phys)] {
             positive(flag, lr)?;

@@ -5,6 +5,7 @@
 mod dataset;
 pub mod photometric;
 pub mod recording;
+mod scale;
 
 use crate::cli::EstimateArgs;
 use crate::error::{input_error, EstimateError};
@@ -135,6 +136,7 @@ fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
 pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, EstimateError> {
+    physvid_shared::input::check_kind(args.input()).map_err(input_error)?;
     let src = if is_recording(args.input()) {
         recording::recording_source(args)?
     } else {
@@ -164,6 +166,22 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         )));
     }
     let mut src = src;
+    if let Err((i, v, spread)) = scale::rescale(&mut src.frames) {
+        let per_frame = c * h * w;
+        let (frame, pixel) = (i / per_frame, i % per_frame);
+        let at = match src.clip_index {
+            Some(_) => format!("frame {frame}"),
+            None => format!("clip {}, frame {}", frame / t, frame % t),
+        };
+        return Err(input_error(format!(
+            "{}: the value {} at {at}, pixel {pixel} lies more than {:e} times the frames' \
+             spread ({}) from their median: a hot pixel or a broken value; mask or fix it",
+            args.input().display(),
+            num(v as f64),
+            scale::OUTLIER,
+            num(spread)
+        )));
+    }
     let photometric = photometric::normalise(&mut src.frames, (c, h, w));
     let truth: BTreeMap<String, f64> = src
         .meta

@@ -83,7 +83,14 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
         )
     };
     let gains: Vec<[f64; 3]> = (0..n)
-        .map(|k| fit_gain(&frames[k * frame_len..(k + 1) * frame_len], &reference, &stat, coords))
+        .map(|k| {
+            fit_gain(
+                &frames[k * frame_len..(k + 1) * frame_len],
+                &reference,
+                &stat,
+                coords,
+            )
+        })
         .collect();
     let mean_a = gains.iter().map(|g| g[0]).sum::<f64>() / n as f64;
     let spread = (gains.iter().map(|g| (g[0] - mean_a).powi(2)).sum::<f64>() / n as f64).sqrt();

@@ -191,10 +191,41 @@ pub fn load_recording(
     } else {
         Some(video::probe(input)?)
     };
-    let (fps, fps_source) = match (flags.fps, info.as_ref().and_then(|i| i.container_fps)) {
-        (Some(f), _) => (f, "--fps"),
-        (None, Some(f)) => (f, "container"),
-        (None, None) => {
+    // The frames' own timestamps: evenly spaced within the part kept, or refused; their rate
+    // where the container gives none or another.
+    let stamped = info
+        .as_ref()
+        .and_then(|i| i.median_interval(flags.start, flags.end))
+        .map(|m| 1.0 / m);
+    if let Some((at, gap)) = info
+        .as_ref()
+        .and_then(|i| i.first_gap(flags.start, flags.end))
+    {
+        return Err(input_error(format!(
+            "{}: the frames are not evenly spaced: a gap of {} s after {} s of the file's \
+             timeline (dropped frames or a variable frame rate), which clips would read as \
+             continuous motion; keep an evenly spaced part with --start/--end",
+            input.display(),
+            approx(gap),
+            approx(at)
+        )));
+    }
+    let container = info.as_ref().and_then(|i| i.container_fps);
+    let (fps, fps_source) = match (flags.fps, container, stamped) {
+        (Some(f), _, _) => (f, "--fps"),
+        (None, Some(c), Some(t)) if (c / t - 1.0).abs() > 0.01 => {
+            warnings.push(format!(
+                "the container says {} fps but the frames' timestamps are {} s apart ({} fps): \
+                 the timestamps' rate is used",
+                approx(c),
+                approx(1.0 / t),
+                approx(t)
+            ));
+            (t, "timestamps")
+        }
+        (None, Some(c), _) => (c, "container"),
+        (None, None, Some(t)) => (t, "timestamps"),
+        (None, None, None) => {
             return Err(input_error(format!(
                 "{}: no frame rate known (an image folder, or a container without one): pass --fps",
                 input.display()
@@ -317,7 +348,7 @@ fn framing_over(
 ) -> image::DynamicImage {
     use image::{Rgb, RgbImage};
     let (w, h) = survey.map_size;
-    let scale = ((sheet.width() as usize / w.max(1)).max(1)).min(4);
+    let scale = (sheet.width() as usize / w.max(1)).clamp(1, 4);
     let (mw, mh) = (w * scale, h * scale);
     let width = (sheet.width() as usize).max(mw);
     let mut out = RgbImage::new(width as u32, (mh + 4) as u32 + sheet.height());

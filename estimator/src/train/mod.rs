@@ -117,7 +117,11 @@ pub fn fit_best(
     let folded = |o: &TrainOutcome| o.evidence.fold.as_ref().map_or(0.0, |f| f.folded_share);
     let suspect = |o: &TrainOutcome| {
         let explained = o.evidence.fold.as_ref().map_or(1.0, |f| f.explained_share);
-        let unexplained = o.evidence.law.as_ref().map_or(0.0, |l| l.unexplained_within);
+        let unexplained = o
+            .evidence
+            .law
+            .as_ref()
+            .map_or(0.0, |l| l.unexplained_within);
         explained < SUSPECT_EXPLAINED || unexplained > SUSPECT_UNEXPLAINED
     };
     let mut others: Vec<(Vec<f64>, String)> = Vec::new();
@@ -166,7 +170,10 @@ pub fn fit_best(
             initial: init,
             probe_val_rel_mse: o.best_val_rel_mse,
             chosen: false,
-            note: Some(format!("{note} (its latent folds {:.0} %)", 100.0 * folded(&o))),
+            note: Some(format!(
+                "{note} (its latent folds {:.0} %)",
+                100.0 * folded(&o)
+            )),
         });
         if better(&o, &best) {
             best = o;

@@ -55,7 +55,26 @@ impl Check for Determined {
                 !means.contains(&p.name.as_str())
             }
         });
-        for p in answers {
+        let model = r.config.model;
+        // A value whose sign the law leaves free (an offset, a temperature, a friction
+        // coefficient) may be zero: its error is not judged against its own size.
+        let signed = |name: &str| {
+            model
+                .parameters()
+                .iter()
+                .find(|p| p.name == name)
+                .map(|p| !p.bounds.is_positive())
+                .or_else(|| {
+                    model
+                        .info()
+                        .truth
+                        .iter()
+                        .find(|t| t.name == name)
+                        .map(|t| !t.positive)
+                })
+                .unwrap_or(false)
+        };
+        for p in answers.filter(|p| !signed(&p.name)) {
             let Some(se) = p.standard_error else { continue };
             let rel = se / p.estimate.abs().max(1e-300);
             let grade = if rel >= UNDETERMINED {

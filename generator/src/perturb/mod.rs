@@ -143,12 +143,15 @@ pub fn names() -> Vec<&'static str> {
     PERTURBATIONS.iter().map(|p| p.name()).collect()
 }
 
+/// Mixed into the run's seed for the perturbations' streams (apart from the scene's).
+const PERTURB_KEY: u64 = 0x005e_ed0f_07e2;
+
 /// The streams of sample `index` of a run seeded `seed`: its own, and the one every clip
 /// shares (static draws), both apart from the scene's draws and its pixel noise.
 pub fn streams(seed: u64, index: usize) -> (ChaCha8Rng, ChaCha8Rng) {
-    let mut own = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_0f_07e2_u64);
+    let mut own = ChaCha8Rng::seed_from_u64(seed ^ PERTURB_KEY);
     own.set_stream(index as u64);
-    let mut fixed = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_0f_07e2_u64);
+    let mut fixed = ChaCha8Rng::seed_from_u64(seed ^ PERTURB_KEY);
     fixed.set_stream(u64::MAX);
     (own, fixed)
 }
@@ -178,8 +181,7 @@ pub fn shifted(frame: &[f32], size: usize, dx: f32, dy: f32) -> Vec<f32> {
             let (x0, y0) = (sx.floor(), sy.floor());
             let (fx, fy) = (sx - x0, sy - y0);
             let (x0, y0) = (x0 as isize, y0 as isize);
-            out[y * size + x] = (1.0 - fy)
-                * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
+            out[y * size + x] = (1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
                 + fy * ((1.0 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
         }
     }
@@ -196,7 +198,9 @@ mod tests {
         assert_eq!(format!("{p:?}"), "[shake:3, noise:2]");
         assert!(parse("shake:0").unwrap_err().contains("1 to 5"));
         assert!(parse("shake:6").unwrap_err().contains("1 to 5"));
-        assert!(parse("wobble:1").unwrap_err().contains("not a perturbation"));
+        assert!(parse("wobble:1")
+            .unwrap_err()
+            .contains("not a perturbation"));
         assert!(parse("shake:1,shake:2").unwrap_err().contains("twice"));
         assert!(parse("shake").unwrap_err().contains("NAME:LEVEL"));
         let mut all = names();

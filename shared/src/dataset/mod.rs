@@ -104,16 +104,24 @@ pub fn validate_meta(
         if let Some((i, v)) = times
             .iter()
             .enumerate()
-            .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
+            .find(|(_, v)| !(v.is_finite() && **v >= 0.0 && **v <= MAX_START_TIME))
         {
             return Err(bad_meta(
                 meta_path,
-                format!("clip_start_times[{i}] is {v}, must be a finite time >= 0 s"),
+                format!(
+                    "clip_start_times[{i}] is {v}, must be a time from 0 to {MAX_START_TIME:e} s"
+                ),
             ));
         }
     }
+    meta.calibration
+        .check()
+        .map_err(|e| bad_meta(meta_path, e))?;
     Ok(())
 }
+
+/// The latest clip start time taken (s; a year): later ones cannot be a recording's.
+pub const MAX_START_TIME: f64 = 3.2e7;
 
 /// Reads `DIR` (frames.npy + meta.json) or a bare `.npy` file (no metadata), validating the
 /// rank, the values (finite) and the metadata's consistency with the frames.
@@ -159,6 +167,7 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
     let meta = match meta_path {
         None => None,
         Some(mp) => {
+            crate::input::check_kind(&mp).map_err(|e| bad_meta(&mp, e))?;
             let bytes = std::fs::read(&mp).map_err(|source| DatasetError::Read {
                 path: mp.clone(),
                 source,
@@ -208,7 +217,7 @@ mod tests {
             samples: vec![SampleTruth::from_pairs([("amplitude", 1.0), ("phase", 0.0)]); shape[0]],
             latent_dims: 1,
             latents: vec![vec![0.0; shape[1]]; shape[0]],
-        perturbations: Vec::new(),
+            perturbations: Vec::new(),
         }
     }
 

@@ -23,6 +23,13 @@ pub const ENCODERS: &[&str] = &["small", "paper", "linear", "keypoints"];
 
 /// Reads and checks the model file at `path`.
 pub fn load(path: &Path) -> Result<ModelFile, ModelFileError> {
+    if let Err(e) = crate::input::check_kind(path) {
+        return Err(ModelFileError {
+            file: path.to_path_buf(),
+            key: "(file)".into(),
+            problem: e,
+        });
+    }
     let text = std::fs::read_to_string(path).map_err(|e| ModelFileError {
         file: path.to_path_buf(),
         key: "file".into(),

@@ -97,6 +97,7 @@ pub fn decode(
         }
         let mut info = probe(first)?;
         info.container_fps = None;
+        info.frame_times = Vec::new();
         info.expected_frames = Some(files.len());
         let list = concat_list(&files)?;
         cmd.args(["-f", "concat", "-safe", "0", "-i"]).arg(&list.0);
@@ -209,20 +210,29 @@ pub fn decode(
             reason: last.to_string(),
         });
     }
-    let untrimmed = opts.start.is_none() && opts.end.is_none();
-    if let Some(expected) = info.expected_frames.filter(|_| untrimmed) {
-        if count > 0 && (count as f64) < 0.95 * expected as f64 {
-            return Err(bad(
-                input,
-                format!(
-                    "decoding stopped after {count} of the {expected} frames the container \
-                     announces (a truncated or damaged file){}",
-                    log.first().map_or(String::new(), |(at, l)| format!(
-                        "; ffmpeg's first error came near frame {at}: {l}"
-                    ))
-                ),
-            ));
-        }
+    // Damage is judged by the frames the container's index holds (their timestamps), not by a
+    // header's frame count: phone files announce frames they never had.
+    let t0 = info.frame_times.first().copied().unwrap_or(0.0);
+    let (lo, hi) = (
+        t0 + opts.start.unwrap_or(0.0),
+        opts.end.map_or(f64::INFINITY, |e| t0 + e),
+    );
+    let indexed = info
+        .frame_times
+        .iter()
+        .filter(|t| **t >= lo - 1e-6 && **t < hi)
+        .count();
+    if indexed > 0 && count > 0 && (count as f64) < 0.95 * indexed as f64 {
+        return Err(bad(
+            input,
+            format!(
+                "decoding stopped after {count} of the {indexed} frames the container's index \
+                 holds (a truncated or damaged file){}",
+                log.first().map_or(String::new(), |(at, l)| format!(
+                    "; ffmpeg's first error came near frame {at}: {l}"
+                ))
+            ),
+        ));
     }
     if !status.success() || partial {
         return Err(bad(

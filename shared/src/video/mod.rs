@@ -124,7 +124,9 @@ pub fn is_recording(path: &Path) -> bool {
 fn starts_like_npy(path: &Path) -> bool {
     use std::io::Read;
     let mut magic = [0u8; 6];
-    std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut magic).is_ok())
+    // Only a regular file is opened: a FIFO would block here.
+    path.is_file()
+        && std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut magic).is_ok())
         && &magic == crate::npy::MAGIC
 }
 

@@ -19,6 +19,50 @@ pub struct VideoInfo {
     pub rotation: i64,
     /// Frames the container says it holds (nb_frames, or duration × fps), when it says.
     pub expected_frames: Option<usize>,
+    /// The frames' own presentation times (s, sorted), from the container's index without
+    /// decoding; empty for image folders.
+    #[serde(skip)]
+    pub frame_times: Vec<f64>,
+}
+
+/// Intervals longer than this multiple of the median between frames are gaps (dropped frames,
+/// a paused capture): the frames are not evenly spaced there.
+pub const GAP: f64 = 1.5;
+
+impl VideoInfo {
+    /// The median interval between the frames' timestamps within `start`..`end` (s), when the
+    /// file gives timestamps.
+    pub fn median_interval(&self, start: Option<f64>, end: Option<f64>) -> Option<f64> {
+        let d = self.intervals(start, end);
+        if d.is_empty() {
+            return None;
+        }
+        let mut s: Vec<f64> = d.iter().map(|x| x.1).collect();
+        s.sort_by(f64::total_cmp);
+        Some(s[s.len() / 2]).filter(|m| *m > 0.0)
+    }
+
+    /// The first gap within `start`..`end`: (the time it starts, its length), if any.
+    pub fn first_gap(&self, start: Option<f64>, end: Option<f64>) -> Option<(f64, f64)> {
+        let m = self.median_interval(start, end)?;
+        self.intervals(start, end)
+            .into_iter()
+            .find(|(_, d)| *d > GAP * m)
+    }
+
+    /// (time, interval to the next frame) within `start`..`end`.
+    fn intervals(&self, start: Option<f64>, end: Option<f64>) -> Vec<(f64, f64)> {
+        let t0 = self.frame_times.first().copied().unwrap_or(0.0);
+        let (lo, hi) = (
+            t0 + start.unwrap_or(0.0),
+            end.map_or(f64::INFINITY, |e| t0 + e),
+        );
+        self.frame_times
+            .windows(2)
+            .filter(|w| w[0] >= lo - 1e-9 && w[1] <= hi + 1e-9)
+            .map(|w| (w[0] - t0, w[1] - w[0]))
+            .collect()
+    }
 }
 
 pub(crate) fn tool(name: &'static str) -> Result<Command, VideoError> {
@@ -41,6 +85,7 @@ fn parse_rate(text: &str) -> Option<f64> {
 
 /// Probes the first video stream of `path` with ffprobe.
 pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
+    crate::input::check_kind(path).map_err(|e| bad(path, e))?;
     let out = tool("ffprobe")?
         .args([
             "-v",
@@ -106,6 +151,7 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
         })
         .filter(|&n| n > 0);
     Ok(VideoInfo {
+        frame_times: frame_times(path)?,
         expected_frames,
         width: if quarter { h } else { w },
         height: if quarter { w } else { h },
@@ -113,6 +159,32 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
         capture_fps,
         rotation,
     })
+}
+
+/// The presentation times of the first video stream's packets (s, sorted), read from the
+/// container's index by ffprobe without decoding.
+pub fn frame_times(path: &Path) -> Result<Vec<f64>, VideoError> {
+    let out = tool("ffprobe")?
+        .args([
+            "-v",
+            "error",
+            "-select_streams",
+            "v:0",
+            "-show_entries",
+            "packet=pts_time",
+            "-of",
+            "csv=p=0",
+        ])
+        .arg(path)
+        .output()
+        .map_err(|e| bad(path, format!("cannot run ffprobe: {e}")))?;
+    let mut t: Vec<f64> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| l.trim().trim_end_matches(',').parse::<f64>().ok())
+        .filter(|v| v.is_finite())
+        .collect();
+    t.sort_by(f64::total_cmp);
+    Ok(t)
 }
 
 #[cfg(test)]
@@ -127,5 +199,18 @@ mod tests {
         );
         assert_eq!(parse_rate("0/0"), None);
         assert_eq!(parse_rate("60"), Some(60.0));
+        let info = VideoInfo {
+            width: 1,
+            height: 1,
+            container_fps: Some(10.0),
+            capture_fps: None,
+            rotation: 0,
+            expected_frames: None,
+            frame_times: vec![0.0, 0.1, 0.2, 0.3, 0.9, 1.0, 1.1],
+        };
+        assert!((info.median_interval(None, None).unwrap() - 0.1).abs() < 1e-9);
+        let (at, len) = info.first_gap(None, None).unwrap();
+        assert!((at - 0.3).abs() < 1e-9 && (len - 0.6).abs() < 1e-9);
+        assert!(info.first_gap(Some(0.85), None).is_none());
     }
 }

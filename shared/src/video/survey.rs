@@ -173,8 +173,10 @@ impl MotionStats {
         let crop = Crop {
             x: (x0 as f64 * sx).floor() as usize,
             y: (y0 as f64 * sy).floor() as usize,
-            w: (((x1 + 1) as f64 * sx).ceil() as usize).min(full.0) - (x0 as f64 * sx).floor() as usize,
-            h: (((y1 + 1) as f64 * sy).ceil() as usize).min(full.1) - (y0 as f64 * sy).floor() as usize,
+            w: (((x1 + 1) as f64 * sx).ceil() as usize).min(full.0)
+                - (x0 as f64 * sx).floor() as usize,
+            h: (((y1 + 1) as f64 * sy).ceil() as usize).min(full.1)
+                - (y0 as f64 * sy).floor() as usize,
         };
         Survey {
             crop: (area_share <= WHOLE_FRAME && crop.w >= 4 && crop.h >= 4).then_some(crop),

@@ -61,7 +61,9 @@ impl FileSystem {
             let h = dt * f;
             let traj = self.compiled.trajectory(p, &self.typical, 0.0, h, 400, 8);
             let series: Vec<f64> = traj.chunks(n).map(|x| x[o]).collect();
-            if series.iter().any(|v| !v.is_finite()) {
+            if series.iter().any(|v| !v.is_finite()) || turning_points(&series) < 2 {
+                // A motion that turns back at most once (a fall, a drift) does not oscillate,
+                // whatever a recurrence fitted to it says.
                 return None;
             }
             let (g0, g1) = fit_two_step_recurrence([series.as_slice()])?.gammas(h)?;
@@ -70,6 +72,18 @@ impl FileSystem {
             (w2 > 0.0 && w2.sqrt() * h < std::f64::consts::PI / 3.0).then(|| g0.sqrt())
         })
     }
+}
+
+/// How often `series` turns back (its successive differences change sign).
+fn turning_points(series: &[f64]) -> usize {
+    let d: Vec<f64> = series
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|v| *v != 0.0)
+        .collect();
+    d.windows(2)
+        .filter(|w| w[0].signum() != w[1].signum())
+        .count()
 }
 
 impl OdeSystem for FileSystem {

@@ -1,0 +1,94 @@
+//! Issue 20's classes of hostile input for `gen`, one test each: clips that show no motion
+//! within the frame (whatever the parameter that made them), a name given twice, a bad
+//! `--out` (bad input, exit 2), perturbation levels, and perturbed sets that stay seeded.
+
+mod util;
+
+use util::gen_scene;
+
+#[test]
+fn clips_that_show_no_motion_are_refused_and_nothing_is_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x");
+    for (scene, set) in [
+        ("free-fall", "g=1e-9"),
+        ("free-fall", "h0=1e6"),
+        ("free-fall", "radius=1e-9"),
+        ("led", "gamma=1e-9"),
+        ("torricelli", "k=1e-12"),
+        ("sliding-block", "travel=1e300"),
+        ("sliding-block", "g=1e-300"),
+    ] {
+        gen_scene(scene, &out)
+            .args(["--set", set, "--samples", "8"])
+            .bad_input("shows no motion within the frame");
+        assert!(!out.join("meta.json").exists(), "{scene} {set}");
+        assert!(!out.join("frames.npy").exists(), "{scene} {set}");
+    }
+    // The same scenes at their own settings still render.
+    gen_scene("led", &out).args(["--samples", "8"]).ok();
+}
+
+#[test]
+fn a_name_given_twice_and_a_bad_out_are_bad_input() {
+    let tmp = tempfile::tempdir().unwrap();
+    gen_scene("pendulum", &tmp.path().join("g"))
+        .args(["--set", "length=0.5,length=2"])
+        .bad_input("'length' is given twice");
+    gen_scene("pendulum", &tmp.path().join("g"))
+        .args(["--set", "length=nan"])
+        .bad_input("finite");
+    let file = tmp.path().join("a-file");
+    std::fs::write(&file, b"x").unwrap();
+    for out in [file.clone(), file.join("under")] {
+        gen_scene("intensity", &out)
+            .args(["--samples", "4"])
+            .bad_input("--out");
+    }
+    #[cfg(unix)]
+    {
+        let link = tmp.path().join("dangling");
+        std::os::unix::fs::symlink(tmp.path().join("nowhere"), &link).unwrap();
+        gen_scene("intensity", &link)
+            .args(["--samples", "4"])
+            .bad_input("symbolic link to nothing");
+    }
+}
+
+#[test]
+fn perturbations_are_levelled_seeded_and_recorded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+    gen_scene("rod", &tmp.path().join("bad"))
+        .args(["--perturb", "shake:6"])
+        .bad_input("1 to 5");
+    gen_scene("rod", &tmp.path().join("bad"))
+        .args(["--perturb", "wobble:1"])
+        .bad_input("not a perturbation");
+    for (dir, threads) in [(&a, "1"), (&b, "4")] {
+        gen_scene("position", dir)
+            .args(["--samples", "12", "--size", "24", "--threads", threads])
+            .args(["--perturb", "distractors:3,shake:2,light:2,noise:1"])
+            .ok();
+    }
+    let frames = |d: &std::path::Path| std::fs::read(d.join("frames.npy")).unwrap();
+    assert_eq!(frames(&a), frames(&b), "the same bytes on 1 and 4 threads");
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(a.join("meta.json")).unwrap()).unwrap();
+    let names: Vec<&str> = meta["perturbations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["distractors", "light", "shake", "noise"]);
+    // The motion is the clean set's: the same latents.
+    let clean = tmp.path().join("clean");
+    gen_scene("position", &clean)
+        .args(["--samples", "12", "--size", "24"])
+        .ok();
+    let clean_meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(clean.join("meta.json")).unwrap()).unwrap();
+    assert_eq!(meta["latents"], clean_meta["latents"]);
+    assert_ne!(frames(&a), frames(&clean));
+}
