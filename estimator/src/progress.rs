@@ -50,7 +50,7 @@ impl Progress {
                 bar.set_message(text);
             }
             Progress::Lines { every } => {
-                if rec.epoch == 1 || rec.epoch % every == 0 {
+                if rec.epoch == 1 || rec.epoch.is_multiple_of(*every) {
                     eprintln!("epoch {:>4}  {text}", rec.epoch);
                 }
             }

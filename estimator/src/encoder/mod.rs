@@ -36,7 +36,7 @@ impl EncoderKind {
     /// Whether this encoder can give `dims` numbers per frame (keypoints give an (x, y) pair
     /// per body, so an even number of at least two).
     pub fn gives(self, dims: usize) -> bool {
-        self != EncoderKind::Keypoints || (dims >= 2 && dims % 2 == 0)
+        self != EncoderKind::Keypoints || (dims >= 2 && dims.is_multiple_of(2))
     }
 }
 

@@ -223,7 +223,7 @@ impl<'a> Trainer<'a> {
                 self.stop = Some(StopReason::EarlyStop { patience });
                 return;
             }
-            if self.since_best % (patience / 3).max(2) == 0 {
+            if self.since_best.is_multiple_of((patience / 3).max(2)) {
                 self.lr *= 0.5;
                 self.lr_phys *= 0.5;
                 self.opt_enc.set_lr(self.lr);

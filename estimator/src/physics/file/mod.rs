@@ -164,7 +164,7 @@ impl FileModel {
             .shift
             .as_ref()
             .is_some_and(|s| !s.contains(&true));
-        if d < 2 || d % 2 != 0 || !shift_free || self.symmetries.scale.is_none() {
+        if d < 2 || !d.is_multiple_of(2) || !shift_free || self.symmetries.scale.is_none() {
             return None;
         }
         let (scale, r2) = position_scale(cal, &readings.positions)?;
