@@ -8,7 +8,7 @@ mod util;
 
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
-use util::{ffmpeg_available, gen_dataset, read_report, stderr, Estimate};
+use util::{gen_dataset, read_report, stderr, Estimate};
 
 /// A small intensity set (60 clips of 16×16) and its frames as a bare array.
 fn small(dir: &Path) -> (String, PathBuf) {
@@ -312,8 +312,7 @@ fn a_model_without_oscillation_is_not_judged_as_one() {
 
 #[test]
 fn uneven_frame_times_are_refused_not_read_as_even() {
-    if !ffmpeg_available() {
-        eprintln!("SKIPPED: ffmpeg/ffprobe not on PATH");
+    if !util::need_ffmpeg() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();

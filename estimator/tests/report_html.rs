@@ -21,7 +21,11 @@ fn chromium() -> Option<PathBuf> {
             return Some(PathBuf::from(name));
         }
     }
-    eprintln!("SKIPPED: no chromium on PATH (scripts/setup.sh installs it where apt-get can)");
+    physvid_testkit::require(
+        "chromium",
+        false,
+        "scripts/setup.sh installs Debian's chromium for this test",
+    );
     None
 }
 

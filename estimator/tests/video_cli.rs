@@ -6,7 +6,7 @@ mod util;
 
 use std::path::Path;
 use std::process::Command;
-use util::{estimate_of, ffmpeg_available, read_report, real_video, stderr, Estimate};
+use util::{estimate_of, read_report, real_video, stderr, Estimate};
 
 fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
     let o = Estimate::bare().args(args).out(out).quiet().estimated();
@@ -158,8 +158,7 @@ fn encode_lossless(frames: &Path, video: &Path) {
 
 #[test]
 fn an_image_folder_and_a_video_of_the_same_frames_give_the_same_estimate() {
-    if !ffmpeg_available() {
-        eprintln!("SKIPPED: ffmpeg/ffprobe not on PATH");
+    if !util::need_ffmpeg() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();
@@ -193,8 +192,7 @@ fn an_image_folder_and_a_video_of_the_same_frames_give_the_same_estimate() {
 
 #[test]
 fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
-    if !ffmpeg_available() {
-        eprintln!("SKIPPED: ffmpeg/ffprobe not on PATH");
+    if !util::need_ffmpeg() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();
@@ -281,8 +279,7 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
 
 #[test]
 fn references_by_time_land_on_the_clip_frame_at_that_time() {
-    if !ffmpeg_available() {
-        eprintln!("SKIPPED: ffmpeg/ffprobe not on PATH");
+    if !util::need_ffmpeg() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();

@@ -209,8 +209,11 @@ fn output_matches_the_committed_fixture_byte_for_byte() {
 #[test]
 fn numpy_loads_the_frames_unchanged() {
     let python = Path::new(env!("CARGO_MANIFEST_DIR")).join("../.venv/bin/python");
-    if !python.exists() {
-        eprintln!("skipped: no .venv/bin/python (run scripts/setup.sh)");
+    if !physvid_testkit::require(
+        ".venv/bin/python",
+        python.exists(),
+        "scripts/setup.sh makes it with numpy",
+    ) {
         return;
     }
     let fixture = fixtures().join("tiny-position");

@@ -99,6 +99,20 @@ impl TestCommand {
     }
 }
 
+/// Whether a tool a test needs is `available`. When it is not: under `CI=true` (where
+/// `scripts/setup.sh` has installed ffmpeg and chromium) the test fails, naming it; elsewhere
+/// the test is skipped visibly, with `why` on stderr, and this returns false.
+pub fn require(what: &str, available: bool, why: &str) -> bool {
+    if available {
+        return true;
+    }
+    if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
+        panic!("{what} is missing under CI=true: scripts/setup.sh should have installed it ({why})");
+    }
+    eprintln!("SKIPPED: {what} is missing ({why})");
+    false
+}
+
 /// Stderr as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

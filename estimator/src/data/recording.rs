@@ -12,6 +12,9 @@ use physvid_shared::video::{self, Crop, Survey, VideoInfo, VideoOptions};
 use serde::Serialize;
 use std::path::Path;
 
+/// The most memory a recording's frames and clips may take (bytes).
+pub const MAX_BYTES: u64 = 8 << 30;
+
 /// An automatic crop covering more of the frame than this is not made (the whole frame is
 /// kept): it would gain little resolution.
 pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
@@ -247,6 +250,37 @@ pub fn load_recording(
     let stride = flags
         .stride
         .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
+    // The frames kept and the clips gathered from them must fit in memory: refused before any
+    // decoding (a 4096×4096 size on a minute of video asks for 87 GB).
+    let frames_kept = info.as_ref().map_or_else(
+        || video::image_files(input).map_or(0, |f| f.len()),
+        |i| {
+            let t0 = i.frame_times.first().copied().unwrap_or(0.0);
+            let (lo, hi) = (
+                t0 + flags.start.unwrap_or(0.0),
+                flags.end.map_or(f64::INFINITY, |e| t0 + e),
+            );
+            i.frame_times
+                .iter()
+                .filter(|t| **t >= lo && **t < hi)
+                .count()
+        },
+    );
+    let per_frame = (size.0 * size.1 * 4) as u64;
+    let clips_max = (MAX_DEFAULT_CLIPS * frames_per_clip) as u64;
+    let bytes = per_frame
+        * (frames_kept as u64 + clips_max.min(frames_kept as u64 * frames_per_clip as u64));
+    if bytes > MAX_BYTES {
+        return Err(input_error(format!(
+            "{}: {frames_kept} frames of {}×{} (and the clips cut from them) need {:.1} GB, more \
+             than the {} GB taken; lower --size, or trim with --start/--end",
+            input.display(),
+            size.0,
+            size.1,
+            bytes as f64 / 1e9,
+            MAX_BYTES >> 30
+        )));
+    }
     let started = std::time::Instant::now();
     // What the encoder sees: the flag's rectangle, the whole frame, or where it moves.
     let (crop, framing, survey) = match (flags.crop, &info) {
