@@ -12,7 +12,7 @@ use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
 use crate::train::{fit, fit_best, StopReason};
-use crate::verdict::Grade;
+use crate::verdict::{self, Grade};
 use std::time::Instant;
 
 /// An estimation's report with the clips it was trained on.
@@ -128,7 +128,8 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         Some(p) => vec![p.initial.clone()],
         None => starts.clone(),
     };
-    let mut report = Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
+    let mut report =
+        verdict::judged(Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes));
     if let Some(why) = failure(&report) {
         return Err(EstimateError::NoEstimate(why).into());
     }

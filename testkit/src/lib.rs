@@ -107,7 +107,9 @@ pub fn require(what: &str, available: bool, why: &str) -> bool {
         return true;
     }
     if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
-        panic!("{what} is missing under CI=true: scripts/setup.sh should have installed it ({why})");
+        panic!(
+            "{what} is missing under CI=true: scripts/setup.sh should have installed it ({why})"
+        );
     }
     eprintln!("SKIPPED: {what} is missing ({why})");
     false

@@ -3,6 +3,7 @@
 //! truth resolved.
 
 mod dataset;
+mod framing;
 pub mod photometric;
 pub mod recording;
 mod scale;

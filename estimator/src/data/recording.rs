@@ -2,8 +2,9 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
+use super::framing;
 use super::Source;
-use crate::cli::{EstimateArgs, Framing, RecordingArgs};
+use crate::cli::{EstimateArgs, RecordingArgs};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::{approx, num};
@@ -11,13 +12,6 @@ use physvid_shared::contact_sheet::{contact_sheet, encode_png};
 use physvid_shared::video::{self, Crop, Survey, VideoInfo, VideoOptions};
 use serde::Serialize;
 use std::path::Path;
-
-/// The most memory a recording's frames and clips may take (bytes).
-pub const MAX_BYTES: u64 = 8 << 30;
-
-/// An automatic crop covering more of the frame than this is not made (the whole frame is
-/// kept): it would gain little resolution.
-pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
 
 /// At most this many clips by default: the hop between clip starts grows to stay below it.
 pub const MAX_DEFAULT_CLIPS: usize = 1000;
@@ -250,59 +244,17 @@ pub fn load_recording(
     let stride = flags
         .stride
         .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
-    // The frames kept and the clips gathered from them must fit in memory: refused before any
-    // decoding (a 4096×4096 size on a minute of video asks for 87 GB).
-    let frames_kept = info.as_ref().map_or_else(
-        || video::image_files(input).map_or(0, |f| f.len()),
-        |i| {
-            let t0 = i.frame_times.first().copied().unwrap_or(0.0);
-            let (lo, hi) = (
-                t0 + flags.start.unwrap_or(0.0),
-                flags.end.map_or(f64::INFINITY, |e| t0 + e),
-            );
-            i.frame_times
-                .iter()
-                .filter(|t| **t >= lo && **t < hi)
-                .count()
-        },
-    );
-    let per_frame = (size.0 * size.1 * 4) as u64;
-    let clips_max = (MAX_DEFAULT_CLIPS * frames_per_clip) as u64;
-    let bytes = per_frame
-        * (frames_kept as u64 + clips_max.min(frames_kept as u64 * frames_per_clip as u64));
-    if bytes > MAX_BYTES {
-        return Err(input_error(format!(
-            "{}: {frames_kept} frames of {}×{} (and the clips cut from them) need {:.1} GB, more \
-             than the {} GB taken; lower --size, or trim with --start/--end",
-            input.display(),
-            size.0,
-            size.1,
-            bytes as f64 / 1e9,
-            MAX_BYTES >> 30
-        )));
-    }
+    framing::check_memory(
+        input,
+        info.as_ref(),
+        flags,
+        size,
+        frames_per_clip,
+        MAX_DEFAULT_CLIPS,
+    )?;
     let started = std::time::Instant::now();
     // What the encoder sees: the flag's rectangle, the whole frame, or where it moves.
-    let (crop, framing, survey) = match (flags.crop, &info) {
-        (Some(Framing::Crop(c)), _) => (Some(c), "--crop", None),
-        (Some(Framing::Full), _) => (None, "whole frame (--crop full)", None),
-        (_, Some(i)) => {
-            let s = video::survey(input, i, flags.start, flags.end)?;
-            // The region at the encoder's aspect ratio; not worth it over most of the frame.
-            let frame = (i.width, i.height);
-            let crop = s
-                .crop
-                .map(|c| c.with_aspect(size.0 as f64 / size.1 as f64, frame))
-                .filter(|c| c.area_share(frame) <= AUTO_CROP_MAX_SHARE);
-            let how = if crop.is_some() {
-                "where the picture moves (--crop auto)"
-            } else {
-                "whole frame: the motion fills most of it (--crop auto)"
-            };
-            (crop, how, Some(s))
-        }
-        (_, None) => (None, "whole frame (an image folder)", None),
-    };
+    let (crop, framing, survey) = framing::frame(input, info.as_ref(), flags, size)?;
     let survey_s = started.elapsed().as_secs_f64();
     let opts = VideoOptions {
         fps: Some(fps),
@@ -327,7 +279,7 @@ pub fn load_recording(
         let all: Vec<usize> = (0..rows.len()).collect();
         let sheet = contact_sheet(&clips, shape, &all, 2);
         encode_png(&match &survey {
-            Some(s) => framing_over(s, crop, decoded.info.width, &sheet),
+            Some(s) => framing::drawn_over(s, crop, decoded.info.width, &sheet),
             None => sheet,
         })
     });
@@ -370,45 +322,4 @@ pub fn load_recording(
         summary,
         warnings,
     })
-}
-
-/// The survey's motion map (grey) with the crop drawn in red, scaled to the width of `sheet`,
-/// above it.
-fn framing_over(
-    survey: &Survey,
-    crop: Option<Crop>,
-    full_width: usize,
-    sheet: &image::DynamicImage,
-) -> image::DynamicImage {
-    use image::{Rgb, RgbImage};
-    let (w, h) = survey.map_size;
-    let scale = (sheet.width() as usize / w.max(1)).clamp(1, 4);
-    let (mw, mh) = (w * scale, h * scale);
-    let width = (sheet.width() as usize).max(mw);
-    let mut out = RgbImage::new(width as u32, (mh + 4) as u32 + sheet.height());
-    for y in 0..mh {
-        for x in 0..mw {
-            let v = (survey.map[(y / scale) * w + x / scale].clamp(0.0, 1.0) * 255.0) as u8;
-            out.put_pixel(x as u32, y as u32, Rgb([v, v, v]));
-        }
-    }
-    if let Some(c) = crop {
-        let f = mw as f64 / full_width.max(1) as f64;
-        let (x0, y0) = ((c.x as f64 * f) as u32, (c.y as f64 * f) as u32);
-        let x1 = (((c.x + c.w) as f64 * f) as u32).min(mw as u32 - 1);
-        let y1 = (((c.y + c.h) as f64 * f) as u32).min(mh as u32 - 1);
-        for x in x0..=x1 {
-            out.put_pixel(x, y0, Rgb([230, 40, 30]));
-            out.put_pixel(x, y1, Rgb([230, 40, 30]));
-        }
-        for y in y0..=y1 {
-            out.put_pixel(x0, y, Rgb([230, 40, 30]));
-            out.put_pixel(x1, y, Rgb([230, 40, 30]));
-        }
-    }
-    let sheet = sheet.to_rgb8();
-    for (x, y, p) in sheet.enumerate_pixels() {
-        out.put_pixel(x, y + mh as u32 + 4, *p);
-    }
-    image::DynamicImage::ImageRgb8(out)
 }

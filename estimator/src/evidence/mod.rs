@@ -6,18 +6,23 @@
 
 pub mod curvature;
 pub mod fold;
+mod groups;
+mod halves;
 
 use crate::data::ClipData;
 use crate::network::Network;
 use crate::physics::Clips;
 use crate::windows::Windows;
-use curvature::{jacobian, refit, sandwich, step, Variables};
+use curvature::{jacobian, sandwich, step, Variables};
 use fold::Fold;
+use groups::{clip_groups, distinct_rows, time_blocks};
+use halves::{split, window_halves};
+pub use halves::{Split, SplitBy};
 use serde::Serialize;
 use tch::{Kind, Tensor};
 
 /// Iterations of the generic refit on each half (blocks without a final solve of their own).
-const REFIT_ITERATIONS: usize = 30;
+pub(crate) const REFIT_ITERATIONS: usize = 30;
 
 /// At most this many frames are encoded for the fold test.
 const FOLD_FRAMES: i64 = 4096;
@@ -40,42 +45,6 @@ pub struct Evidence {
     pub fold: Option<Fold>,
     /// How the rollout explains the latent on the validation clips.
     pub law: Option<LawFit>,
-}
-
-/// How the training clips were halved for a refit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SplitBy {
-    /// The first and the second half in the data's order (a recording's earlier and later
-    /// part).
-    Order,
-    /// Clips whose mean latent is in the lower and in the upper half (a level, a distance);
-    /// long clips are cut in two first (see `Pieces`).
-    Level,
-    /// Clips whose latent moves least and most within them (small and large swings).
-    Motion,
-}
-
-impl SplitBy {
-    /// The two halves in words.
-    pub fn halves(self) -> [&'static str; 2] {
-        match self {
-            SplitBy::Order => ["the first half of the clips", "the second half"],
-            SplitBy::Level => ["the clips low in the latent's range", "those high in it"],
-            SplitBy::Motion => ["the clips that move least", "those that move most"],
-        }
-    }
-}
-
-/// One refit on each half.
-#[derive(Debug, Clone, Serialize)]
-pub struct Split {
-    pub by: SplitBy,
-    /// The block's parameters on each half.
-    pub values: [Vec<f64>; 2],
-    /// Their covariances from each half's curvature.
-    #[serde(skip)]
-    pub covariances: [Option<Vec<f64>>; 2],
 }
 
 /// How well the law explains the latent's motion within clips.
@@ -178,142 +147,14 @@ pub fn gather(
     }
 }
 
-/// Samples of a window per time block: residuals of nearby frames are correlated (the
-/// encoder's errors are smooth in time), so blocks of this many samples, across all the
-/// stride's phases, are the independent draws of a recording's covariance.
-fn time_blocks(w: &Windows) -> Vec<usize> {
-    let len = w.frames[0].len();
-    let block = ((len / 8).max(5) * w.stride).max(1);
-    let keys: Vec<usize> = w.frames.iter().flatten().map(|&f| f / block).collect();
-    renumber(&keys)
-}
-
-/// The block's parameters refitted on the first and on the second half of a recording's
-/// windows, with their covariances.
-fn window_halves(network: &Network, w: &Windows) -> Option<Split> {
-    let saved = network.snapshot();
-    let fit = |h: &Windows| {
-        if !network.refine_held(&h.z, h.clips()) {
-            refit(network, &h.z, h.clips(), REFIT_ITERATIONS);
-        }
-        network.prepare();
-        let values = network.values(&h.z);
-        let cov = covariance(network, &h.z, h.clips(), &time_blocks(h));
-        network.restore(&saved);
-        (values, cov)
-    };
-    let (a, ca) = fit(&w.half(false));
-    let (b, cb) = fit(&w.half(true));
-    [&a, &b]
-        .iter()
-        .all(|v| v.iter().all(|x| x.is_finite()))
-        .then_some(Split {
-            by: SplitBy::Order,
-            values: [a, b],
-            covariances: [ca, cb],
-        })
-}
-
-/// The group of each training clip: clips that share frames (a recording's, or windows cut
-/// from one sequence into a data set) are not independent draws, so clips whose first frames
-/// lie within a quarter of a clip's span of the sequence are one group (neighbouring groups
-/// still share frames; a recording of one or two clips' length would otherwise give one
-/// group and no error at all); clips that share none are each their own group.
-fn clip_groups(data: &ClipData) -> Vec<usize> {
-    let n = data.n_train() as usize;
-    let t = data.frames_per_clip as usize;
-    // Each clip's sequence and the position of its first frame in it.
-    let places: Vec<(usize, usize)> = match &data.recording {
-        Some((summary, _)) => summary
-            .clip_starts
-            .iter()
-            .take(n)
-            .map(|&s| (0, s / summary.stride.max(1)))
-            .collect(),
-        None => {
-            let offsets = window_offsets(&data.train);
-            let mut places = Vec::with_capacity(n);
-            for i in 0..n {
-                let place = match (i.checked_sub(1), places.last()) {
-                    (Some(prev), Some(&(seq, pos))) => match offsets[prev] {
-                        Some(h) => (seq, pos + h),
-                        None => (seq + 1, 0),
-                    },
-                    _ => (0, 0),
-                };
-                places.push(place);
-            }
-            places
-        }
-    };
-    let block = (t / 4).max(1);
-    let keys: Vec<(usize, usize)> = places.iter().map(|&(s, p)| (s, p / block)).collect();
-    let mut distinct = keys.clone();
-    distinct.sort_unstable();
-    distinct.dedup();
-    keys.iter()
-        .map(|k| distinct.binary_search(k).unwrap_or(0))
-        .collect()
-}
-
-/// The distinct rows of `frames` [M, D] in their order (windows cut from one sequence repeat
-/// its frames, and a repeated frame would be its own nearest neighbour), told apart by two
-/// fixed projections.
-fn distinct_rows(frames: &Tensor) -> Tensor {
-    let d = frames.size()[1];
-    let keys = tch::no_grad(|| {
-        let w = Tensor::arange(d, (Kind::Double, frames.device()));
-        let p = Tensor::stack(&[(&w * 0.7548776662).sin(), (&w * 0.5698402910).cos()], 1);
-        frames
-            .to_kind(Kind::Double)
-            .matmul(&p)
-            .to_device(tch::Device::Cpu)
-    });
-    let keys = Vec::<Vec<f64>>::try_from(&keys).unwrap_or_default();
-    let mut seen = std::collections::HashSet::new();
-    let keep: Vec<i64> = keys
-        .iter()
-        .enumerate()
-        .filter(|(_, k)| seen.insert((k[0].to_bits(), k[1].to_bits())))
-        .map(|(i, _)| i as i64)
-        .collect();
-    if keep.len() == keys.len() {
-        return frames.shallow_clone();
-    }
-    frames.index_select(0, &Tensor::from_slice(&keep).to_device(frames.device()))
-}
-
-/// For each clip but the last, the frame of it that the next clip starts with (the hop between
-/// windows cut from one sequence), if any frame is identical to the next clip's first.
-fn window_offsets(clips: &Tensor) -> Vec<Option<usize>> {
-    let (n, t, _) = clips.size3().unwrap_or((0, 0, 0));
-    if n < 2 {
-        return Vec::new();
-    }
-    let mut out = Vec::with_capacity(n as usize - 1);
-    for s in (0..n - 1).step_by(64) {
-        let len = (n - 1 - s).min(64);
-        let next = clips.narrow(0, s + 1, len).narrow(1, 0, 1);
-        let same = tch::no_grad(|| {
-            (clips.narrow(0, s, len) - next)
-                .abs()
-                .amax([2].as_slice(), false)
-                .eq(0.0)
-                .to_device(tch::Device::Cpu)
-        });
-        let rows = Vec::<Vec<bool>>::try_from(&same).unwrap_or_default();
-        out.extend(
-            rows.into_iter()
-                .map(|r| r.iter().skip(1).position(|&b| b).map(|p| p + 1)),
-        );
-    }
-    let _ = t;
-    out
-}
-
 /// The covariance of the block's parameters (values) from the sandwich of its variables, the
 /// latents `z` [N, T(, D)] grouped per sample (clip and frame) by `groups`.
-fn covariance(network: &Network, z: &Tensor, clips: Clips, groups: &[usize]) -> Option<Vec<f64>> {
+pub(crate) fn covariance(
+    network: &Network,
+    z: &Tensor,
+    clips: Clips,
+    groups: &[usize],
+) -> Option<Vec<f64>> {
     let vars = Variables::of(network);
     let m = vars.len();
     if m == 0 || groups.is_empty() {
@@ -361,136 +202,6 @@ fn covariance(network: &Network, z: &Tensor, clips: Clips, groups: &[usize]) -> 
         }
     }
     cov.iter().all(|v| v.is_finite()).then_some(cov)
-}
-
-/// The training clips in the order that halves them `by` (1-D latents only for the level and
-/// motion splits).
-fn split_order(z: &Tensor, by: SplitBy) -> Option<Vec<i64>> {
-    let n = z.size()[0];
-    let key = match by {
-        SplitBy::Order => return Some((0..n).collect()),
-        _ if z.dim() != 2 => return None,
-        SplitBy::Level => z.mean_dim(1, false, Kind::Double),
-        SplitBy::Motion => z.to_kind(Kind::Double).std_dim(1, false, false),
-    };
-    let key = Vec::<f64>::try_from(&key.to_device(tch::Device::Cpu)).ok()?;
-    let mut order: Vec<i64> = (0..n).collect();
-    order.sort_by(|&a, &b| key[a as usize].total_cmp(&key[b as usize]));
-    Some(order)
-}
-
-/// The block's parameters refitted on each half of the training clips ordered `by` (the
-/// block's own final solve, or Levenberg–Marquardt on its variables) with each half's
-/// covariance, the network put back afterwards.
-fn split(
-    network: &Network,
-    data: &ClipData,
-    z: &Tensor,
-    groups: &[usize],
-    by: SplitBy,
-) -> Option<Split> {
-    let p = Pieces::of(data, z, groups, by);
-    let n = p.z.size()[0];
-    if n < 4 {
-        return None;
-    }
-    let order = split_order(&p.z, by)?;
-    let saved = network.snapshot();
-    let half = (n / 2) as usize;
-    let fit = |rows: &[i64]| {
-        let index = Tensor::from_slice(rows).to_device(z.device());
-        let zh = p.z.index_select(0, &index);
-        let ids: Vec<usize> = rows.iter().map(|&i| p.ids[i as usize]).collect();
-        let start = p.start.as_ref().map(|t| t.index_select(0, &index));
-        let clips = Clips {
-            start: start.as_ref(),
-            ids: Some(&ids),
-        };
-        if !network.refine_held(&zh, clips) {
-            refit(network, &zh, clips, REFIT_ITERATIONS);
-        }
-        network.prepare();
-        let values = network.values(&zh);
-        let steps = zh.size()[1] as usize;
-        let half_groups: Vec<usize> = rows
-            .iter()
-            .flat_map(|&i| [p.groups[i as usize]].repeat(steps))
-            .collect();
-        let covariance = covariance(network, &zh, clips, &renumber(&half_groups));
-        network.restore(&saved);
-        (values, covariance)
-    };
-    let (a, ca) = fit(&order[..half]);
-    let (b, cb) = fit(&order[half..]);
-    [&a, &b]
-        .iter()
-        .all(|v| v.iter().all(|x| x.is_finite()))
-        .then_some(Split {
-            by,
-            values: [a, b],
-            covariances: [ca, cb],
-        })
-}
-
-/// Identifiers of the pieces of clips (the shooting blocks keep a warm start per identifier:
-/// these must not be a clip's).
-const PIECE_IDS: usize = 1 << 40;
-
-/// The training clips as a split sees them. Across levels, clips of at least
-/// [`MIN_PIECE`]·2 frames are cut into their two halves: a long clip spans much of a drain's
-/// range, and halves of the data by whole clips would overlap in level so much that a law
-/// with the wrong shape (an exponential decay fitted to a draining tank) fits both alike.
-struct Pieces {
-    z: Tensor,
-    start: Option<Tensor>,
-    ids: Vec<usize>,
-    groups: Vec<usize>,
-}
-
-/// The shortest piece a clip is cut into.
-const MIN_PIECE: i64 = 4;
-
-impl Pieces {
-    fn of(data: &ClipData, z: &Tensor, groups: &[usize], by: SplitBy) -> Pieces {
-        let (n, t) = (z.size()[0], z.size()[1]);
-        if by != SplitBy::Level || t < 2 * MIN_PIECE || z.dim() != 2 {
-            return Pieces {
-                z: z.shallow_clone(),
-                start: data.train_start.as_ref().map(|s| s.shallow_clone()),
-                ids: (0..n as usize).collect(),
-                groups: groups.to_vec(),
-            };
-        }
-        let h = t / 2;
-        let pieces = z.narrow(1, 0, 2 * h).reshape([2 * n, h]);
-        let start = data.train_start.as_ref().map(|s| {
-            let shift = Tensor::from_slice(&[0.0f32, (h as f64 * data.dt) as f32])
-                .to_device(s.device())
-                .unsqueeze(0);
-            (s.unsqueeze(1) + shift).reshape([2 * n])
-        });
-        Pieces {
-            z: pieces,
-            start,
-            ids: (0..2 * n as usize).map(|i| PIECE_IDS + i).collect(),
-            groups: (0..2 * n as usize).map(|i| groups[i / 2]).collect(),
-        }
-    }
-}
-
-/// Group numbers renumbered 0, 1, 2, … in order of first appearance.
-fn renumber(groups: &[usize]) -> Vec<usize> {
-    let mut seen: Vec<usize> = Vec::new();
-    groups
-        .iter()
-        .map(|g| match seen.iter().position(|s| s == g) {
-            Some(i) => i,
-            None => {
-                seen.push(*g);
-                seen.len() - 1
-            }
-        })
-        .collect()
 }
 
 /// The fold of the latent against the frames' principal components: a recording's every frame

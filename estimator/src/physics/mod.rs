@@ -15,8 +15,6 @@ pub mod pendulum;
 pub(crate) mod smooth_map;
 pub mod spring;
 pub mod torricelli;
-mod two_step;
-mod two_step_solve;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use bounds::Bounds;

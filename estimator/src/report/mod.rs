@@ -15,7 +15,7 @@ use crate::data::ClipData;
 use crate::evidence::Evidence;
 use crate::peaks::PeakDecay;
 use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
-use crate::verdict::{Grade, Verdict};
+use crate::verdict::grade::{Grade, Verdict};
 use ensemble::Ensemble;
 use parameters::ParameterResult;
 use serde::Serialize;
@@ -90,7 +90,7 @@ pub struct Report {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ensemble: Option<Ensemble>,
     pub warnings: Vec<String>,
-    /// `ok`, `doubtful` or `unreliable`, with the reasons.
+    /// `ok`, `doubtful` or `unreliable`, with the reasons (`verdict::judged` fills it in).
     pub verdict: Verdict,
     /// What the verdict weighs (the covariance itself is in the parameters' errors).
     pub evidence: Evidence,
@@ -203,13 +203,6 @@ impl Report {
             },
             outcome,
         }
-        .judged()
-    }
-
-    /// The report with its verdict computed.
-    pub fn judged(mut self) -> Report {
-        self.verdict = Verdict::of(&self);
-        self
     }
 
     /// Records the starts of a multi-start fit.

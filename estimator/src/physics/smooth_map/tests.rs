@@ -19,10 +19,10 @@ fn recovers_the_recurrence_through_a_compressing_read() {
     // extremes: the affine solve sees too little decay, the smooth map removes the bias.
     let (a, b) = (1.8275, -(-0.016f64).exp());
     let data = clips(a, b, |x| 0.1 + x - 0.08 * x * x * x);
-    let affine = crate::physics::two_step_solve::solve_two_step(
+    let affine = crate::physics::oscillator::two_step_solve::solve_two_step(
         &data,
         [a, b],
-        crate::physics::two_step_solve::StateFit::LeastSquares,
+        crate::physics::oscillator::two_step_solve::StateFit::LeastSquares,
     )
     .unwrap();
     let smooth = solve_with_smooth_map(&data, affine).unwrap();

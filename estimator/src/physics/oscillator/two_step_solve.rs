@@ -5,7 +5,7 @@
 //! that the optimiser's steps on γ only jitter around. The coefficients map back to the
 //! oscillator's (γ0, γ1) for either integrator.
 
-/// Where each clip's rollout starts (as the block's [`super::RolloutStart`]).
+/// Where each clip's rollout starts (as the block's [`crate::physics::RolloutStart`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StateFit {
     /// The least-squares state over the whole clip.
@@ -15,7 +15,7 @@ pub enum StateFit {
 }
 
 /// The impulse responses p, q [steps] of the recurrence to (1, 0) and (0, 1), unrolled in f64.
-pub(super) fn responses(a: f64, b: f64, steps: usize) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn responses(a: f64, b: f64, steps: usize) -> (Vec<f64>, Vec<f64>) {
     let mut p = vec![1.0, 0.0];
     let mut q = vec![0.0, 1.0];
     for t in 1..steps.saturating_sub(1) {
@@ -51,7 +51,7 @@ fn residuals(clips: &[Vec<f64>], ab: [f64; 2], fit: StateFit) -> Option<Vec<f64>
     out.iter().all(|r| r.is_finite()).then_some(out)
 }
 
-pub(super) fn dot(u: &[f64], v: &[f64]) -> f64 {
+pub(crate) fn dot(u: &[f64], v: &[f64]) -> f64 {
     u.iter().zip(v).map(|(x, y)| x * y).sum()
 }
 

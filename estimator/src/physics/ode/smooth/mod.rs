@@ -267,5 +267,4 @@ impl Smooth<'_> {
 }
 
 #[cfg(test)]
-#[path = "smooth_tests.rs"]
 mod tests;

@@ -8,7 +8,7 @@
 //! not on the encoded values: terms in powers of noisy latents would carry their noise into
 //! the fit (errors in variables) and bias γ1 far more than they correct.
 
-use super::two_step_solve::{dot, responses};
+use super::oscillator::two_step_solve::{dot, responses};
 use crate::linalg::solve;
 
 /// Highest power of the map's polynomial.
@@ -336,5 +336,4 @@ fn sensitivities(a: f64, b: f64, p: &[f64], q: &[f64]) -> [Vec<f64>; 4] {
 }
 
 #[cfg(test)]
-#[path = "smooth_map_tests.rs"]
 mod tests;

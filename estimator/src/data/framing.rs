@@ -1,0 +1,129 @@
+//! Framing: what part of a recording's frame the encoder sees. `--crop X,Y,W,H` as given,
+//! `--crop full` the whole frame, and by default (`--crop auto`) the region where the picture
+//! moves, from a quick survey at low resolution (`physvid_shared::video::survey`), widened to
+//! the encoder's aspect ratio; and the figure that shows it above the clips.
+
+use crate::cli::{Framing, RecordingArgs};
+use crate::error::{input_error, EstimateError};
+use physvid_shared::video::{self, Crop, Survey, VideoInfo};
+use std::path::Path;
+
+/// An automatic crop covering more of the frame than this is not made (the whole frame is
+/// kept): it would gain little resolution.
+pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
+
+/// The crop for `flags` (`None`: the whole frame), how it was chosen, and the survey when one
+/// was made; `size` is the encoder's frame size (its aspect ratio).
+pub fn frame(
+    input: &Path,
+    info: Option<&VideoInfo>,
+    flags: &RecordingArgs,
+    size: (usize, usize),
+) -> Result<(Option<Crop>, &'static str, Option<Survey>), EstimateError> {
+    Ok(match (flags.crop, info) {
+        (Some(Framing::Crop(c)), _) => (Some(c), "--crop", None),
+        (Some(Framing::Full), _) => (None, "whole frame (--crop full)", None),
+        (_, Some(i)) => {
+            let s = video::survey(input, i, flags.start, flags.end)?;
+            // The region at the encoder's aspect ratio; not worth it over most of the frame.
+            let frame = (i.width, i.height);
+            let crop = s
+                .crop
+                .map(|c| c.with_aspect(size.0 as f64 / size.1 as f64, frame))
+                .filter(|c| c.area_share(frame) <= AUTO_CROP_MAX_SHARE);
+            let how = if crop.is_some() {
+                "where the picture moves (--crop auto)"
+            } else {
+                "whole frame: the motion fills most of it (--crop auto)"
+            };
+            (crop, how, Some(s))
+        }
+        (_, None) => (None, "whole frame (an image folder)", None),
+    })
+}
+
+/// The most memory a recording's frames and clips may take (bytes).
+pub const MAX_BYTES: u64 = 8 << 30;
+
+/// Refuses, before any decoding, a recording whose kept frames at `size` and the clips gathered
+/// from them would not fit in memory (a 4096×4096 size on a minute of video asks for 87 GB).
+pub fn check_memory(
+    input: &Path,
+    info: Option<&VideoInfo>,
+    flags: &RecordingArgs,
+    size: (usize, usize),
+    frames_per_clip: usize,
+    max_clips: usize,
+) -> Result<(), EstimateError> {
+    let frames_kept = info.map_or_else(
+        || video::image_files(input).map_or(0, |f| f.len()),
+        |i| {
+            let t0 = i.frame_times.first().copied().unwrap_or(0.0);
+            let (lo, hi) = (
+                t0 + flags.start.unwrap_or(0.0),
+                flags.end.map_or(f64::INFINITY, |e| t0 + e),
+            );
+            i.frame_times
+                .iter()
+                .filter(|t| **t >= lo && **t < hi)
+                .count()
+        },
+    );
+    let per_frame = (size.0 * size.1 * 4) as u64;
+    let clips_max = (max_clips * frames_per_clip) as u64;
+    let bytes = per_frame
+        * (frames_kept as u64 + clips_max.min(frames_kept as u64 * frames_per_clip as u64));
+    if bytes > MAX_BYTES {
+        return Err(input_error(format!(
+            "{}: {frames_kept} frames of {}×{} (and the clips cut from them) need {:.1} GB, more \
+             than the {} GB taken; lower --size, or trim with --start/--end",
+            input.display(),
+            size.0,
+            size.1,
+            bytes as f64 / 1e9,
+            MAX_BYTES >> 30
+        )));
+    }
+    Ok(())
+}
+
+/// The survey's motion map (grey) with the crop drawn in red, scaled to the width of `sheet`,
+/// above it.
+pub fn drawn_over(
+    survey: &Survey,
+    crop: Option<Crop>,
+    full_width: usize,
+    sheet: &image::DynamicImage,
+) -> image::DynamicImage {
+    use image::{Rgb, RgbImage};
+    let (w, h) = survey.map_size;
+    let scale = (sheet.width() as usize / w.max(1)).clamp(1, 4);
+    let (mw, mh) = (w * scale, h * scale);
+    let width = (sheet.width() as usize).max(mw);
+    let mut out = RgbImage::new(width as u32, (mh + 4) as u32 + sheet.height());
+    for y in 0..mh {
+        for x in 0..mw {
+            let v = (survey.map[(y / scale) * w + x / scale].clamp(0.0, 1.0) * 255.0) as u8;
+            out.put_pixel(x as u32, y as u32, Rgb([v, v, v]));
+        }
+    }
+    if let Some(c) = crop {
+        let f = mw as f64 / full_width.max(1) as f64;
+        let (x0, y0) = ((c.x as f64 * f) as u32, (c.y as f64 * f) as u32);
+        let x1 = (((c.x + c.w) as f64 * f) as u32).min(mw as u32 - 1);
+        let y1 = (((c.y + c.h) as f64 * f) as u32).min(mh as u32 - 1);
+        for x in x0..=x1 {
+            out.put_pixel(x, y0, Rgb([230, 40, 30]));
+            out.put_pixel(x, y1, Rgb([230, 40, 30]));
+        }
+        for y in y0..=y1 {
+            out.put_pixel(x0, y, Rgb([230, 40, 30]));
+            out.put_pixel(x1, y, Rgb([230, 40, 30]));
+        }
+    }
+    let sheet = sheet.to_rgb8();
+    for (x, y, p) in sheet.enumerate_pixels() {
+        out.put_pixel(x, y + mh as u32 + 4, *p);
+    }
+    image::DynamicImage::ImageRgb8(out)
+}

@@ -1,0 +1,177 @@
+//! End-to-end tests on the shared phone recordings (`../shared/real-videos`, skipped visibly
+//! where that folder is absent): the pendulum's g/L from its period and its damping, the
+//! Torricelli jar's level and k in SI, the dropped ball's constant acceleration and g in SI,
+//! each with the verdict it gets.
+
+mod util;
+
+use std::path::Path;
+use util::{estimate_of, read_report, real_video, stderr, Estimate};
+
+fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
+    let o = Estimate::bare().args(args).out(out).quiet().estimated();
+    (read_report(out), stderr(&o))
+}
+
+/// The verdict's grade of a report.
+fn grade(r: &serde_json::Value) -> &str {
+    r["verdict"]["grade"].as_str().unwrap()
+}
+
+#[test]
+fn real_pendulum_gives_g_over_l_from_its_period() {
+    let Some(video) = real_video("pendulum-redapple.mov") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let (r, _) = estimate(
+        &[video.to_str().unwrap(), "--model", "pendulum", "--preview"],
+        &tmp.path().join("run"),
+    );
+    // The period measured by tracking the bob, T = 2.077 s, gives g/L = 9.15 s⁻².
+    let w2 = estimate_of(&r, "g_over_l");
+    assert!((w2 / 9.15 - 1.0).abs() < 0.05, "g/L {w2}");
+    assert_eq!(
+        r["recording"]["stride"], 6,
+        "Table 5's dt 0.1 s at 59.94 fps"
+    );
+    // Tracking the red bob's horizontal position frame by frame, its swing amplitude decays
+    // as e^(−ζt/2) with ζ = 0.017 s⁻¹ (README); the damping solved on the whole timeline
+    // finds it, and A.6's fit of the encoded swings' amplitudes agrees.
+    let zeta = estimate_of(&r, "damping");
+    assert!((zeta / 0.017 - 1.0).abs() < 0.25, "damping {zeta}");
+    assert_eq!(r["cross_check"]["agrees"], true, "{}", r["cross_check"]);
+    // The verdict agrees: nothing against this answer.
+    assert_eq!(grade(&r), "ok", "{}", r["verdict"]);
+    for f in ["timeline.png", "timeline.csv", "clips.png", "latents.png"] {
+        assert!(tmp.path().join("run").join(f).exists(), "{f}");
+    }
+    let csv = std::fs::read_to_string(tmp.path().join("run/timeline.csv")).unwrap();
+    assert!(csv.starts_with("time_s,z\n"));
+    assert_eq!(
+        csv.lines().count() as u64,
+        1 + r["recording"]["frames_decoded"].as_u64().unwrap()
+    );
+}
+
+/// The Torricelli jar after the hand and the sloshing, before it runs dry; dt 0.5 s.
+const TORRICELLI_CLIPS: [&str; 8] = [
+    "--model",
+    "torricelli",
+    "--start",
+    "3",
+    "--end",
+    "20",
+    "--stride",
+    "15",
+];
+
+#[test]
+fn real_torricelli_fit_explains_the_level_in_latent_units() {
+    let Some(video) = real_video("torricelli-500ml.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut args = vec![video.to_str().unwrap()];
+    args.extend(TORRICELLI_CLIPS);
+    let (r, err) = estimate(&args, &tmp.path().join("run"));
+    let residual = r["best_val_rel_mse"].as_f64().unwrap();
+    assert!(
+        residual < 0.15,
+        "the fitted law leaves {residual} of the variance"
+    );
+    assert_eq!(r["parameters"][0]["name"], "k_latent");
+    assert_eq!(r["parameters"][0]["units"], "latent");
+    assert!(estimate_of(&r, "k_latent") > 0.0);
+    assert!(err.contains("--reference"), "{err}");
+}
+
+#[test]
+fn real_free_fall_finds_a_constant_acceleration_and_flags_the_capture_rate() {
+    let Some(video) = real_video("freefall-ball.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let v = video.to_str().unwrap();
+    // From the release (frame ~120 of 30 fps container time) to just before the floor.
+    let common = [
+        v,
+        "--model",
+        "free-fall",
+        "--start",
+        "4.0",
+        "--end",
+        "6.5",
+        "--size",
+        "16x160",
+    ];
+    let mut with_fps = common.to_vec();
+    with_fps.extend(["--fps", "120"]);
+    let (r, err) = estimate(&with_fps, &tmp.path().join("a"));
+    assert!(!err.contains("capture.fps"), "{err}");
+    // Over the 0.5 s of fall the parabola moves the latent by many of its standard deviations.
+    // (The validation clips, the last fifth, hold the noisy frames before the impact.)
+    let a = estimate_of(&r, "acceleration_latent");
+    let std = r["latent_std"].as_f64().unwrap();
+    assert!(
+        a.abs() * 0.5 * 0.5 / 2.0 > 2.0 * std,
+        "a {a}, latent std {std}"
+    );
+    let mut without = common.to_vec();
+    without.extend(["--epochs", "2"]);
+    let (r, err) = estimate(&without, &tmp.path().join("b"));
+    assert!(err.contains("com.android.capture.fps"), "{err}");
+    assert_eq!(r["recording"]["fps_source"], "container");
+}
+
+#[test]
+fn real_free_fall_with_time_references_gives_g_in_si() {
+    let Some(video) = real_video("freefall-ball.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // Read off the video (README): the ball leaves its rest at 3.933 s of the container's
+    // timeline and has fallen 2.26 m at 6.70 s, just above the floor.
+    let (r, _) = estimate(
+        &[
+            video.to_str().unwrap(),
+            "--model",
+            "free-fall",
+            "--fps",
+            "120",
+            "--start",
+            "3.933",
+            "--end",
+            "6.72",
+            "--size",
+            "16x160",
+            "--reference",
+            "3.933s=0,6.7s=2.26",
+        ],
+        &tmp.path().join("run"),
+    );
+    let g = estimate_of(&r, "g");
+    assert!((g / 9.81 - 1.0).abs() < 0.15, "g {g}");
+}
+
+#[test]
+fn real_torricelli_with_time_references_gives_k_in_si() {
+    let Some(video) = real_video("torricelli-500ml.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // Levels read off single frames (README): 7.27 cm at 3.0 s, 3.73 cm at 12.0 s.
+    let mut args = vec![video.to_str().unwrap()];
+    args.extend(TORRICELLI_CLIPS);
+    args.extend(["--reference", "3.0s=0.0727,12.0s=0.0373"]);
+    let (r, _) = estimate(&args, &tmp.path().join("run"));
+    assert_eq!(r["parameters"][0]["units"], "SI");
+    // Appendix Eq. 23's two-point k from the same two readings.
+    let two_point = 2.0 * (0.0727f64.sqrt() - 0.0373f64.sqrt()) / 9.0;
+    let k = estimate_of(&r, "k");
+    assert!(
+        (k / two_point - 1.0).abs() < 0.05,
+        "k {k} against {two_point}"
+    );
+    assert_eq!(grade(&r), "ok", "{}", r["verdict"]);
+}
