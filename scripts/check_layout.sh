@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The layout invariants of ARCHITECTURE.md: no import cycles inside a crate, no source file over
+# 350 lines, no #[path] test files. Prints what breaks them; exit code 1 if anything does.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+status=0
+long=$(find shared generator estimator reproduce testkit -name '*.rs' -not -path '*/target/*' \
+    -exec awk 'END { if (NR > 350) print FILENAME ": " NR " lines" }' {} \;)
+if [ -n "$long" ]; then echo "$long"; status=1; fi
+paths=$(grep -rln '#\[path' --include='*.rs' shared generator estimator reproduce testkit || true)
+if [ -n "$paths" ]; then echo "#[path] in: $paths"; status=1; fi
+# Import cycles: the graph of `crate::` and sibling `super::` paths outside tests, per crate.
+python3 - <<'PY' || status=1
+import os, re, sys
+def module_of(src, path):
+    rel = os.path.relpath(path, src)[:-3].split(os.sep)
+    if rel[-1] in ("mod", "lib", "main"):
+        rel = rel[:-1]
+    return "::".join(rel) or "crate"
+bad = 0
+for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
+    src = os.path.join(crate, "src")
+    files = [os.path.join(d, f) for d, _, fs in os.walk(src) for f in fs if f.endswith(".rs")]
+    mods = {module_of(src, f): f for f in files}
+    g = {m: set() for m in mods}
+    for m, f in mods.items():
+        text = open(f, encoding="utf-8").read()
+        text = text[: text.find("#[cfg(test)]")] if "#[cfg(test)]" in text else text
+        for hit in re.findall(r"crate::([A-Za-z_][A-Za-z0-9_]*(?:::[A-Za-z_][A-Za-z0-9_]*)*)", text):
+            parts = hit.split("::")
+            for n in range(len(parts), 0, -1):
+                cand = "::".join(parts[:n])
+                if cand in mods:
+                    if cand != m and not m.startswith(cand + "::") and not cand.startswith(m + "::"):
+                        g[m].add(cand)
+                    break
+        if "::" in m:
+            parent = m.rsplit("::", 1)[0]
+            for hit in re.findall(r"super::([A-Za-z_][A-Za-z0-9_]*)", text):
+                cand = parent + "::" + hit
+                if cand in mods and cand != m:
+                    g[m].add(cand)
+    # Any module that reaches itself lies on a cycle.
+    for start in g:
+        seen, todo = set(), list(g[start])
+        while todo:
+            v = todo.pop()
+            if v == start:
+                print(f"{crate}: {start} is on an import cycle")
+                bad += 1
+                break
+            if v not in seen:
+                seen.add(v)
+                todo.extend(g[v])
+sys.exit(1 if bad else 0)
+PY
+[ "$status" = 0 ] && echo "layout: ok (no cycles, no file over 350 lines, no #[path])"
+exit "$status"
