@@ -6,6 +6,7 @@ use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
 use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use physvid_shared::cli::approx;
+use physvid_shared::systems;
 use tch::nn;
 use tch::Tensor;
 
@@ -30,14 +31,12 @@ pub struct ConstantAcceleration {
 /// The block sliding down an incline of Delfys75.
 pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        released_from_rest: true,
         calibration_flags: &["--reference", "--incline-deg", "--g"],
         truth: &[TruthKey::signed("acceleration"), TruthKey::signed("mu")],
-        ..ModelInfo::new(
-            "sliding-block",
+        ..ModelInfo::of(
+            &systems::SLIDING_BLOCK,
             "s'' = g·(sin α − μ·cos α), constant (acceleration_latent)",
             &PARAMETERS,
-            (10, 1.0 / 30.0),
         )
     },
     incline: true,
@@ -46,14 +45,12 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
 /// The ball falling away from the camera of Delfys75.
 pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        released_from_rest: true,
         calibration_flags: &["--reference"],
         truth: &[TruthKey::positive("g")],
-        ..ModelInfo::new(
-            "free-fall",
+        ..ModelInfo::of(
+            &systems::FREE_FALL,
             "h'' = g (acceleration_latent)",
             &PARAMETERS,
-            (4, 1.0 / 30.0),
         )
     },
     incline: false,

@@ -4,6 +4,7 @@ use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
+use physvid_shared::systems;
 use tch::nn;
 use tch::{Kind, Tensor};
 
@@ -16,14 +17,13 @@ const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Linear,
     truth: &[TruthKey::positive("gamma")],
     affine_picture: Some("an LED's brightness scales the light of every pixel"),
-    ..ModelInfo::new(
-        "led",
+    ..ModelInfo::of(
+        &systems::LED,
         "I' = −γ·I (gamma, offset)",
         &[
             ParamSpec::new("gamma", 1.0, true),
             ParamSpec::offset("offset", -2.0),
         ],
-        (20, 1.0 / 60.0),
     )
 };
 

@@ -84,4 +84,23 @@ mod tests {
         names.dedup();
         assert_eq!(names.len(), MODELS.len());
     }
+
+    /// Every system `gen` and `estimate` share has a model here with its facts, and the truth
+    /// keys the model compares with are the system's.
+    #[test]
+    fn every_shared_system_is_a_model_with_its_facts() {
+        for sys in physvid_shared::systems::SYSTEMS {
+            let m = ModelRef::by_name(sys.model).unwrap_or_else(|| panic!("{}", sys.model));
+            assert_eq!(m.table5_clip(), sys.clip, "{}", sys.model);
+            assert_eq!(
+                m.released_from_rest(),
+                sys.released_from_rest,
+                "{}",
+                sys.model
+            );
+            let keys: Vec<&str> = m.info().truth.iter().map(|t| t.name).collect();
+            assert_eq!(keys, sys.truth, "{}", sys.model);
+        }
+        assert_eq!(physvid_shared::systems::SYSTEMS.len(), MODELS.len());
+    }
 }

@@ -6,6 +6,7 @@ use super::bounds::Bounds;
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::PeakDecay;
+use physvid_shared::systems::System;
 use tch::{nn, Tensor};
 
 /// One learnable parameter of a block.
@@ -155,6 +156,19 @@ pub struct ModelInfo {
 pub use physvid_shared::dynamics::DT_RANGE;
 
 impl ModelInfo {
+    /// A built-in model of `system` (its name, Table 5's clip and whether it starts from rest
+    /// come from the record `gen` shares), with the defaults most share.
+    pub const fn of(
+        system: &System,
+        help: &'static str,
+        parameters: &'static [ParamSpec],
+    ) -> ModelInfo {
+        ModelInfo {
+            released_from_rest: system.released_from_rest,
+            ..ModelInfo::new(system.model, help, parameters, system.clip)
+        }
+    }
+
     /// A model with the defaults most share: the small encoder, patience 30, no special needs.
     pub const fn new(
         name: &'static str,

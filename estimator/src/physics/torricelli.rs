@@ -4,6 +4,7 @@ use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
+use physvid_shared::systems;
 use tch::nn;
 use tch::{Kind, Tensor};
 
@@ -17,14 +18,13 @@ const INFO: ModelInfo = ModelInfo {
     calibration_flags: &["--reference"],
     nonnegative_reference: Some("a water level (m above the tank's bottom)"),
     truth: &[TruthKey::positive("k")],
-    ..ModelInfo::new(
-        "torricelli",
+    ..ModelInfo::of(
+        &systems::TORRICELLI,
         "h' = −k·√h (k_latent, base)",
         &[
             ParamSpec::new("k_latent", 0.1, true),
             ParamSpec::offset("base", -3.0),
         ],
-        (20, 1.0),
     )
 };
 

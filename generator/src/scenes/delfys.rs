@@ -6,6 +6,7 @@
 use super::{Params, Scene};
 use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
+use physvid_shared::systems::System;
 use physvid_shared::{Calibration, ReferencePoint, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -25,17 +26,14 @@ pub const DELFYS_SAMPLING_TEXT: &str = "per clip, from ChaCha8 stream i (seeded 
 /// The facts about a Delfys75 system, one record per system (its file's `INFO`).
 #[derive(Debug, Clone, Copy)]
 pub struct SystemInfo {
-    /// The scenario name, which is also the `estimate --model` name.
-    pub name: &'static str,
+    /// The physical system (shared with `estimate`): its model name, which is also the
+    /// scenario's, Table 5's clip, and whether it starts from rest.
+    pub system: &'static System,
     pub help: &'static str,
-    /// Table 5's frames per clip and dt (s).
-    pub clip: (usize, f64),
     /// What z is, in words (meta.json's latent_mapping).
     pub mapping_text: &'static str,
     /// What the reference values measure, in words.
     pub quantity: &'static str,
-    /// Whether each clip's start time since a release from rest is written to meta.json.
-    pub released_from_rest: bool,
 }
 
 /// One Delfys75 system: its [`SystemInfo`], parameters, dynamics and drawing.
@@ -114,16 +112,16 @@ pub fn times(t0: f64, frames: usize, dt: f64) -> impl Iterator<Item = f64> {
 
 impl<S: DelfysSystem> Scene for Delfys<S> {
     fn name(&self) -> &'static str {
-        self.0.info().name
+        self.0.info().system.model
     }
     fn help(&self) -> &'static str {
         self.0.info().help
     }
     fn model_name(&self) -> &'static str {
-        self.0.info().name
+        self.0.info().system.model
     }
     fn default_clip(&self) -> (usize, f64) {
-        self.0.info().clip
+        self.0.info().system.clip
     }
     fn params(&self, setting: u8) -> Params {
         self.0.setting((setting.clamp(1, 3) - 1) as usize)
@@ -190,7 +188,7 @@ impl<S: DelfysSystem> Scene for Delfys<S> {
         Some(1.0 / dt)
     }
     fn released_from_rest(&self) -> bool {
-        self.0.info().released_from_rest
+        self.0.info().system.released_from_rest
     }
 }
 

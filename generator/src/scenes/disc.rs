@@ -8,6 +8,7 @@ use crate::error::{invalid, ConfigError};
 use crate::render::{Canvas, Disc};
 use crate::sampling::{draw_initial_condition, AMPLITUDE_MAX, SAMPLING_TEXT};
 use physvid_shared::cli::{approx, num};
+use physvid_shared::systems;
 use physvid_shared::{Calibration, DampedOscillator, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 
@@ -54,10 +55,10 @@ impl<P: DiscPicture> Scene for DiscScene<P> {
         self.0.info().help
     }
     fn model_name(&self) -> &'static str {
-        "damped-oscillator"
+        systems::DAMPED_OSCILLATOR.model
     }
     fn default_clip(&self) -> (usize, f64) {
-        (20, 0.2)
+        systems::DAMPED_OSCILLATOR.clip
     }
     fn params(&self, _setting: u8) -> Params {
         params(&[("omega", 2.0), ("zeta", 0.04)])

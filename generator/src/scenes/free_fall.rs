@@ -4,6 +4,7 @@ use super::delfys::{positive, times, DelfysSystem, SystemInfo, G};
 use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
+use physvid_shared::systems;
 use physvid_shared::{Calibration, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -11,12 +12,10 @@ use rand_chacha::ChaCha8Rng;
 pub struct FreeFall;
 
 const INFO: SystemInfo = SystemInfo {
-    name: "free-fall",
+    system: &systems::FREE_FALL,
     help: "Delfys75: a ball falling away from the camera, h'' = g, seen at radius f·r0/h",
-    clip: (4, 1.0 / 30.0),
     mapping_text: "latent = distance h (m) of a ball from the camera; apparent radius = focal_px_per_m * radius / h",
     quantity: "distance from the camera h (m)",
-    released_from_rest: true,
 };
 
 impl DelfysSystem for FreeFall {

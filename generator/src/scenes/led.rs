@@ -4,6 +4,7 @@ use super::delfys::{positive, times, DelfysSystem, SystemInfo};
 use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
+use physvid_shared::systems;
 use physvid_shared::{Calibration, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -11,12 +12,10 @@ use rand_chacha::ChaCha8Rng;
 pub struct Led;
 
 const INFO: SystemInfo = SystemInfo {
-    name: "led",
+    system: &systems::LED,
     help: "Delfys75: a dimming LED, I' = −γ·I",
-    clip: (20, 1.0 / 60.0),
     mapping_text: "latent = brightness I/I(0) of an LED (grey 0.15 + 0.85*I) in a dim housing",
     quantity: "brightness I/I(0)",
-    released_from_rest: false,
 };
 
 impl DelfysSystem for Led {

@@ -182,4 +182,25 @@ mod tests {
         assert_eq!(names.len(), SCENES.len());
         assert!(SceneRef::by_name("wobble").is_none());
     }
+
+    /// Every scene draws a system `estimate` knows, with its clip and release, and writes the
+    /// true values the system's model compares with.
+    #[test]
+    fn every_scene_draws_a_shared_system() {
+        for s in SCENES {
+            let sys = physvid_shared::systems::by_model(s.model_name())
+                .unwrap_or_else(|| panic!("{}: {}", s.name(), s.model_name()));
+            assert_eq!(s.default_clip(), sys.clip, "{}", s.name());
+            assert_eq!(
+                s.released_from_rest(),
+                sys.released_from_rest,
+                "{}",
+                s.name()
+            );
+            let truth = s.model_parameters(&s.params(1));
+            for key in sys.truth {
+                assert!(truth.contains_key(*key), "{}: no {key}", s.name());
+            }
+        }
+    }
 }

@@ -6,6 +6,7 @@ use super::{params, Params, MIN_PHASE_SPAN};
 use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
 use physvid_shared::cli::{approx, num};
+use physvid_shared::systems;
 use physvid_shared::{Calibration, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -13,12 +14,10 @@ use rand_chacha::ChaCha8Rng;
 pub struct Pendulum;
 
 const INFO: SystemInfo = SystemInfo {
-    name: "pendulum",
+    system: &systems::PENDULUM,
     help: "Delfys75: a bob on a string, θ'' = −(g/L)·sin θ − ζ·θ' (finite angles)",
-    clip: (20, 0.1),
     mapping_text: "latent = angle theta (rad) of a bob on a string seen from the front; pivot at (size/2, 0.1*size), pixels_per_metre = 0.5*size/length",
     quantity: "angle theta (rad)",
-    released_from_rest: false,
 };
 
 impl DelfysSystem for Pendulum {

@@ -7,18 +7,17 @@ use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
 use physvid_shared::cli::num;
+use physvid_shared::systems;
 use physvid_shared::{Calibration, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 
 pub struct SlidingBlock;
 
 const INFO: SystemInfo = SystemInfo {
-    name: "sliding-block",
+    system: &systems::SLIDING_BLOCK,
     help: "Delfys75: a block sliding down an incline, s'' = g·(sin α − μ·cos α)",
-    clip: (10, 1.0 / 30.0),
     mapping_text: "latent = distance s (m) travelled down the incline from the top; pixels_per_metre = 0.8*size/travel along the incline",
     quantity: "distance along the incline s (m)",
-    released_from_rest: true,
 };
 
 /// a = g·(sin α − μ·cos α).

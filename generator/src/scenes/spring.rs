@@ -11,6 +11,7 @@ use super::{params, Params, Scene};
 use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
 use crate::sampling::sample_rng;
+use physvid_shared::systems;
 use physvid_shared::{Calibration, PositionPoint, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -111,11 +112,11 @@ impl Scene for Spring {
         "appendix A.5: two digits joined by a spring, F = k·(|d| − l)·d̂, over a cluttered backdrop"
     }
     fn model_name(&self) -> &'static str {
-        "spring"
+        systems::SPRING.model
     }
     /// PAIG's training clips: 12 frames of 0.3 time units.
     fn default_clip(&self) -> (usize, f64) {
-        (12, 0.3)
+        systems::SPRING.clip
     }
     fn params(&self, _setting: u8) -> Params {
         params(&[

@@ -7,19 +7,18 @@ use super::{params, Params};
 use crate::error::ConfigError;
 use crate::render::Canvas;
 use physvid_shared::cli::num;
+use physvid_shared::systems;
 use physvid_shared::{Calibration, SampleTruth};
 use rand_chacha::ChaCha8Rng;
 
 pub struct Torricelli;
 
 const INFO: SystemInfo = SystemInfo {
-    name: "torricelli",
+    system: &systems::TORRICELLI,
     help: "Delfys75: a draining tank, h' = −k·√h",
-    clip: (20, 1.0),
     mapping_text:
         "latent = water level h (m) above the bottom of a tank; pixels_per_metre = 0.7*size/h_start",
     quantity: "water level h (m)",
-    released_from_rest: false,
 };
 
 /// Seconds for the level to fall from h_start to h_end.

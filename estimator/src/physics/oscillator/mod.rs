@@ -17,6 +17,7 @@ use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
 use physvid_shared::cli::approx;
+use physvid_shared::systems;
 use tch::nn;
 use tch::Tensor;
 
@@ -31,15 +32,13 @@ const INFO: ModelInfo = ModelInfo {
     converged_spread: 1e-2,
     truth: &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
     supports_residual: true,
-    ..ModelInfo::new(
-        "damped-oscillator",
+    ..ModelInfo::of(
+        &systems::DAMPED_OSCILLATOR,
         "z'' + γ1·z' + γ0·z = 0 (gamma0, gamma1)",
         &[
             ParamSpec::new("gamma0", 1.0, true),
             ParamSpec::new("gamma1", 0.1, false),
         ],
-        // 20 frames of 0.2 s, as the synthetic sets.
-        (20, 0.2),
     )
 };
 

@@ -16,6 +16,7 @@ use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
+use physvid_shared::systems;
 use tch::nn;
 use tch::Tensor;
 
@@ -31,17 +32,16 @@ pub(super) const INFO: ModelInfo = ModelInfo {
         10.0,
         "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
     ),
-    ..ModelInfo::new(
-        "pendulum",
-        "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",
-        &[
+    ..ModelInfo::of(
+            &systems::PENDULUM,
+            "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",
+            &[
             ParamSpec::new("g_over_l", 10.0, true),
             ParamSpec::new("damping", 0.1, true),
             ParamSpec::map("angle_scale", 10.0, true),
             ParamSpec::map("angle_offset", 0.0, false),
         ],
-        (20, 0.1),
-    )
+        )
 };
 
 impl Model for Pendulum {

@@ -23,6 +23,7 @@ use super::ode::{ObservationMap, ShootingBlock};
 use crate::calibration::{position_scale, Calibration, DerivedValue, Readings, POSITION_FIT_R2};
 use crate::encoder::EncoderKind;
 use crate::spectral::spectral_start;
+use physvid_shared::systems;
 use system::{SpringSystem, SUBSTEPS_PER_FRAME};
 use tch::nn;
 use tch::Tensor;
@@ -37,15 +38,13 @@ const INFO: ModelInfo = ModelInfo {
     has_euler: false,
     encoder: EncoderKind::Keypoints,
     min_frame: (44, "two 22-px digits side by side"),
-    ..ModelInfo::new(
-        "spring",
+    ..ModelInfo::of(
+        &systems::SPRING,
         "two bodies, x_i'' = ±k·(|d| − l)·d̂, latent (x1, y1, x2, y2) (k, rest_length)",
         &[
             ParamSpec::new("k", 1.0, true),
             ParamSpec::new("rest_length", 1.0, true),
         ],
-        // PAIG's training clips: 12 frames of 0.3 time units.
-        (12, 0.3),
     )
 };
 
