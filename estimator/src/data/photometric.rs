@@ -13,8 +13,12 @@ use serde::Serialize;
 
 /// Frames sampled for the reference and the per-pixel statistics.
 const SAMPLE: usize = 256;
-/// A pixel is lit when its mean is at least this (in [0, 1]).
-const LIT: f32 = 0.02;
+/// A pixel is lit when its mean is at least this (in [0, 1]; sensor noise clipped at black
+/// alone lifts a black pixel's mean to about 0.4 of its standard deviation).
+const LIT: f32 = 0.05;
+/// The gains' spread over frames must exceed this many times each gain's own standard error
+/// (from the fit's residuals): a noisy but steady light moves the fitted gains too.
+const SIGNIFICANT: f64 = 3.0;
 /// Lit static pixels must cover at least this share of the frame.
 const MIN_STATIC_SHARE: f64 = 0.5;
 /// Gains that vary less than this (standard deviation over frames) are left alone.
@@ -82,7 +86,7 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
             2.0 * py as f64 / h.max(2) as f64 - 1.0,
         )
     };
-    let gains: Vec<[f64; 3]> = (0..n)
+    let fits: Vec<([f64; 3], f64)> = (0..n)
         .map(|k| {
             fit_gain(
                 &frames[k * frame_len..(k + 1) * frame_len],
@@ -92,13 +96,18 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
             )
         })
         .collect();
+    let gains: Vec<[f64; 3]> = fits.iter().map(|f| f.0).collect();
+    let mut errors: Vec<f64> = fits.iter().map(|f| f.1).collect();
+    errors.sort_by(f64::total_cmp);
+    let typical_error = errors[errors.len() / 2];
     let mean_a = gains.iter().map(|g| g[0]).sum::<f64>() / n as f64;
     let spread = (gains.iter().map(|g| (g[0] - mean_a).powi(2)).sum::<f64>() / n as f64).sqrt();
     let max_gradient = gains
         .iter()
         .map(|g| g[1].abs().max(g[2].abs()))
         .fold(0.0, f64::max);
-    if spread < MIN_GAIN_SPREAD * mean_a.abs() && max_gradient < MIN_GAIN_SPREAD * mean_a.abs() {
+    let steady = spread < MIN_GAIN_SPREAD * mean_a.abs() && max_gradient < MIN_GAIN_SPREAD * mean_a.abs();
+    if steady || spread.max(max_gradient) < SIGNIFICANT * typical_error {
         return None;
     }
     for (k, g) in gains.iter().enumerate() {
@@ -119,13 +128,14 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
 }
 
 /// The gain field (a, b, c) with frame ≈ (a + b·u + c·v)·reference over the `pixels`, fitted
-/// twice, the second time without the fifth of them that fit worst.
+/// twice, the second time without the fifth of them that fit worst, and the standard error of
+/// a (from the residuals).
 fn fit_gain(
     frame: &[f32],
     reference: &[f32],
     pixels: &[usize],
     coords: impl Fn(usize) -> (f64, f64),
-) -> [f64; 3] {
+) -> ([f64; 3], f64) {
     let solve = |use_px: &mut dyn Iterator<Item = usize>| -> [f64; 3] {
         let (mut h, mut g) = ([[0.0f64; 3]; 3], [0.0f64; 3]);
         for x in use_px {
@@ -155,7 +165,22 @@ fn fit_gain(
     let mut errors: Vec<f64> = pixels.iter().map(|&x| residual(x)).collect();
     errors.sort_by(f64::total_cmp);
     let keep = errors[(errors.len() * 4 / 5).min(errors.len() - 1)];
-    solve(&mut pixels.iter().copied().filter(|&x| residual(x) <= keep))
+    let kept: Vec<usize> = pixels
+        .iter()
+        .copied()
+        .filter(|&x| residual(x) <= keep)
+        .collect();
+    let gain = solve(&mut kept.iter().copied());
+    // σ of the residuals over √(Σ reference²): the error of a pure gain fitted there.
+    let (mut ssr, mut srr) = (0.0, 0.0);
+    for &x in &kept {
+        let (u, v) = coords(x);
+        let r = reference[x] as f64;
+        ssr += (frame[x] as f64 - (gain[0] + gain[1] * u + gain[2] * v) * r).powi(2);
+        srr += r * r;
+    }
+    let sigma = (ssr / (kept.len().saturating_sub(3).max(1)) as f64).sqrt();
+    (gain, sigma / srr.sqrt().max(1e-12))
 }
 
 #[cfg(test)]
