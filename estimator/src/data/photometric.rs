@@ -106,7 +106,8 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
         .iter()
         .map(|g| g[1].abs().max(g[2].abs()))
         .fold(0.0, f64::max);
-    let steady = spread < MIN_GAIN_SPREAD * mean_a.abs() && max_gradient < MIN_GAIN_SPREAD * mean_a.abs();
+    let steady =
+        spread < MIN_GAIN_SPREAD * mean_a.abs() && max_gradient < MIN_GAIN_SPREAD * mean_a.abs();
     if steady || spread.max(max_gradient) < SIGNIFICANT * typical_error {
         return None;
     }
