@@ -8,8 +8,15 @@
 #  3. the ffmpeg command-line tools (Debian's `ffmpeg` package) for `estimate` on recordings,
 #     where this machine lets us install them (root or password-less sudo with apt-get);
 #     otherwise a note, and the tests that need them skip;
-#  4. Debian's `chromium` the same way, for the test that opens report.html in a browser.
+#  4. with --tests (what scripts/test.sh passes), Debian's `chromium` the same way, for the test
+#     that opens report.html in a browser: the main job does not need it.
 set -euo pipefail
+for_tests=""
+case "${1:-}" in
+    --tests) for_tests=1 ;;
+    "") ;;
+    *) echo "setup: unknown argument '$1' (use: scripts/setup.sh [--tests])" >&2; exit 2 ;;
+esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 TORCH_VERSION="2.13.0"
@@ -67,6 +74,6 @@ apt_install() {
 if ! command -v ffmpeg >/dev/null 2>&1 || ! command -v ffprobe >/dev/null 2>&1; then
     apt_install ffmpeg "for estimate on videos"
 fi
-if ! command -v chromium >/dev/null 2>&1; then
+if [ -n "$for_tests" ] && ! command -v chromium >/dev/null 2>&1; then
     apt_install chromium "for the test that opens report.html in a headless browser"
 fi

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Every check, as README.md's second command and CI run it: set-up (idempotent), formatting,
-# the layout's invariants (no import cycles, files of at most 350 lines, no #[path] test
-# files), clippy with warnings as errors, then all unit and end-to-end tests (CPU only; the CUDA test
-# needs `--features physvid-estimator/cuda-tests` on a GPU machine).
+# Every check, as README.md's second command and CI run it: set-up (idempotent, with the browser
+# the report test needs), formatting, the layout's invariants (no import cycles, files of at most
+# 350 lines, no #[path] test files), clippy with warnings as errors, then all unit and end-to-end
+# tests (CPU only; the CUDA test needs `--features physvid-estimator/cuda-tests` on a GPU
+# machine).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-scripts/setup.sh
+scripts/setup.sh --tests
 cargo fmt --all -- --check
 scripts/check_layout.sh
 # Release profile throughout, so the libtorch bindings are compiled once for clippy and tests.

@@ -1,6 +1,7 @@
 //! End-to-end tests of models from a file (`--model FILE.toml`): the shipped examples equivalent
-//! to built-in models agree with them, Duffing goes from `gen --model` to `estimate`, and every
-//! mistake in a file is one line naming the file and the key, exit code 2, nothing written.
+//! to built-in models agree with them, Duffing goes from `gen --model` to `estimate DIR` (the
+//! data set carries its model file), and every mistake in a file is one line naming the file and
+//! the key, exit code 2, nothing written.
 
 mod util;
 
@@ -102,7 +103,15 @@ fn duffing_from_gen_model_to_estimate_with_b_calibrated_from_meta_json() {
             .unwrap();
     assert_eq!(meta["model"]["name"], "duffing");
     assert_eq!(meta["model"]["parameters"]["b"], 1.0);
-    let r = run(&data, &file, &tmp.path().join("run"), &[]);
+    // The data set carries its model file: `estimate DIR` needs no --model.
+    assert_eq!(
+        meta["model"]["file"].as_str(),
+        Some(std::fs::read_to_string(&file).unwrap().as_str())
+    );
+    let out = tmp.path().join("run");
+    Estimate::new(&data).out(&out).quiet().ok();
+    let r = read_report(&out);
+    assert_eq!(r["model"], "duffing");
     for (name, tol) in [("a", 0.01), ("b", 0.05), ("c", 0.1)] {
         let (_, units, err) = value(&r, name);
         assert_eq!(units, "SI", "{name}");

@@ -28,6 +28,7 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
         model: ModelSpec {
             name: scene.model_name().into(),
             parameters: scene.model_parameters(&cfg.params),
+            file: scene.model_source().map(str::to_string),
         },
         dt: cfg.dt,
         shape: cfg.shape(),

@@ -14,6 +14,10 @@ pub struct ModelSpec {
     pub name: String,
     /// True parameters by name (for the oscillator: omega, zeta, gamma0, gamma1).
     pub parameters: BTreeMap<String, f64>,
+    /// The model file's text, for data made with `gen --model FILE.toml`: `estimate DIR` reads
+    /// the model from it without the file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }
 
 /// Per-sample draws of the initial condition, by name (the oscillator's `amplitude` and

@@ -37,6 +37,7 @@ fn valid_meta() -> DatasetMeta {
         model: ModelSpec {
             name: "damped-oscillator".into(),
             parameters: [("gamma0".to_string(), 4.0)].into_iter().collect(),
+            file: None,
         },
         dt: 0.2,
         shape: SHAPE,

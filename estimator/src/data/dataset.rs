@@ -45,6 +45,15 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
             check_dt(args, meta.dt)?;
             (meta.dt, model)
         }
+        (Some(meta), None) if meta.model.file.is_some() && args.model.model.is_none() => {
+            // Data made from a model file carry its text: the model is read from it.
+            let text = meta.model.file.as_deref().unwrap_or_default();
+            let origin = ds.frames_path.with_file_name("meta.json (model.file)");
+            let model = crate::physics::file::FileModel::from_text(&origin, text)
+                .map_err(|e| input_error(e.to_string()))?;
+            check_dt(args, meta.dt)?;
+            (meta.dt, model)
+        }
         (Some(meta), None) => {
             let meta_model = ModelRef::by_name(&meta.model.name).ok_or_else(|| {
                 input_error(format!(

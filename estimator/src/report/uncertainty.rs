@@ -9,7 +9,8 @@ use crate::physics::ModelRef;
 use serde::Serialize;
 
 /// Standard errors of the values `derive` gives for `params`, in its order (`None` where the
-/// covariance is unknown or not finite).
+/// covariance is unknown or not finite, or where the value does not depend on the block's
+/// parameters, such as a latent map settled by the final solve).
 pub fn standard_errors(
     model: ModelRef,
     params: &[f64],
@@ -55,7 +56,7 @@ pub fn standard_errors(
                 .flat_map(|a| (0..m).map(move |b| (a, b)))
                 .map(|(a, b)| row[a] * cov[a * m + b] * row[b])
                 .sum();
-            (var.is_finite() && var >= 0.0).then(|| var.sqrt())
+            (var.is_finite() && var > 0.0).then(|| var.sqrt())
         })
         .collect()
 }

@@ -179,6 +179,9 @@ impl Scene for FileScene {
     fn model_name(&self) -> &'static str {
         self.name
     }
+    fn model_source(&self) -> Option<&str> {
+        Some(&self.file.source)
+    }
     fn default_clip(&self) -> (usize, f64) {
         (20, 0.2)
     }

@@ -53,6 +53,10 @@ pub trait Scene: Sync {
     fn help(&self) -> &'static str;
     /// The `estimate --model` that fits it (meta.json's `model.name`).
     fn model_name(&self) -> &'static str;
+    /// The model file's text where the scene draws one (meta.json's `model.file`).
+    fn model_source(&self) -> Option<&str> {
+        None
+    }
     /// Frames per clip and dt (s) when the flags do not say.
     fn default_clip(&self) -> (usize, f64);
     /// Parameters for `--setting` (1, 2 or 3; the disc scenes have one).

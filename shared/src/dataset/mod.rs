@@ -204,6 +204,7 @@ mod tests {
             model: ModelSpec {
                 name: "damped-oscillator".into(),
                 parameters: Default::default(),
+                file: None,
             },
             dt: 0.2,
             shape,

@@ -55,6 +55,9 @@ pub struct DerivedDef {
 #[derive(Debug, Clone)]
 pub struct ModelFile {
     pub path: PathBuf,
+    /// The file's text as read (what `gen` copies into meta.json, so the data set describes
+    /// its own model).
+    pub source: String,
     pub name: String,
     pub description: String,
     /// The encoder the file asks for (`small`, `paper`, `linear`, `keypoints`), if any.
@@ -118,4 +121,10 @@ impl ModelFile {
 #[cfg(test)]
 pub(crate) fn parse_text(text: &str) -> Result<ModelFile, ModelFileError> {
     read::parse_file(std::path::Path::new("test.toml"), text)
+}
+
+/// A model file's text from elsewhere than a file of its own (meta.json's `model.file`), checked
+/// as [`load`] checks a file; `origin` names where it came from in errors.
+pub fn parse(origin: &std::path::Path, text: &str) -> Result<ModelFile, ModelFileError> {
+    read::parse_file(origin, text)
 }

@@ -149,6 +149,7 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
     }
     let mut file = ModelFile {
         path: path.to_path_buf(),
+        source: text.to_string(),
         name,
         description,
         encoder,

@@ -43,7 +43,16 @@ fn leak(s: String) -> &'static str {
 impl FileModel {
     /// Reads `path` into a registry-like model that lives as long as the process.
     pub fn load(path: &Path) -> Result<ModelRef, model_file::ModelFileError> {
-        let file = model_file::load(path)?;
+        FileModel::from_file(model_file::load(path)?)
+    }
+
+    /// The model of a data set made from a model file (meta.json's `model.file`, the file's
+    /// text), `origin` naming it in errors.
+    pub fn from_text(origin: &Path, text: &str) -> Result<ModelRef, model_file::ModelFileError> {
+        FileModel::from_file(model_file::parse(origin, text)?)
+    }
+
+    fn from_file(file: ModelFile) -> Result<ModelRef, model_file::ModelFileError> {
         if let Some(builtin) = ModelRef::by_name(&file.name) {
             return Err(file.error(
                 "name",
@@ -106,7 +115,7 @@ impl FileModel {
         };
         let d = file.observed.len();
         let help = if file.description.is_empty() {
-            format!("from {}", path.display())
+            format!("from {}", file.path.display())
         } else {
             file.description.clone()
         };
@@ -117,7 +126,7 @@ impl FileModel {
             calibrates_in_training: d == 1,
             has_euler: false,
             truth: Box::leak(truth.into_boxed_slice()),
-            file: Some(leak(path.display().to_string())),
+            file: Some(leak(file.path.display().to_string())),
             ..ModelInfo::new(
                 leak(file.name.clone()),
                 leak(help),
