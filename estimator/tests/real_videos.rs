@@ -1,7 +1,7 @@
 //! End-to-end tests on the shared phone recordings (`../shared/real-videos`, skipped visibly
 //! where that folder is absent): the pendulum's g/L from its period and its damping, the
-//! Torricelli jar's level and k in SI, the dropped ball's constant acceleration and g in SI,
-//! each with the verdict it gets.
+//! Torricelli jar's level and k in SI (and a stride of its own on a short trim), the dropped
+//! ball's constant acceleration and g in SI, each with the verdict it gets.
 
 mod util;
 
@@ -84,6 +84,36 @@ fn real_torricelli_fit_explains_the_level_in_latent_units() {
     assert_eq!(r["parameters"][0]["units"], "latent");
     assert!(estimate_of(&r, "k_latent") > 0.0);
     assert!(err.contains("--reference"), "{err}");
+}
+
+#[test]
+fn a_trim_too_short_for_table_5s_clip_gets_a_shorter_stride_not_a_refusal() {
+    let Some(video) = real_video("torricelli-500ml.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // 13.75 s at 29.97 fps: one clip of Table 5's 20 frames 1 s apart would need 571 frames.
+    let (r, err) = estimate(
+        &[
+            video.to_str().unwrap(),
+            "--model",
+            "torricelli",
+            "--start",
+            "7",
+            "--end",
+            "20.75",
+            "--epochs",
+            "5",
+        ],
+        &tmp.path().join("run"),
+    );
+    let stride = r["recording"]["stride"].as_u64().unwrap();
+    let kept = r["recording"]["frames_decoded"].as_u64().unwrap();
+    assert!(
+        stride < 30 && 19 * stride <= kept / 2,
+        "stride {stride} of {kept} frames"
+    );
+    assert!(err.contains("--stride chooses"), "{err}");
 }
 
 #[test]

@@ -44,7 +44,8 @@ pub struct RecordingArgs {
     #[arg(long, help = frames_help())]
     pub frames_per_clip: Option<usize>,
     /// Recording frames between clip frames, so dt = stride / fps [default: Table 5's dt × fps,
-    /// e.g. 6 for the pendulum at 60 fps].
+    /// e.g. 6 for the pendulum at 60 fps, shortened with a warning where a clip would span more
+    /// than half of the frames kept].
     #[arg(long)]
     pub stride: Option<usize>,
     /// Recording frames between the starts of consecutive clips [default: 1, or more to stay

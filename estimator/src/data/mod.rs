@@ -7,6 +7,7 @@ mod framing;
 pub mod photometric;
 pub mod recording;
 mod scale;
+mod timing;
 
 use crate::cli::EstimateArgs;
 use crate::error::{input_error, EstimateError};

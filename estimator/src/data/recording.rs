@@ -2,8 +2,8 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
-use super::framing;
 use super::Source;
+use super::{framing, timing};
 use crate::cli::{EstimateArgs, RecordingArgs};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -241,9 +241,14 @@ pub fn load_recording(
             }
         }
     }
-    let stride = flags
-        .stride
-        .unwrap_or_else(|| ((table_dt * fps).round() as usize).max(1));
+    let stride = timing::stride(
+        flags.stride,
+        info.as_ref(),
+        (flags.start, flags.end),
+        (frames_per_clip, table_dt, fps),
+        model,
+        &mut warnings,
+    );
     framing::check_memory(
         input,
         info.as_ref(),

@@ -42,6 +42,22 @@ impl VideoInfo {
         Some(s[s.len() / 2]).filter(|m| *m > 0.0)
     }
 
+    /// How many frames the container's index puts within `start`..`end` (s), when it gives
+    /// timestamps.
+    pub fn frames_within(&self, start: Option<f64>, end: Option<f64>) -> Option<usize> {
+        let t0 = *self.frame_times.first()?;
+        let (lo, hi) = (
+            t0 + start.unwrap_or(0.0),
+            end.map_or(f64::INFINITY, |e| t0 + e),
+        );
+        Some(
+            self.frame_times
+                .iter()
+                .filter(|&&t| t >= lo - 1e-9 && t <= hi + 1e-9)
+                .count(),
+        )
+    }
+
     /// The first gap within `start`..`end`: (the time it starts, its length), if any.
     pub fn first_gap(&self, start: Option<f64>, end: Option<f64>) -> Option<(f64, f64)> {
         let m = self.median_interval(start, end)?;

@@ -1,0 +1,77 @@
+//! A recording's clips in time: the stride between a clip's frames, Table 5's clip length by
+//! default, shortened where the part kept is too short for it (with a warning saying so).
+
+use crate::physics::ModelRef;
+use physvid_shared::cli::approx;
+use physvid_shared::video::VideoInfo;
+
+/// The stride: `--stride` when given; otherwise Table 5's clip time (`table_dt` at `fps`),
+/// shortened so that a clip spans at most half of the frames kept within `trim` (when the
+/// container's index counts them), with a warning naming the choice.
+pub(super) fn stride(
+    flag: Option<usize>,
+    info: Option<&VideoInfo>,
+    trim: (Option<f64>, Option<f64>),
+    (frames_per_clip, table_dt, fps): (usize, f64, f64),
+    model: ModelRef,
+    warnings: &mut Vec<String>,
+) -> usize {
+    if let Some(s) = flag {
+        return s;
+    }
+    let table = ((table_dt * fps).round() as usize).max(1);
+    let Some(kept) = info.and_then(|i| i.frames_within(trim.0, trim.1)) else {
+        return table;
+    };
+    let stride = fitting(table, frames_per_clip, kept);
+    if stride < table {
+        warnings.push(format!(
+            "Table 5's clip of {} ({frames_per_clip} frames {} s apart: stride {table}) would \
+             span more than half of the {kept} frames kept: stride {stride} ({} s between a \
+             clip's frames) instead; --stride chooses",
+            model.name(),
+            approx(table_dt),
+            approx(stride as f64 / fps)
+        ));
+    }
+    stride
+}
+
+/// `table`, or the largest stride at which a clip of `frames_per_clip` frames spans at most
+/// half of `kept` frames (at least 1).
+fn fitting(table: usize, frames_per_clip: usize, kept: usize) -> usize {
+    let gaps = frames_per_clip.saturating_sub(1).max(1);
+    table.min((kept / 2 / gaps).max(1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_stride_stands_where_it_fits_and_shrinks_where_it_does_not() {
+        // The jar trimmed to 13.75 s at 29.97 fps: Table 5's 1-s clip of 20 frames needs 571.
+        assert_eq!(fitting(30, 20, 412), 10);
+        assert!(19 * fitting(30, 20, 412) <= 412 / 2);
+        // A long recording keeps the table's stride.
+        assert_eq!(fitting(6, 20, 1320), 6);
+        // Too few frames for any clip: stride 1 (the decoder then says what is missing).
+        assert_eq!(fitting(30, 20, 10), 1);
+        assert_eq!(fitting(30, 1, 100), 30);
+    }
+
+    #[test]
+    fn a_given_stride_or_an_unknown_length_keeps_its_value_without_warning() {
+        let model = ModelRef::by_name("torricelli").unwrap();
+        let mut w = Vec::new();
+        assert_eq!(
+            stride(Some(7), None, (None, None), (20, 1.0, 30.0), model, &mut w),
+            7
+        );
+        assert_eq!(
+            stride(None, None, (None, None), (20, 1.0, 30.0), model, &mut w),
+            30
+        );
+        assert!(w.is_empty());
+    }
+}
