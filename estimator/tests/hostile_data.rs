@@ -70,7 +70,7 @@ fn reference_points_that_give_no_scale_are_refused() {
     let out = tmp.path().join("run");
     let refs = |r: &str| Estimate::new(&data).args(["--reference", r]).out(&out);
     refs("0:0=0.05").bad_input("one frame (0:0) gives no scale");
-    refs("0:0=0.05,0:0=0.02").bad_input("0:0 is given twice (0.05 and 0.02)");
+    refs("0:0=0.05,0:0=0.02").bad_input("clip 0 frame 0 is given twice");
     refs("0:0=0.05,1:3=0.05").bad_input("every frame has the value 0.05");
     refs("0:0=1e300,1:3=0.02").bad_input("0:0=1e300: must be within");
     refs("0:0=-0.01,1:3=0.02").bad_input("below zero, and a water level");

@@ -7,7 +7,7 @@
 //! pixels dropped the second time (an object passing over them), and the frame is divided by
 //! it. Applied only where it can be and is needed: static lit pixels must cover half the frame
 //! (a black background carries no measure of the light, and an intensity scene's bright disc
-//! must not be normalised away), and the fitted gains must vary by more than half a percent.
+//! must not be normalised away), and the fitted gains must vary by more than a percent.
 
 use serde::Serialize;
 
@@ -21,16 +21,20 @@ const LIT: f32 = 0.05;
 const SIGNIFICANT: f64 = 3.0;
 /// Lit static pixels must cover at least this share of the frame.
 const MIN_STATIC_SHARE: f64 = 0.5;
-/// Gains that vary less than this (standard deviation over frames) are left alone.
-const MIN_GAIN_SPREAD: f64 = 0.005;
+/// Gains that vary less than this (standard deviation over frames, and the gradient across the
+/// frame that a tenth of the frames exceed) are left alone. A phone's exposure jitters by less
+/// (the shared recordings: spread 0.3–0.4 %, gradient 0.2–0.5 %), and dividing that out, with a
+/// fit the moving object itself touches, took part of the pendulum's swing with it (its damping
+/// 0.017 → 0.004 s⁻¹); `gen --perturb light:1` and `drift:1` vary by 4–6 %.
+const MIN_GAIN_SPREAD: f64 = 0.01;
 
 /// What the normalisation did.
 #[derive(Debug, Clone, Serialize)]
 pub struct Photometric {
-    /// The gain's standard deviation over frames (at the frame's centre) and its largest
-    /// gradient across the frame.
+    /// The gain's standard deviation over frames (at the frame's centre) and its gradient
+    /// across the frame that a tenth of the frames exceed (relative to the mean gain).
     pub gain_spread: f64,
-    pub max_gradient: f64,
+    pub gradient: f64,
     /// The share of the frame taken as lit and static.
     pub static_share: f64,
 }
@@ -102,13 +106,14 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
     let typical_error = errors[errors.len() / 2];
     let mean_a = gains.iter().map(|g| g[0]).sum::<f64>() / n as f64;
     let spread = (gains.iter().map(|g| (g[0] - mean_a).powi(2)).sum::<f64>() / n as f64).sqrt();
-    let max_gradient = gains
-        .iter()
-        .map(|g| g[1].abs().max(g[2].abs()))
-        .fold(0.0, f64::max);
+    // The gradient most frames reach (a few frames' own, an object over the static pixels,
+    // do not decide).
+    let mut gradients: Vec<f64> = gains.iter().map(|g| g[1].abs().max(g[2].abs())).collect();
+    gradients.sort_by(f64::total_cmp);
+    let gradient = gradients[gradients.len() * 9 / 10];
     let steady =
-        spread < MIN_GAIN_SPREAD * mean_a.abs() && max_gradient < MIN_GAIN_SPREAD * mean_a.abs();
-    if steady || spread.max(max_gradient) < SIGNIFICANT * typical_error {
+        spread < MIN_GAIN_SPREAD * mean_a.abs() && gradient < MIN_GAIN_SPREAD * mean_a.abs();
+    if steady || spread.max(gradient) < SIGNIFICANT * typical_error {
         return None;
     }
     for (k, g) in gains.iter().enumerate() {
@@ -123,7 +128,7 @@ pub fn normalise(frames: &mut [f32], (c, h, w): (usize, usize, usize)) -> Option
     }
     Some(Photometric {
         gain_spread: spread / mean_a.abs(),
-        max_gradient: max_gradient / mean_a.abs(),
+        gradient: gradient / mean_a.abs(),
         static_share,
     })
 }

@@ -139,9 +139,9 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         facts.push((
             "light normalised",
             format!(
-                "gain varied by {:.1} %, across the frame by up to {:.1} %",
+                "gain varied by {:.1} %, across the frame by {:.1} % (a tenth of the frames more)",
                 100.0 * p.gain_spread,
-                100.0 * p.max_gradient
+                100.0 * p.gradient
             ),
         ));
     }
