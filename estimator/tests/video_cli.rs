@@ -132,7 +132,10 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
         ),
         (vec![v, "--start", "100"], "no frames between --start 100"),
         (vec![v, "--crop", "30,20,20,20"], "outside the 40×30 frame"),
-        (vec![v, "--frames-per-clip", "40"], "one clip of 40 frames"),
+        (
+            vec![v, "--frames-per-clip", "40", "--stride", "2"],
+            "one clip of 40 frames",
+        ),
         (
             vec![v, "--start", "3", "--end", "2"],
             "--end 2 is not after --start 3",

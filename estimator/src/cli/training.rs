@@ -39,7 +39,8 @@ pub struct TrainingArgs {
     #[arg(long, default_value_t = 1e-2)]
     pub lr_phys: f64,
     /// Train only from --init (the paper's behaviour). By default starts estimated from the
-    /// frames (principal components) are probed beside it and the best one kept.
+    /// frames (principal components) are probed beside it and the best one kept, and an
+    /// oscillation whose latent folds the picture is trained again from half its frequency.
     #[arg(long)]
     pub single_start: bool,
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.

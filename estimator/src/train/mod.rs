@@ -97,7 +97,8 @@ const UNFOLDED_PREFERENCE: f64 = 2.0;
 /// fits [`UNFOLDED_PREFERENCE`] times better. (Training the other probed starts to the end
 /// whenever an answer followed little of the picture was tried and dropped: among moving
 /// distractors the validation error then preferred a distractor's straight path, γ0 0.3
-/// instead of 4.) `announce` is told before the further training.
+/// instead of 4.) `--single-start` trains the one start alone. `announce` is told before the
+/// further training.
 pub fn fit_best(
     cfg: &RunConfig,
     data: &ClipData,
@@ -109,7 +110,10 @@ pub fn fit_best(
     let (first, mut probes) = fit(cfg, data, device, starts, on_epoch)?;
     let folded = |o: &TrainOutcome| o.evidence.fold.as_ref().map_or(0.0, |f| f.folded_share);
     let mut others: Vec<(Vec<f64>, String)> = Vec::new();
-    if folded(&first) >= MAYBE_FOLDED && cfg.model.oscillates(&first.parameters) {
+    if !cfg.single_start
+        && folded(&first) >= MAYBE_FOLDED
+        && cfg.model.oscillates(&first.parameters)
+    {
         if let Some(half) = cfg
             .model
             .subharmonic(&first.parameters)
