@@ -43,6 +43,8 @@ pub struct RunConfig {
     pub single_start: bool,
     pub loss: LossKind,
     pub encoder: EncoderKind,
+    /// Why the model chose `encoder` itself, when it did and no flag chose (a warning).
+    pub encoder_note: Option<&'static str>,
     pub seed: u64,
     /// Independently seeded trainings whose spread is reported (1: a single run).
     pub ensemble: usize,
@@ -169,6 +171,7 @@ impl RunConfig {
             single_start: t.single_start,
             loss: t.loss,
             encoder,
+            encoder_note: t.encoder.is_none().then_some(model.info().encoder_note).flatten(),
             seed: t.seed,
             ensemble: t.ensemble,
             device: t.device,

@@ -156,6 +156,12 @@ fn newtons_cooling_agrees_with_the_built_in_led() {
     );
     let (rate, units, _) = value(&r, "r");
     assert_eq!(units, "SI");
+    // The file has no encoder line: the linear one is chosen, and said so.
+    assert!(
+        r["warnings"].to_string().contains("the linear encoder"),
+        "{}",
+        r["warnings"]
+    );
     assert!(
         (rate / builtin - 1.0).abs() < 0.02,
         "cooling r {rate} vs led gamma {builtin}"

@@ -114,8 +114,10 @@ pub struct ModelInfo {
     pub help: &'static str,
     /// The block's learnable parameters, in its order.
     pub parameters: &'static [ParamSpec],
-    /// The encoder that makes the latent identifiable for this law.
+    /// The encoder that makes the latent identifiable for this law, and why, when the model
+    /// chose it itself (a model file without an `encoder` line; reported with the answer).
     pub encoder: EncoderKind,
+    pub encoder_note: Option<&'static str>,
     /// Early-stop patience (epochs without improvement).
     pub patience: usize,
     /// The convergence stop's band: training ends when every parameter stayed within this
@@ -181,6 +183,7 @@ impl ModelInfo {
             help,
             parameters,
             encoder: EncoderKind::Small,
+            encoder_note: None,
             patience: 30,
             converged_spread: 4e-3,
             table5_clip,

@@ -6,6 +6,7 @@
 //! exact Jacobians; `symmetry.rs` finds which parameters the latent's arbitrary scale and offset
 //! (or a change of time unit) move.
 
+pub mod curved;
 pub mod expr;
 mod parameters;
 mod read;

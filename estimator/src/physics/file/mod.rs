@@ -107,12 +107,23 @@ impl FileModel {
             .chain(file.derived.iter().map(|d| d.name.clone()))
             .map(|n| TruthKey::signed(leak(n)))
             .collect();
+        let curved = file.encoder.is_none()
+            && model_file::curved::kept_by_curved_maps(&file, &system.compiled);
         let encoder = match file.encoder.as_deref() {
             Some("paper") => EncoderKind::Paper,
             Some("linear") => EncoderKind::Linear,
             Some("keypoints") => EncoderKind::Keypoints,
+            _ if curved => EncoderKind::Linear,
             _ => EncoderKind::Small,
         };
+        let encoder_note = curved.then(|| {
+            leak(format!(
+                "{}'s law is affine in {} and first order, so curved maps of it keep the law \
+                 with another rate: the linear encoder (which cannot bend the latent) is used; \
+                 an `encoder` line in the file, or --encoder, chooses another",
+                file.name, file.states[0]
+            ))
+        });
         let d = file.observed.len();
         let help = if file.description.is_empty() {
             format!("from {}", file.path.display())
@@ -122,6 +133,7 @@ impl FileModel {
         let info = ModelInfo {
             latent_dims: d,
             encoder,
+            encoder_note,
             calibration_flags: &["--reference"],
             calibrates_in_training: d == 1,
             has_euler: false,
