@@ -171,7 +171,11 @@ impl RunConfig {
             single_start: t.single_start,
             loss: t.loss,
             encoder,
-            encoder_note: t.encoder.is_none().then_some(model.info().encoder_note).flatten(),
+            encoder_note: t
+                .encoder
+                .is_none()
+                .then_some(model.info().encoder_note)
+                .flatten(),
             seed: t.seed,
             ensemble: t.ensemble,
             device: t.device,

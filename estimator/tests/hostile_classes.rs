@@ -1,8 +1,9 @@
 //! Issue 20's classes of hostile input for `estimate`, one test each, fixed where they arise:
 //! a recording's timing judged by its frames' own timestamps, the pixel values' scale, names
 //! and flags given twice, impossible calibrations, inputs that block and unbounded work, runs
-//! that give no estimate, pictures too small to carry one, and a model without oscillation
-//! judged as one (`gen`'s classes are in generator/tests/hostile_gen.rs).
+//! that give no estimate, pictures too small to carry one, a model without oscillation judged
+//! as one, and a healthy file whose container holds frames it never shows (`gen`'s classes are
+//! in generator/tests/hostile_gen.rs).
 
 mod util;
 
@@ -262,6 +263,38 @@ fn a_model_without_oscillation_is_not_judged_as_one() {
     assert!(!reasons.contains("oscillation"), "{reasons}");
 }
 
+/// The first 200 frames of `data` as a 10-fps video with ffmpeg's `filters` and keyframes
+/// every 40 frames.
+fn video_of(data: &str, video: &Path, filters: &[&str]) {
+    let a = physvid_shared::npy::read_npy(&Path::new(data).join("frames.npy")).unwrap();
+    let frames: Vec<u8> = a.data[..200 * 256]
+        .iter()
+        .map(|v| (v * 255.0).round() as u8)
+        .collect();
+    let mut child = std::process::Command::new("ffmpeg")
+        .args(["-v", "error", "-y", "-f", "rawvideo", "-pix_fmt", "gray"])
+        .args(["-s", "16x16", "-r", "10", "-i", "-"])
+        .args(filters)
+        .args([
+            "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "10", "-g", "40",
+        ])
+        .arg(video)
+        .stdin(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write;
+    child.stdin.take().unwrap().write_all(&frames).unwrap();
+    assert!(child.wait().unwrap().success());
+}
+
+/// `estimate VIDEO` on 16×16 frames at stride 1 into `out`.
+fn on_video(video: &Path, out: &Path) -> util::TestCommand {
+    Estimate::new(video)
+        .args(["--model", "damped-oscillator", "--size", "16x16"])
+        .args(["--stride", "1"])
+        .out(out)
+}
+
 #[test]
 fn uneven_frame_times_are_refused_not_read_as_even() {
     if !util::need_ffmpeg() {
@@ -269,42 +302,46 @@ fn uneven_frame_times_are_refused_not_read_as_even() {
     }
     let tmp = tempfile::tempdir().unwrap();
     let (data, _) = small(tmp.path());
-    // The first clips' frames as a 10-fps video, frames 40–59 dropped (their time kept).
-    let a = physvid_shared::npy::read_npy(&Path::new(&data).join("frames.npy")).unwrap();
-    let frames: Vec<u8> = a.data[..200 * 256]
-        .iter()
-        .map(|v| (v * 255.0).round() as u8)
-        .collect();
+    // Frames 40–59 dropped (their time kept).
     let video = tmp.path().join("gap.mp4");
-    let mut child = std::process::Command::new("ffmpeg")
-        .args(["-v", "error", "-y", "-f", "rawvideo", "-pix_fmt", "gray"])
-        .args(["-s", "16x16", "-r", "10", "-i", "-"])
-        .args(["-vf", "select='not(between(n,40,59))'", "-fps_mode", "vfr"])
-        .args(["-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "10"])
-        .arg(&video)
-        .stdin(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    use std::io::Write;
-    child.stdin.take().unwrap().write_all(&frames).unwrap();
-    assert!(child.wait().unwrap().success());
+    let drop = ["-vf", "select='not(between(n,40,59))'", "-fps_mode", "vfr"];
+    video_of(&data, &video, &drop);
     let out = tmp.path().join("run");
-    let run = || {
-        Estimate::new(&video)
-            .args([
-                "--model",
-                "damped-oscillator",
-                "--size",
-                "16x16",
-                "--stride",
-                "1",
-            ])
-            .out(&out)
-    };
-    run().bad_input("not evenly spaced");
+    on_video(&video, &out).bad_input("not evenly spaced");
     // The part before the gap is even.
-    run()
+    on_video(&video, &out)
         .args(["--end", "3.8", "--epochs", "2"])
         .quiet()
         .estimated();
+}
+
+#[test]
+fn a_healthy_file_whose_container_holds_frames_it_never_shows_is_read() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let (data, _) = small(tmp.path());
+    // Trimmed without re-encoding (an edit list, as phones trim): the container holds the
+    // frames from the keyframe before the cut, which are decoded but never shown, so its
+    // header and index announce more frames than a player presents.
+    let (full, trimmed) = (tmp.path().join("full.mp4"), tmp.path().join("trim.mp4"));
+    video_of(&data, &full, &[]);
+    let status = std::process::Command::new("ffmpeg")
+        .args(["-v", "error", "-y", "-ss", "7", "-i"])
+        .arg(&full)
+        .args(["-c", "copy"])
+        .arg(&trimmed)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = tmp.path().join("run");
+    on_video(&trimmed, &out)
+        .args(["--epochs", "2"])
+        .quiet()
+        .estimated();
+    let decoded = read_report(&out)["recording"]["frames_decoded"]
+        .as_u64()
+        .unwrap();
+    assert_eq!(decoded, 130, "the 13 s after the cut at 10 fps");
 }

@@ -200,12 +200,29 @@ pub fn frame_times(path: &Path) -> Result<Vec<f64>, VideoError> {
         .filter(|v| v.is_finite())
         .collect();
     t.sort_by(f64::total_cmp);
-    Ok(t)
+    Ok(presented(t))
+}
+
+/// The times of the frames a player shows: an edit list (a phone's trim, `ffmpeg -ss … -c copy`)
+/// keeps the packets before the cut in the file, at negative times, to decode the first shown
+/// frame; they are never presented, and counting them made a healthy file look truncated.
+fn presented(times: Vec<f64>) -> Vec<f64> {
+    if times.iter().any(|&t| t >= 0.0) {
+        times.into_iter().filter(|&t| t >= 0.0).collect()
+    } else {
+        times
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn frames_before_an_edit_lists_cut_are_not_presented() {
+        assert_eq!(presented(vec![-0.5, -0.1, 0.0, 0.1]), vec![0.0, 0.1]);
+        assert_eq!(presented(vec![-0.2, -0.1]), vec![-0.2, -0.1]);
+    }
 
     #[test]
     fn rates_parse_as_fractions() {
