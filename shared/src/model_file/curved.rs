@@ -50,11 +50,12 @@ mod tests {
 
     #[test]
     fn affine_first_order_laws_are_kept_and_curved_ones_are_not() {
-        let rate = "r = { start = 1.0, positive = true }\nTa = { start = 0.2 }";
-        assert!(kept(rate, "-r*(x - Ta)"));
-        assert!(kept(rate, "-r*x"));
-        assert!(!kept(rate, "-r*sqrt(x)"));
-        assert!(!kept(rate, "-r*x^2 + Ta"));
-        assert!(!kept(rate, "-r*x*(1 + t)"));
+        let two = "r = { start = 1.0, positive = true }\nTa = { start = 0.2 }";
+        let one = "r = { start = 1.0, positive = true }";
+        assert!(kept(two, "-r*(x - Ta)"));
+        assert!(kept(one, "-r*x"));
+        assert!(!kept(one, "-r*sqrt(x)"));
+        assert!(!kept(two, "-r*x^2 + Ta"));
+        assert!(!kept(one, "-r*x*(1 + t)"));
     }
 }
