@@ -4,8 +4,9 @@
 //! the checks that need the data. Nothing downstream re-derives a default.
 
 use crate::calibration::Calibration;
-use crate::cli::{DeviceChoice, EstimateArgs, ModelArgs};
+use crate::cli::{EstimateArgs, ModelArgs};
 use crate::data::ClipData;
+use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;

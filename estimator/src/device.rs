@@ -3,11 +3,21 @@
 //! every run); when an NVIDIA driver is present it is opened here, before anything asks libtorch
 //! about CUDA (ATen disables CUDA for good if asked before the library is loaded).
 
-use crate::cli::DeviceChoice;
 use crate::error::EstimateError;
+use serde::Serialize;
 use std::path::Path;
 use std::sync::OnceLock;
 use tch::Device;
+
+/// Where to train.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DeviceChoice {
+    /// CUDA when libtorch sees a GPU, else CPU.
+    Auto,
+    Cpu,
+    Cuda,
+}
 
 /// libtorch's library directory, recorded at build time.
 const LIBTORCH_LIB: &str = env!("PHYSVID_LIBTORCH_LIB");

@@ -68,7 +68,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     tch::set_num_threads(args.training.thread_count() as i32);
     let (device, device_warning) = select_device(args.training.device)?;
-    let mut data = load_clips(args, device)?;
+    let mut data = load_clips(&args.load_request(), device)?;
     data.warnings.extend(device_warning);
     let cfg = &RunConfig::resolve(args, &data)?;
     data.warnings.extend(cfg.encoder_note.map(String::from));

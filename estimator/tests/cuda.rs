@@ -37,7 +37,7 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
     .unwrap()
     .validate()
     .unwrap();
-    let data = load_clips(&args, device).unwrap();
+    let data = load_clips(&args.load_request(), device).unwrap();
     assert!(data.train.device().is_cuda());
     let cfg = RunConfig::resolve(&args, &data).unwrap();
     let outcome = train(&cfg, &data, device, &mut |_| {}).unwrap();

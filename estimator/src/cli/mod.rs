@@ -10,10 +10,12 @@ mod model;
 mod recording;
 mod training;
 
+pub use crate::data::Framing;
+pub use crate::device::DeviceChoice;
 pub use batch::{parse_shard, BatchArgs, Shard};
 pub use model::{parse_init, parse_reference, ModelArgs};
-pub use recording::{parse_crop, parse_size, Framing, RecordingArgs};
-pub use training::{DeviceChoice, TrainingArgs};
+pub use recording::{parse_crop, parse_size, RecordingArgs};
+pub use training::TrainingArgs;
 
 use crate::error::{input_error, EstimateError};
 use clap::Parser;
@@ -73,6 +75,16 @@ impl EstimateArgs {
     /// is a batch or a merge, which never reach a single run's code).
     pub fn input(&self) -> &std::path::Path {
         self.input.as_deref().unwrap_or(std::path::Path::new(""))
+    }
+
+    /// What to load, as the data layer reads it.
+    pub fn load_request(&self) -> crate::data::LoadRequest {
+        crate::data::LoadRequest {
+            input: self.input().to_path_buf(),
+            model: self.model.model,
+            dt: self.model.dt,
+            recording: self.recording.request(),
+        }
     }
 
     /// Checks the flags that do not depend on the data.

@@ -2,6 +2,7 @@
 //! size, clip length, stride, hop). Their model-dependent defaults (Table 5's clip) are
 //! resolved in `data::recording`.
 
+use crate::data::{Framing, RecordingRequest};
 use crate::error::{input_error, EstimateError};
 use crate::physics::MODELS;
 use physvid_shared::cli::num;
@@ -68,18 +69,6 @@ fn frames_help() -> String {
     )
 }
 
-/// `--crop`'s choice of what the encoder sees.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Framing {
-    /// Where the picture moves (a survey of the recording).
-    Auto,
-    /// The whole frame.
-    Full,
-    /// The rectangle given.
-    Crop(Crop),
-}
-
 /// Parses `--crop X,Y,W,H|auto|full`.
 pub fn parse_crop(text: &str) -> Result<Framing, String> {
     match text.trim() {
@@ -120,6 +109,22 @@ impl RecordingArgs {
     /// The frame size: `--size`, else [`DEFAULT_SIZE`].
     pub fn frame_size(&self) -> (usize, usize) {
         self.size.unwrap_or(DEFAULT_SIZE)
+    }
+
+    /// The flags as the data layer reads them (the frame size resolved).
+    pub fn request(&self) -> RecordingRequest {
+        RecordingRequest {
+            fps: self.fps,
+            crop: self.crop,
+            start: self.start,
+            end: self.end,
+            size: self.frame_size(),
+            frames_per_clip: self.frames_per_clip,
+            stride: self.stride,
+            hop: self.hop,
+            preview: self.preview,
+            given: self.given(),
+        }
     }
 
     /// The recording flags given, as written on the command line.

@@ -3,21 +3,11 @@
 //! `physics::MODELS`.
 
 use super::positive;
+use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
 use crate::physics::MODELS;
-use serde::Serialize;
-
-/// Where to train.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum DeviceChoice {
-    /// CUDA when libtorch sees a GPU, else CPU.
-    Auto,
-    Cpu,
-    Cuda,
-}
 
 /// How the encoder and the physics parameters are trained.
 #[derive(Debug, Clone, clap::Args)]

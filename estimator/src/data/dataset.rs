@@ -1,8 +1,7 @@
 //! A `gen` dataset directory or a bare `.npy` as training input: validated, with dt and the
 //! model resolved against meta.json (flags must agree with it).
 
-use super::Source;
-use crate::cli::EstimateArgs;
+use super::{LoadRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
@@ -10,15 +9,15 @@ use physvid_shared::read_dataset;
 use std::collections::BTreeMap;
 
 /// A dataset directory or a bare `.npy`.
-pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateError> {
-    if let Some(flag) = args.recording.given().first() {
+pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError> {
+    if let Some(flag) = req.recording.given.first() {
         return Err(input_error(format!(
             "{flag}: applies to recordings (videos, image folders); {} is a dataset of clips \
              already cut; drop it",
-            args.input().display()
+            req.input.display()
         )));
     }
-    let ds = read_dataset(args.input())?;
+    let ds = read_dataset(&req.input)?;
     let source = ds.frames_path.display().to_string();
     let [n, t, c, h, w] = ds.shape;
     if t < 3 {
@@ -37,21 +36,21 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
             ds.shape
         )));
     }
-    let model_file = args.model.model.filter(|m| m.info().file.is_some());
+    let model_file = req.model.filter(|m| m.info().file.is_some());
     let (dt, model) = match (&ds.meta, model_file) {
         (Some(meta), Some(model)) => {
             // A model file may be tried on any data: meta.json's model is not checked against
             // it (its ground truth is compared by name where the names agree).
-            check_dt(args, meta.dt)?;
+            check_dt(req, meta.dt)?;
             (meta.dt, model)
         }
-        (Some(meta), None) if meta.model.file.is_some() && args.model.model.is_none() => {
+        (Some(meta), None) if meta.model.file.is_some() && req.model.is_none() => {
             // Data made from a model file carry its text: the model is read from it.
             let text = meta.model.file.as_deref().unwrap_or_default();
             let origin = ds.frames_path.with_file_name("meta.json (model.file)");
             let model = crate::physics::file::FileModel::from_text(&origin, text)
                 .map_err(|e| input_error(e.to_string()))?;
-            check_dt(args, meta.dt)?;
+            check_dt(req, meta.dt)?;
             (meta.dt, model)
         }
         (Some(meta), None) => {
@@ -63,8 +62,8 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
                     ModelRef::names()
                 ))
             })?;
-            check_dt(args, meta.dt)?;
-            if let Some(m) = args.model.model {
+            check_dt(req, meta.dt)?;
+            if let Some(m) = req.model {
                 if m != meta_model {
                     return Err(input_error(format!(
                         "--model {} contradicts meta.json's model {}; drop --model to use the metadata",
@@ -77,12 +76,12 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
             (meta.dt, meta_model)
         }
         (None, _) => {
-            let dt = args.model.dt.ok_or_else(|| {
+            let dt = req.dt.ok_or_else(|| {
                 input_error(format!(
                     "{source} has no meta.json beside it: pass --dt (seconds between frames)"
                 ))
             })?;
-            let model = args.model.model.ok_or_else(|| {
+            let model = req.model.ok_or_else(|| {
                 input_error(format!(
                     "{source} has no meta.json beside it: pass --model (e.g. --model damped-oscillator)"
                 ))
@@ -106,8 +105,8 @@ pub(crate) fn dataset_source(args: &EstimateArgs) -> Result<Source, EstimateErro
 }
 
 /// `--dt`, when given, must be meta.json's.
-fn check_dt(args: &EstimateArgs, meta_dt: f64) -> Result<(), EstimateError> {
-    match args.model.dt {
+fn check_dt(req: &LoadRequest, meta_dt: f64) -> Result<(), EstimateError> {
+    match req.dt {
         Some(dt) if (dt - meta_dt).abs() > 1e-12 * meta_dt.max(1.0) => Err(input_error(format!(
             "--dt {dt} contradicts meta.json's dt {meta_dt}; drop --dt to use the metadata"
         ))),

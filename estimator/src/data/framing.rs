@@ -3,10 +3,23 @@
 //! moves, from a quick survey at low resolution (`physvid_shared::video::survey`), widened to
 //! the encoder's aspect ratio; and the figure that shows it above the clips.
 
-use crate::cli::{Framing, RecordingArgs};
+use super::RecordingRequest;
 use crate::error::{input_error, EstimateError};
 use physvid_shared::video::{self, Crop, Survey, VideoInfo};
+use serde::Serialize;
 use std::path::Path;
+
+/// `--crop`'s choice of what the encoder sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Framing {
+    /// Where the picture moves (a survey of the recording).
+    Auto,
+    /// The whole frame.
+    Full,
+    /// The rectangle given.
+    Crop(Crop),
+}
 
 /// An automatic crop covering more of the frame than this is not made (the whole frame is
 /// kept): it would gain little resolution.
@@ -17,7 +30,7 @@ pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
 pub fn frame(
     input: &Path,
     info: Option<&VideoInfo>,
-    flags: &RecordingArgs,
+    flags: &RecordingRequest,
     size: (usize, usize),
 ) -> Result<(Option<Crop>, &'static str, Option<Survey>), EstimateError> {
     Ok(match (flags.crop, info) {
@@ -50,7 +63,7 @@ pub const MAX_BYTES: u64 = 8 << 30;
 pub fn check_memory(
     input: &Path,
     info: Option<&VideoInfo>,
-    flags: &RecordingArgs,
+    flags: &RecordingRequest,
     size: (usize, usize),
     frames_per_clip: usize,
     max_clips: usize,

@@ -6,10 +6,13 @@ mod dataset;
 mod framing;
 pub mod photometric;
 pub mod recording;
+mod request;
 mod scale;
 mod timing;
 
-use crate::cli::EstimateArgs;
+pub use framing::Framing;
+pub use request::{LoadRequest, RecordingRequest};
+
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
@@ -137,12 +140,12 @@ fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32
 
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
-pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, EstimateError> {
-    physvid_shared::input::check_kind(args.input()).map_err(input_error)?;
-    let src = if is_recording(args.input()) {
-        recording::recording_source(args)?
+pub fn load_clips(req: &LoadRequest, device: Device) -> Result<ClipData, EstimateError> {
+    physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
+    let src = if is_recording(&req.input) {
+        recording::recording_source(req)?
     } else {
-        dataset::dataset_source(args)?
+        dataset::dataset_source(req)?
     };
     let [n, t, c, h, w] = src.shape;
     // A recording's frames are one sequence; a dataset's, one per clip.
@@ -155,7 +158,7 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         return Err(input_error(format!(
             "{}: nothing moves: within every {} each frame equals the first{}, so no parameter \
              of the motion can be estimated (check the file, or --crop for a recording)",
-            args.input().display(),
+            req.input.display(),
             if src.clip_index.is_some() {
                 "recording"
             } else {
@@ -178,7 +181,7 @@ pub fn load_clips(args: &EstimateArgs, device: Device) -> Result<ClipData, Estim
         return Err(input_error(format!(
             "{}: the value {} at {at}, pixel {pixel} lies more than {:e} times the frames' \
              spread ({}) from their median: a hot pixel or a broken value; mask or fix it",
-            args.input().display(),
+            req.input.display(),
             num(v as f64),
             scale::OUTLIER,
             num(spread)

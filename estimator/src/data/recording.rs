@@ -2,9 +2,8 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
-use super::Source;
 use super::{framing, timing};
-use crate::cli::{EstimateArgs, RecordingArgs};
+use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::{approx, num};
@@ -122,34 +121,34 @@ pub struct LoadedRecording {
 }
 
 /// A video or image folder, cut into clips for `--model`.
-pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateError> {
-    if !args.input().exists() {
+pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateError> {
+    if !req.input.exists() {
         return Err(input_error(format!(
             "{}: no such file or directory",
-            args.input().display()
+            req.input.display()
         )));
     }
-    if args.input().is_dir() && video::image_files(args.input()).is_ok_and(|f| f.is_empty()) {
+    if req.input.is_dir() && video::image_files(&req.input).is_ok_and(|f| f.is_empty()) {
         return Err(input_error(format!(
             "{}: a directory that is neither a gen dataset (no frames.npy or meta.json) nor an \
              image folder (no .png, .jpg or .jpeg files)",
-            args.input().display()
+            req.input.display()
         )));
     }
-    let model = args.model.model.ok_or_else(|| {
+    let model = req.model.ok_or_else(|| {
         input_error(format!(
             "{}: a recording needs --model (e.g. --model pendulum)",
-            args.input().display()
+            req.input.display()
         ))
     })?;
-    if args.model.dt.is_some() {
+    if req.dt.is_some() {
         return Err(input_error(format!(
             "--dt: {} is read as a recording (a video or an image folder), whose dt is \
              --stride / fps; set those instead",
-            args.input().display()
+            req.input.display()
         )));
     }
-    let rec = load_recording(args.input(), model, &args.recording)?;
+    let rec = load_recording(&req.input, model, &req.recording)?;
     // Systems released from rest: the release is the first frame kept (trim with --start).
     let start_times = model.released_from_rest().then(|| {
         rec.summary
@@ -176,10 +175,10 @@ pub(crate) fn recording_source(args: &EstimateArgs) -> Result<Source, EstimateEr
 pub fn load_recording(
     input: &Path,
     model: ModelRef,
-    flags: &RecordingArgs,
+    flags: &RecordingRequest,
 ) -> Result<LoadedRecording, EstimateError> {
     let (table_frames, table_dt) = model.table5_clip();
-    let size = flags.frame_size();
+    let size = flags.size;
     let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
     let mut warnings = Vec::new();
     // The frame rate first (cheap), for the default stride.

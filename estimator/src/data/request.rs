@@ -1,0 +1,40 @@
+//! What to load, resolved once from the command line (`cli::EstimateArgs::load_request`): the
+//! data layer sits below the CLI and never reads its types.
+
+use super::framing::Framing;
+use crate::physics::ModelRef;
+use std::path::PathBuf;
+
+/// The input and the flags that decide how it becomes clips.
+#[derive(Debug, Clone)]
+pub struct LoadRequest {
+    /// A `gen` data set directory, a `.npy`, a video or an image folder.
+    pub input: PathBuf,
+    /// `--model`, when given (a data set's meta.json may name it instead).
+    pub model: Option<ModelRef>,
+    /// `--dt`, when given.
+    pub dt: Option<f64>,
+    pub recording: RecordingRequest,
+}
+
+/// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
+/// defaults (Table 5's clip) are resolved in `data::recording` once the model is known.
+#[derive(Debug, Clone)]
+pub struct RecordingRequest {
+    /// `--fps`: frames per second of real time, overriding the container's.
+    pub fps: Option<f64>,
+    /// `--crop` (`None`: auto).
+    pub crop: Option<Framing>,
+    /// `--start` / `--end`: the part kept, in seconds of the file's timeline.
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// The encoder's frame size (width, height), `--size` or the default.
+    pub size: (usize, usize),
+    pub frames_per_clip: Option<usize>,
+    pub stride: Option<usize>,
+    pub hop: Option<usize>,
+    /// `--preview`: write clips.png.
+    pub preview: bool,
+    /// The recording flags given, as written (a data set refuses them by name).
+    pub given: Vec<&'static str>,
+}
