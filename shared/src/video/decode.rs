@@ -212,16 +212,7 @@ pub fn decode(
     }
     // Damage is judged by the frames the container's index holds (their timestamps), not by a
     // header's frame count: phone files announce frames they never had.
-    let t0 = info.frame_times.first().copied().unwrap_or(0.0);
-    let (lo, hi) = (
-        t0 + opts.start.unwrap_or(0.0),
-        opts.end.map_or(f64::INFINITY, |e| t0 + e),
-    );
-    let indexed = info
-        .frame_times
-        .iter()
-        .filter(|t| **t >= lo - 1e-6 && **t < hi)
-        .count();
+    let indexed = info.frames_within(opts.start, opts.end).unwrap_or(0);
     if indexed > 0 && count > 0 && (count as f64) < 0.95 * indexed as f64 {
         return Err(bad(
             input,

@@ -42,19 +42,25 @@ impl VideoInfo {
         Some(s[s.len() / 2]).filter(|m| *m > 0.0)
     }
 
-    /// How many frames the container's index puts within `start`..`end` (s), when it gives
-    /// timestamps.
+    /// How many frames the container's index puts within `start`..`end` (s; the end excluded,
+    /// as the decoder keeps them), when it gives timestamps.
     pub fn frames_within(&self, start: Option<f64>, end: Option<f64>) -> Option<usize> {
-        let t0 = *self.frame_times.first()?;
-        let (lo, hi) = (
-            t0 + start.unwrap_or(0.0),
-            end.map_or(f64::INFINITY, |e| t0 + e),
-        );
+        self.frame_times.first()?;
+        let (lo, hi) = self.bounds(start, end);
         Some(
             self.frame_times
                 .iter()
-                .filter(|&&t| t >= lo - 1e-9 && t <= hi + 1e-9)
+                .filter(|&&t| t >= lo - 1e-6 && t < hi)
                 .count(),
+        )
+    }
+
+    /// `start`..`end` (s from the first frame) on the file's own timeline.
+    fn bounds(&self, start: Option<f64>, end: Option<f64>) -> (f64, f64) {
+        let t0 = self.frame_times.first().copied().unwrap_or(0.0);
+        (
+            t0 + start.unwrap_or(0.0),
+            end.map_or(f64::INFINITY, |e| t0 + e),
         )
     }
 
@@ -69,10 +75,7 @@ impl VideoInfo {
     /// (time, interval to the next frame) within `start`..`end`.
     fn intervals(&self, start: Option<f64>, end: Option<f64>) -> Vec<(f64, f64)> {
         let t0 = self.frame_times.first().copied().unwrap_or(0.0);
-        let (lo, hi) = (
-            t0 + start.unwrap_or(0.0),
-            end.map_or(f64::INFINITY, |e| t0 + e),
-        );
+        let (lo, hi) = self.bounds(start, end);
         self.frame_times
             .windows(2)
             .filter(|w| w[0] >= lo - 1e-9 && w[1] <= hi + 1e-9)
