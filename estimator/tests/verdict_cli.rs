@@ -6,6 +6,10 @@
 mod util;
 
 use physvid_shared::npy::{read_npy, write_npy};
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
 use std::path::{Path, PathBuf};
 use util::{gen_dataset, read_report, stderr, Estimate};
 
@@ -50,14 +54,20 @@ fn altered(data: &str, path: &Path, mut f: impl FnMut(usize, usize, &mut [f32]))
     path.to_str().unwrap().to_string()
 }
 
-/// A seeded stream of numbers in [0, 1) (a 64-bit LCG: enough to shuffle and to make noise).
-fn stream(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-    move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
+/// A seeded random source for the constructed failures.
+fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+/// Every clip's `t` frames of `px` values put in a random order.
+fn shuffle_frames(x: &mut [f32], t: usize, px: usize, rng: &mut ChaCha8Rng) {
+    for clip in x.chunks_mut(t * px) {
+        let mut order: Vec<usize> = (0..t).collect();
+        order.shuffle(rng);
+        let before = clip.to_vec();
+        for (k, &from) in order.iter().enumerate() {
+            clip[k * px..(k + 1) * px].copy_from_slice(&before[from * px..(from + 1) * px]);
+        }
     }
 }
 
@@ -127,17 +137,9 @@ fn frames_out_of_order_are_unreliable_and_exit_four_with_files_written() {
         "intensity",
         &["--samples", "200", "--size", "32"],
     );
-    let mut next = stream(1);
+    let mut order = rng(1);
     let npy = altered(&data, &dir.join("shuffled.npy"), |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            // Fisher–Yates over the clip's frames.
-            for i in (1..t).rev() {
-                let j = (next() * (i + 1) as f64) as usize;
-                for p in 0..px {
-                    clip.swap(i * px + p, j * px + p);
-                }
-            }
-        }
+        shuffle_frames(x, t, px, &mut order)
     });
     let out = dir.join("run");
     let o = Estimate::new(&npy)
@@ -171,24 +173,23 @@ fn a_scene_that_does_not_move_is_unreliable() {
     );
     // Each clip's first frame held still, with sensor noise; and held still under a
     // flickering light.
-    let mut noise = stream(2);
+    let (mut noise, sensor) = (rng(2), Normal::new(0.0f32, 0.05).unwrap());
     let still = altered(&data, &dir.join("noise.npy"), |t, px, x| {
         for clip in x.chunks_mut(t * px) {
             for k in 1..t {
                 for p in 0..px {
-                    let gauss: f64 = (0..12).map(|_| noise()).sum::<f64>() - 6.0;
-                    clip[k * px + p] = clip[p] + (0.05 * gauss) as f32;
+                    clip[k * px + p] = clip[p] + sensor.sample(&mut noise);
                 }
             }
         }
     });
-    let mut light = stream(3);
+    let mut light = rng(3);
     let flicker = altered(&data, &dir.join("flicker.npy"), |t, px, x| {
         for clip in x.chunks_mut(t * px) {
             for k in 1..t {
-                let gain = 1.0 + 0.4 * (light() - 0.5);
+                let gain: f32 = light.random_range(0.8..1.2);
                 for p in 0..px {
-                    clip[k * px + p] = clip[p] * gain as f32;
+                    clip[k * px + p] = clip[p] * gain;
                 }
             }
         }

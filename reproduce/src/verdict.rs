@@ -8,6 +8,10 @@ use crate::runner::{DataSpec, Runner};
 use crate::table::{Cell, Table};
 use estimator::report::Report;
 use physvid_shared::npy::{read_npy, write_npy};
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
 use std::path::{Path, PathBuf};
 
 /// The accuracy bar of a reported value (relative error), where it has ground truth.
@@ -201,14 +205,20 @@ fn altered(
     Ok(path)
 }
 
-/// A seeded stream of numbers in [0, 1).
-fn stream(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-    move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
+/// A seeded random source for the constructed failures.
+fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+/// Every clip's `t` frames of `px` values put in a random order.
+fn shuffle_frames(x: &mut [f32], t: usize, px: usize, rng: &mut ChaCha8Rng) {
+    for clip in x.chunks_mut(t * px) {
+        let mut order: Vec<usize> = (0..t).collect();
+        order.shuffle(rng);
+        let before = clip.to_vec();
+        for (k, &from) in order.iter().enumerate() {
+            clip[k * px..(k + 1) * px].copy_from_slice(&before[from * px..(from + 1) * px]);
+        }
     }
 }
 
@@ -238,16 +248,9 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
     )?;
     let intensity = DataSpec::new("intensity", quick);
     let data = r.dataset(&intensity)?;
-    let mut next = stream(1);
+    let mut order = rng(1);
     let shuffled = altered(r, &data, "shuffled", |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            for i in (1..t).rev() {
-                let j = (next() * (i + 1) as f64) as usize;
-                for p in 0..px {
-                    clip.swap(i * px + p, j * px + p);
-                }
-            }
-        }
+        shuffle_frames(x, t, px, &mut order)
     })?;
     run(
         "frames shuffled within each clip",
@@ -257,13 +260,12 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
     )?;
     let position = DataSpec::new("position", quick);
     let data = r.dataset(&position)?;
-    let mut noise = stream(2);
+    let (mut noise, sensor) = (rng(2), Normal::new(0.0f32, 0.05).unwrap());
     let still = altered(r, &data, "still-noise", |t, px, x| {
         for clip in x.chunks_mut(t * px) {
             for k in 1..t {
                 for p in 0..px {
-                    let gauss: f64 = (0..12).map(|_| noise()).sum::<f64>() - 6.0;
-                    clip[k * px + p] = clip[p] + (0.05 * gauss) as f32;
+                    clip[k * px + p] = clip[p] + sensor.sample(&mut noise);
                 }
             }
         }
@@ -274,13 +276,13 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
         format!("{} (first frame held, noise)", position.command()),
         &osc,
     )?;
-    let mut light = stream(3);
+    let mut light = rng(3);
     let flicker = altered(r, &data, "still-flicker", |t, px, x| {
         for clip in x.chunks_mut(t * px) {
             for k in 1..t {
-                let gain = 1.0 + 0.4 * (light() - 0.5);
+                let gain: f32 = light.random_range(0.8..1.2);
                 for p in 0..px {
-                    clip[k * px + p] = clip[p] * gain as f32;
+                    clip[k * px + p] = clip[p] * gain;
                 }
             }
         }
