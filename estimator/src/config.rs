@@ -45,7 +45,7 @@ pub struct RunConfig {
     pub loss: LossKind,
     pub encoder: EncoderKind,
     /// Why the model chose `encoder` itself, when it did and no flag chose (a warning).
-    pub encoder_note: Option<&'static str>,
+    pub encoder_note: Option<String>,
     pub seed: u64,
     /// Independently seeded trainings whose spread is reported (1: a single run).
     pub ensemble: usize,
@@ -74,7 +74,7 @@ impl RunConfig {
                 model.name()
             )));
         }
-        let encoder = t.encoder.unwrap_or(model.encoder());
+        let (encoder, encoder_note) = default_encoder(t.encoder, model, data);
         if !encoder.gives(model.latent_dims()) {
             return Err(input_error(format!(
                 "--encoder {}: reads body positions, and {} has a latent of {} number(s) per frame; use --encoder small",
@@ -172,11 +172,7 @@ impl RunConfig {
             single_start: t.single_start,
             loss: t.loss,
             encoder,
-            encoder_note: t
-                .encoder
-                .is_none()
-                .then_some(model.info().encoder_note)
-                .flatten(),
+            encoder_note,
             seed: t.seed,
             ensemble: t.ensemble,
             device: t.device,
@@ -193,6 +189,33 @@ impl RunConfig {
             ..self.clone()
         }
     }
+}
+
+/// The encoder: `--encoder`, else the model's, except that on a recording of an object
+/// released from rest across the frame (a descent found) it is read by its position (the
+/// centroid encoder); and why, when the choice was made here or by the model.
+fn default_encoder(
+    flag: Option<EncoderKind>,
+    model: ModelRef,
+    data: &ClipData,
+) -> (EncoderKind, Option<String>) {
+    if let Some(e) = flag {
+        return (e, None);
+    }
+    let descent = data.recording.as_ref().and_then(|(r, _)| r.descent);
+    if let (Some(d), 1) = (descent, model.latent_dims()) {
+        return (
+            EncoderKind::Centroid,
+            Some(format!(
+                "the object released from rest crosses {:.0} % of the frame: it is read by its \
+                 position (--encoder centroid: the validation clips, the recording's end, show \
+                 it where no training clip did, and an MLP has no weights there); --encoder \
+                 chooses",
+                100.0 * d.travel
+            )),
+        );
+    }
+    (model.encoder(), model.info().encoder_note.map(String::from))
 }
 
 /// Starting values for `model`, in its parameter order: its defaults, overridden by `--init`;

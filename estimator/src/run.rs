@@ -71,7 +71,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let mut data = load_clips(&args.load_request(), device)?;
     data.warnings.extend(device_warning);
     let cfg = &RunConfig::resolve(args, &data)?;
-    data.warnings.extend(cfg.encoder_note.map(String::from));
+    data.warnings.extend(cfg.encoder_note.clone());
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short
     // probe is trained to the end.

@@ -31,7 +31,8 @@ pub struct RecordingArgs {
     #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H|auto|full")]
     pub crop: Option<Framing>,
     /// First second to use (of the file's own timeline). For sliding-block and free-fall the
-    /// first frame kept is taken as the release from rest.
+    /// release from rest is found in the frames, and without --start/--end only the descent
+    /// is kept (from just before the release to the impact).
     #[arg(long)]
     pub start: Option<f64>,
     /// Last second to use.

@@ -3,6 +3,7 @@
 //! truth resolved.
 
 mod dataset;
+pub mod descent;
 mod framing;
 pub mod photometric;
 pub mod recording;

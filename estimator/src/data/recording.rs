@@ -2,7 +2,7 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
-use super::{framing, timing};
+use super::{descent, framing, timing};
 use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -37,8 +37,14 @@ pub struct RecordingSummary {
     pub survey: Option<Survey>,
     /// `--preview`: clips.png written beside the report.
     pub preview: bool,
+    /// The part kept, in seconds of the file's timeline (`--start`/`--end`, or the descent's).
     pub start: Option<f64>,
     pub end: Option<f64>,
+    /// Motion from rest: the descent found in the frames (frames of the whole decode).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub descent: Option<descent::Descent>,
+    /// The release, in frames of the part kept (clips' start times count from it).
+    pub release: f64,
     /// Seconds spent decoding (ffmpeg, the pipe, crop and resize, and the survey of where the
     /// picture moves) and frames per second.
     pub decode_s: f64,
@@ -149,12 +155,13 @@ pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateErro
         )));
     }
     let rec = load_recording(&req.input, model, &req.recording)?;
-    // Systems released from rest: the release is the first frame kept (trim with --start).
+    // Systems released from rest: clip start times count from the release (found in the
+    // frames, else the first frame kept).
     let start_times = model.released_from_rest().then(|| {
         rec.summary
             .clip_starts
             .iter()
-            .map(|&s| s as f64 / rec.summary.fps)
+            .map(|&s| (s as f64 - rec.summary.release) / rec.summary.fps)
             .collect()
     });
     Ok(Source {
@@ -271,7 +278,14 @@ pub fn load_recording(
         hop: flags.hop,
         max_clips: MAX_DEFAULT_CLIPS,
     };
-    let decoded = video::decode(input, &opts, info)?;
+    let mut decoded = video::decode(input, &opts, info)?;
+    // A fall or slide from rest: its release, and the descent alone where no flag trims.
+    let kept = if model.released_from_rest() {
+        let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
+        descent::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
+    } else {
+        descent::Kept::untrimmed(&opts)
+    };
     let decode_s = started.elapsed().as_secs_f64();
     let n = decoded.clip_starts.len();
     let shape = [n, frames_per_clip, 1, size.1, size.0];
@@ -301,8 +315,10 @@ pub fn load_recording(
         framing,
         survey,
         preview: flags.preview,
-        start: flags.start,
-        end: flags.end,
+        start: kept.start,
+        end: kept.end,
+        descent: kept.descent,
+        release: kept.release,
         decode_s: decode_s + survey_s,
         survey_s,
         decode_fps: decoded.frame_count() as f64 / decode_s.max(1e-9),

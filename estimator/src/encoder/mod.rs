@@ -1,8 +1,11 @@
 //! `Encoder`: maps each frame to its latent (one number, or several for models with a vector
 //! latent). The MLPs (`mlp.rs`) read flattened pixels; the keypoint net (`keypoints.rs`) reads
-//! body positions off the image.
+//! body positions off the image; the centroid (`centroid.rs`) one object's position.
 
+pub mod centroid;
 mod keypoints;
+
+pub use keypoints::polarity;
 mod mlp;
 
 use tch::nn::{self, Module};
@@ -21,6 +24,9 @@ pub enum EncoderKind {
     /// Body positions: the centroids of each body's share of what differs from the mean frame
     /// (vector latents of (x, y) per body only).
     Keypoints,
+    /// The position of one object crossing the frame: the centroid of where the frame differs
+    /// most from the mean frame, mapped affinely to the latent (falls and slides).
+    Centroid,
 }
 
 impl EncoderKind {
@@ -30,6 +36,7 @@ impl EncoderKind {
             EncoderKind::Paper => "paper",
             EncoderKind::Linear => "linear",
             EncoderKind::Keypoints => "keypoints",
+            EncoderKind::Centroid => "centroid",
         }
     }
 
@@ -68,6 +75,7 @@ impl Encoder {
                 let polarity = keypoints::polarity(train);
                 Box::new(keypoints::Keypoints::new(path, frame, dims / 2, polarity))
             }
+            EncoderKind::Centroid => Box::new(centroid::Centroid::new(path, frame, dims, train)),
         };
         Encoder { net, dims }
     }

@@ -110,8 +110,8 @@ impl Model for ConstantAcceleration {
                     forbidden: true,
                     detail: format!(
                         "mu = {} ± {} is negative: the block would slide faster than without \
-                         friction; check --incline-deg, the reference values and that the \
-                         release is the first frame kept (--start)",
+                         friction; check --incline-deg, the reference values and the release \
+                         (the report's recording.descent; --start/--end)",
                         approx(v),
                         approx(se)
                     ),
@@ -131,7 +131,7 @@ impl Model for ConstantAcceleration {
                         detail: format!(
                             "g = {} ± {} m/s^2 is far from Earth's 9.81: check the frame rate \
                              (--fps for slow motion), the reference values and the release \
-                             (--start)",
+                             (the report's recording.descent; --start/--end)",
                             approx(v),
                             approx(se)
                         ),
@@ -156,7 +156,7 @@ impl Model for ConstantAcceleration {
 /// z'' = 0 at the extreme) and the calibrated acceleration comes out wrong. Known start times
 /// since the release pin it: the velocity at a clip's first frame is then a·t0, so the block
 /// rolls out from one frame, z[k] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only the latent affine
-/// in s fits. Without start times it rolls out from two frames,
+/// in s fits (times before the release, t0 + k·dt < 0, count as at rest). Without start times it rolls out from two frames,
 /// z[k] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler step gives the same sequence).
 /// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
 pub struct ConstantAccelerationBlock {
@@ -189,8 +189,11 @@ impl PhysicsBlock for ConstantAccelerationBlock {
         let z0 = z.narrow(1, 0, 1);
         match clips.start.filter(|_| self.timed) {
             Some(t0) => {
-                let frames_since_release = (t0 / self.dt).unsqueeze(1);
-                &z0 + &self.per_frame * (frames_since_release * &k + &k * &k * 0.5)
+                // From rest: frames before the release (t0 < 0, a recording's rest kept before
+                // its descent) stay where they are.
+                let since = (t0 / self.dt).unsqueeze(1);
+                let moved = (&since + &k).clamp_min(0.0).square() - since.clamp_min(0.0).square();
+                &z0 + &self.per_frame * moved * 0.5
             }
             None => {
                 let z1 = z.narrow(1, 1, 1);

@@ -127,7 +127,7 @@ pub struct ModelInfo {
     /// Appendix Table 5's frames per clip and dt (s) for a recording of this system.
     pub table5_clip: (usize, f64),
     /// Motion from rest at the start of the recording: clip start times since the release pin
-    /// the latent (from meta.json, or the first frame kept of a recording).
+    /// the latent (from meta.json, or a recording's release found in its frames).
     pub released_from_rest: bool,
     /// The block reads the latent's map from reference frames during training.
     pub calibrates_in_training: bool,

@@ -32,6 +32,16 @@ impl DecodedVideo {
         self.frames.len() / (self.size.0 * self.size.1)
     }
 
+    /// Keeps frames `first..=last` only and cuts the clips of `opts` again from them.
+    pub fn keep(&mut self, first: usize, last: usize, opts: &VideoOptions) {
+        let per = self.size.0 * self.size.1;
+        let last = last.min(self.frame_count().saturating_sub(1));
+        self.frames.truncate((last + 1) * per);
+        self.frames.drain(..first.min(last) * per);
+        let span = (opts.frames_per_clip - 1).saturating_mul(opts.stride);
+        (self.clip_starts, self.hop) = cut(self.frame_count(), span, opts);
+    }
+
     /// Seconds between clip frames.
     pub fn dt(&self, stride: usize) -> f64 {
         stride as f64 / self.fps
@@ -268,11 +278,7 @@ pub fn decode(
             ),
         ));
     }
-    let possible = count - span;
-    let hop = opts
-        .hop
-        .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
-    let clip_starts: Vec<usize> = (0..possible).step_by(hop).collect();
+    let (clip_starts, hop) = cut(count, span, opts);
     Ok(DecodedVideo {
         info,
         fps,
@@ -281,6 +287,16 @@ pub fn decode(
         hop,
         size: opts.size,
     })
+}
+
+/// Clip starts over `count` frames for clips spanning `span` frames, and the hop between
+/// them (`opts.hop`, or as small as keeps within `opts.max_clips`).
+fn cut(count: usize, span: usize, opts: &VideoOptions) -> (Vec<usize>, usize) {
+    let possible = count.saturating_sub(span);
+    let hop = opts
+        .hop
+        .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
+    ((0..possible).step_by(hop).collect(), hop)
 }
 
 /// Reads until `buf` is full or the stream ends; returns the bytes read.

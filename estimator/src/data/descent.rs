@@ -1,0 +1,303 @@
+//! A fall or slide from rest found in a recording's frames: the object's path (the centroid
+//! encoder's position, `encoder::centroid`), the release as the vertex of the parabola it
+//! traces, and the end of the descent (where the object stops moving away: an impact, a
+//! bounce, the edge of the frame). Systems released from rest read their clips' start times
+//! from the release, and the recording is trimmed to the descent where `--start`/`--end` do
+//! not say otherwise.
+
+use crate::encoder::centroid;
+use physvid_shared::cli::approx;
+use physvid_shared::video::{DecodedVideo, VideoOptions};
+use serde::Serialize;
+use tch::{Kind, Tensor};
+
+/// An object that moves less than this share of the larger frame side is not a descent
+/// across the frame (a ball receding from the camera, a dimming light).
+pub const MIN_TRAVEL: f64 = 0.1;
+
+/// Frames at rest kept before the release, as a share of the descent's frames (the clips'
+/// rollout holds them at rest; a reference taken at rest stays in the part kept).
+const REST_MARGIN: f64 = 0.1;
+
+/// A descent found in the frames.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Descent {
+    /// The release, in frames of the decoded recording (fractional: the parabola's vertex).
+    pub release: f64,
+    /// The first and last frames of the descent kept (a few frames at rest before the release,
+    /// the last frame before the object stops moving away).
+    pub first: usize,
+    pub last: usize,
+    /// How far the object travels, as a share of the larger frame side.
+    pub travel: f64,
+}
+
+/// The part of a recording kept, and its release.
+pub struct Kept {
+    /// In seconds of the file's timeline (`--start`/`--end`, or the descent's).
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// The release in frames of the part kept (0: the first frame kept).
+    pub release: f64,
+    pub descent: Option<Descent>,
+}
+
+impl Kept {
+    /// The part `--start`/`--end` keep, released at its first frame.
+    pub fn untrimmed(opts: &VideoOptions) -> Kept {
+        Kept {
+            start: opts.start,
+            end: opts.end,
+            release: 0.0,
+            descent: None,
+        }
+    }
+}
+
+/// Finds the descent in `decoded` (cut with `opts`) and keeps only it where `--start` /
+/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
+pub fn trim(
+    decoded: &mut DecodedVideo,
+    opts: &VideoOptions,
+    timeline_fps: f64,
+    warnings: &mut Vec<String>,
+) -> Kept {
+    let mut kept = Kept::untrimmed(opts);
+    let Some(d) = find(&decoded.frames, decoded.size) else {
+        return kept;
+    };
+    kept.descent = Some(d);
+    let first = if opts.start.is_none() { d.first } else { 0 };
+    let last = if opts.end.is_none() {
+        d.last
+    } else {
+        decoded.frame_count() - 1
+    };
+    let at = |f: f64| opts.start.unwrap_or(0.0) + f / timeline_fps;
+    let mut dropped = 0;
+    if last + 1 - first > (opts.frames_per_clip - 1) * opts.stride + 1 {
+        kept.end = kept.end.or(Some(at(last as f64)));
+        kept.start = kept.start.or(Some(at(first as f64)));
+        decoded.keep(first, last, opts);
+        dropped = first;
+    }
+    kept.release = d.release - dropped as f64;
+    warnings.push(format!(
+        "motion from rest: the object is released at {} s (the vertex of the parabola its path \
+         traces) and moves away until {} s; kept {}–{} s{}",
+        approx(at(d.release)),
+        approx(at(d.last as f64)),
+        approx(kept.start.unwrap_or(0.0)),
+        approx(kept.end.unwrap_or(at((decoded.frame_count() - 1) as f64))),
+        if opts.start.is_some() || opts.end.is_some() {
+            " (as --start/--end say)"
+        } else {
+            " (--start/--end choose)"
+        }
+    ));
+    kept
+}
+
+/// The descent in frames `[F, H·W]` of `size` = (W, H), or `None` when no object crosses
+/// the frame from rest.
+pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
+    let (w, h) = (size.0 as i64, size.1 as i64);
+    let n = frames.len() as i64 / (w * h);
+    if n < 8 {
+        return None;
+    }
+    let frame = (1, h, w);
+    let (path, peak) = tch::no_grad(|| {
+        let x = Tensor::from_slice(frames).view([n, h * w]);
+        // Against the median frame (the background, where the object spends under half its
+        // time); found where the frame differs from one `lag` frames earlier (what moves now,
+        // not what was moved once and stays: a hand, a door).
+        let d = &x - x.median_dim(0, true).0;
+        let d = &d / d.square().mean(Kind::Float).sqrt().clamp_min(1e-9);
+        let polarity = crate::encoder::polarity(&d);
+        let window = centroid::window(&d, frame, polarity);
+        let lag = (n / 40).max(1);
+        let earlier = Tensor::cat(&[d.narrow(0, 0, lag), d.narrow(0, 0, n - lag)], 0);
+        let moved = &d - earlier;
+        let peak = (&moved * polarity).amax(1, false);
+        (centroid::located(&moved, &d, frame, polarity, window), peak)
+    });
+    let half = (w.max(h) as f64) / 2.0;
+    let p: Vec<f64> = Vec::<f32>::try_from(path.reshape([-1]))
+        .ok()?
+        .into_iter()
+        .map(|v| f64::from(v) * half)
+        .collect();
+    let peak: Vec<f64> = Vec::<f32>::try_from(peak)
+        .ok()?
+        .into_iter()
+        .map(f64::from)
+        .collect();
+    // Frames where something moves clearly (a peak at least 0.4 of the 90th percentile's).
+    let mut sorted = peak.clone();
+    sorted.sort_by(f64::total_cmp);
+    let strong = 0.4 * sorted[sorted.len() * 9 / 10];
+    let seen: Vec<(usize, [f64; 2])> = (0..n as usize)
+        .filter(|&k| peak[k] >= strong && peak[k] > 0.0)
+        .map(|k| (k, [p[2 * k], p[2 * k + 1]]))
+        .collect();
+    along(&project(&seen)?, 2.0 * half)
+}
+
+/// Positions `seen` (frame, [x, y]) projected on their principal axis, oriented so that the
+/// first half of them moves forward: (frame, pixels along the path).
+fn project(seen: &[(usize, [f64; 2])]) -> Option<Vec<(usize, f64)>> {
+    if seen.len() < 5 {
+        return None;
+    }
+    let m = seen.len() as f64;
+    let mean = seen
+        .iter()
+        .fold([0.0, 0.0], |a, (_, q)| [a[0] + q[0] / m, a[1] + q[1] / m]);
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for (_, q) in seen {
+        let (dx, dy) = (q[0] - mean[0], q[1] - mean[1]);
+        sxx += dx * dx;
+        sxy += dx * dy;
+        syy += dy * dy;
+    }
+    // The covariance's leading eigenvector.
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let u = [angle.cos(), angle.sin()];
+    let along: Vec<(usize, f64)> = seen
+        .iter()
+        .map(|(k, q)| (*k, q[0] * u[0] + q[1] * u[1]))
+        .collect();
+    let mid = along.len() / 2;
+    let sign = if along[mid].1 >= along[0].1 {
+        1.0
+    } else {
+        -1.0
+    };
+    Some(along.into_iter().map(|(k, v)| (k, sign * v)).collect())
+}
+
+/// The descent in `path` (frame, position along the path in pixels, time order) on a frame
+/// whose larger side is `side` pixels.
+fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
+    let lo = path.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
+    let hi = path.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
+    if hi - lo < MIN_TRAVEL * side {
+        return None;
+    }
+    // The end: the furthest point before the object first comes back (by more than 2 % of
+    // its travel): an impact, a bounce, a stop.
+    let tol = 0.02 * (hi - lo);
+    let mut top = f64::NEG_INFINITY;
+    let back = path
+        .iter()
+        .position(|q| {
+            top = top.max(q.1);
+            q.1 < top - tol
+        })
+        .unwrap_or(path.len());
+    let out = &path[..back];
+    let far = out.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
+    let mut end = out.iter().position(|q| q.1 >= far - tol / 2.0)?;
+    let (first_k, first_p) = out[0];
+    // An impact: past a third of the way, a step per frame under half the one before it.
+    let step = |i: usize| (out[i].1 - out[i - 1].1) / (out[i].0 - out[i - 1].0) as f64;
+    if let Some(i) = (2..=end)
+        .filter(|&i| out[i - 1].1 - first_p > (far - first_p) / 3.0)
+        .find(|&i| step(i) < 0.5 * step(i - 1))
+    {
+        end = i - 1;
+    }
+    let last = out[end].0;
+    let reach = out[end].1 - first_p;
+    if reach < MIN_TRAVEL * side {
+        return None;
+    }
+    // The release: the vertex of the parabola through the first part of the descent (the
+    // least extrapolated: perspective and drag bend the later part).
+    let early: Vec<(f64, f64)> = out[..=end]
+        .iter()
+        .filter(|q| q.1 - first_p <= 0.3 * reach)
+        .map(|q| (q.0 as f64, q.1))
+        .collect();
+    let fit = if early.len() >= 4 {
+        early
+    } else {
+        out[..=end].iter().map(|q| (q.0 as f64, q.1)).collect()
+    };
+    let [_, b, c] = quadratic(&fit)?;
+    if c <= 0.0 {
+        return None;
+    }
+    let release = (-b / (2.0 * c)).clamp(0.0, first_k as f64);
+    let frames = last as f64 - release;
+    let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;
+    Some(Descent {
+        release,
+        first,
+        last,
+        travel: (hi - lo) / side,
+    })
+}
+
+/// Least-squares a + b·t + c·t² through `pts` (t, y), t centred for conditioning.
+fn quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
+    let m = pts.len() as f64;
+    let t0 = pts.iter().map(|p| p.0).sum::<f64>() / m;
+    let mut a = [0.0f64; 9];
+    let mut r = [0.0f64; 3];
+    for &(t, y) in pts {
+        let row = [1.0, t - t0, (t - t0).powi(2)];
+        for i in 0..3 {
+            r[i] += row[i] * y;
+            for j in 0..3 {
+                a[3 * i + j] += row[i] * row[j];
+            }
+        }
+    }
+    let s = physvid_shared::linalg::solve(&a, &r, 3)?;
+    // Back to t: a + b(t − t0) + c(t − t0)².
+    Some([
+        s[0] - s[1] * t0 + s[2] * t0 * t0,
+        s[1] - 2.0 * s[2] * t0,
+        s[2],
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fall_from_rest_is_found_with_its_release_and_its_impact() {
+        // Seen moving from frame 33 (released at 30.4, 2 px/frame²), a bounce after 69.
+        let release = 30.4;
+        let mut path: Vec<(usize, f64)> = (33..70)
+            .map(|k| {
+                let t = k as f64 - release;
+                (k, 100.0 + t * t + 0.05 * ((k * 7 % 5) as f64 - 2.0))
+            })
+            .collect();
+        let top = path.last().unwrap().1;
+        path.extend((0..10).map(|k| (70 + k, top - 30.0 * (k + 1) as f64)));
+        let d = along(&path, 2000.0).expect("a descent");
+        assert_eq!(d.last, 69);
+        assert!((d.release - release).abs() < 0.3, "{}", d.release);
+        assert!(d.first >= 25 && d.first <= 30, "{}", d.first);
+    }
+
+    #[test]
+    fn a_small_motion_is_no_descent() {
+        let path: Vec<(usize, f64)> = (0..50).map(|k| (k, 0.1 * k as f64)).collect();
+        assert!(along(&path, 200.0).is_none());
+    }
+
+    #[test]
+    fn the_path_is_projected_forward_on_its_axis() {
+        let seen: Vec<(usize, [f64; 2])> = (0..10)
+            .map(|k| (k, [5.0 - 0.6 * k as f64, 3.0 - 0.8 * k as f64]))
+            .collect();
+        let p = project(&seen).unwrap();
+        assert!((p[9].1 - p[0].1 - 9.0).abs() < 1e-9, "{:?}", p);
+    }
+}

@@ -1,0 +1,104 @@
+//! Falls from rest drawn the way someone else would film them (an image folder: a dark ball
+//! before a light, shaded wall, at rest, then 15 frames of fall, then on the floor), estimated
+//! with no trim: the release and the end of the descent are found in the frames and the ball
+//! is read by its position.
+
+mod util;
+
+use std::path::Path;
+use util::{estimate_of, read_report, stderr, Estimate};
+
+const FPS: f64 = 30.0;
+const G: f64 = 9.81;
+/// Pixels per metre, the ball's radius and where it rests (pixels).
+const SCALE: f64 = 190.0;
+const RADIUS: f64 = 5.5;
+const TOP: f64 = 14.0;
+const W: u32 = 48;
+const H: u32 = 256;
+
+/// The ball's height fallen (m) at time `t` (s) for a release at `release` (s).
+fn fallen(t: f64, release: f64) -> f64 {
+    let s = (t - release).max(0.0);
+    G * s * s / 2.0
+}
+
+/// Writes `frames` PNGs: at rest, released at `release` s, stopped by the floor at `floor` m.
+fn draw(dir: &Path, frames: usize, release: f64, floor: f64) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 0..frames {
+        let h = fallen(k as f64 / FPS, release).min(floor);
+        let (cx, cy) = (20.0 + 3.0 * h, TOP + SCALE * h);
+        let img = image::GrayImage::from_fn(W, H, |x, y| {
+            let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
+            // A wall shaded left to right with faint vertical stripes.
+            let wall = 170.0 + 40.0 * x / W as f64 + 6.0 * ((y / 9.0).sin());
+            let d = ((x - cx).powi(2) + (y - cy).powi(2)).sqrt();
+            let cover = (RADIUS + 0.5 - d).clamp(0.0, 1.0);
+            image::Luma([(wall * (1.0 - cover) + 45.0 * cover).round() as u8])
+        });
+        img.save(dir.join(format!("frame{k:03}.png"))).unwrap();
+    }
+}
+
+#[test]
+fn a_fall_of_fifteen_frames_from_rest_gives_g_with_no_trim() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("frames");
+    // Released between frames 10 and 11; 15 frames of fall to the floor (1.20 m), 8 at rest
+    // on it.
+    let release = 10.4 / FPS;
+    let floor = fallen(release + 15.0 / FPS, release);
+    draw(&dir, 34, release, floor);
+    // References: at rest just before the release (frame 9) and 12 frames into the fall, as a
+    // ruler would give them.
+    let t2 = 22.0 / FPS;
+    let refs = format!("{}s=0,{}s={}", 9.0 / FPS, t2, fallen(t2, release));
+    let run = tmp.path().join("run");
+    let o = Estimate::new(&dir)
+        .args(["--model", "free-fall", "--fps", "30", "--size", "24x128"])
+        .args(["--reference", &refs])
+        .out(&run)
+        .quiet()
+        .estimated();
+    let r = read_report(&run);
+    let err = stderr(&o);
+    assert!(err.contains("motion from rest"), "{err}");
+    let d = &r["recording"]["descent"];
+    let found = d["release"].as_f64().unwrap();
+    assert!((found - 10.4).abs() < 1.0, "release at frame {found}");
+    // The descent ends at the floor, frame 25 or 26, not among the frames at rest on it.
+    let last = d["last"].as_u64().unwrap();
+    assert!((24..=27).contains(&last), "last {last}");
+    assert_eq!(r["config"]["encoder"], "centroid");
+    let g = estimate_of(&r, "g");
+    assert!((g / G - 1.0).abs() < 0.02, "g {g}");
+}
+
+#[test]
+fn a_fall_gives_g_within_its_error_over_training_seeds() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("frames");
+    let release = 6.7 / FPS;
+    let floor = fallen(release + 16.0 / FPS, release);
+    draw(&dir, 30, release, floor);
+    let t2 = 20.0 / FPS;
+    let refs = format!("{}s=0,{}s={}", 6.0 / FPS, t2, fallen(t2, release));
+    let mut values = Vec::new();
+    for seed in ["1", "2", "3"] {
+        let run = tmp.path().join(seed);
+        Estimate::new(&dir)
+            .args(["--model", "free-fall", "--fps", "30", "--size", "24x128"])
+            .args(["--reference", &refs, "--seed", seed])
+            .out(&run)
+            .quiet()
+            .estimated();
+        let r = read_report(&run);
+        let se = r["parameters"][0]["standard_error"].as_f64().unwrap();
+        values.push((estimate_of(&r, "g"), se));
+    }
+    let lo = values.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
+    let hi = values.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
+    let se = values.iter().map(|v| v.1).fold(f64::NEG_INFINITY, f64::max);
+    assert!(hi - lo <= se.max(0.01 * G), "{values:?}");
+}
