@@ -5,11 +5,7 @@
 
 mod util;
 
-use physvid_shared::npy::{read_npy, write_npy};
-use rand::seq::SliceRandom;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
+use physvid_testkit::failures::Failure;
 use std::path::{Path, PathBuf};
 use util::{gen_dataset, read_report, stderr, Estimate};
 
@@ -43,32 +39,10 @@ fn run(input: &str, args: &[&str], out: &Path) -> i32 {
     code
 }
 
-/// A data set's frames, changed by `f` (clip length, pixels per frame, frames), as a bare
-/// `.npy` at `path`.
-fn altered(data: &str, path: &Path, mut f: impl FnMut(usize, usize, &mut [f32])) -> String {
-    let mut a = read_npy(&Path::new(data).join("frames.npy")).unwrap();
-    let frames = a.shape[1];
-    let pixels: usize = a.shape[2..].iter().product();
-    f(frames, pixels, &mut a.data);
-    write_npy(std::fs::File::create(path).unwrap(), &a.shape, &a.data).unwrap();
+/// A data set's frames with `failure`, as a bare `.npy` at `path`.
+fn altered(data: &str, path: &Path, failure: Failure) -> String {
+    failure.write(Path::new(data), path).unwrap();
     path.to_str().unwrap().to_string()
-}
-
-/// A seeded random source for the constructed failures.
-fn rng(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
-
-/// Every clip's `t` frames of `px` values put in a random order.
-fn shuffle_frames(x: &mut [f32], t: usize, px: usize, rng: &mut ChaCha8Rng) {
-    for clip in x.chunks_mut(t * px) {
-        let mut order: Vec<usize> = (0..t).collect();
-        order.shuffle(rng);
-        let before = clip.to_vec();
-        for (k, &from) in order.iter().enumerate() {
-            clip[k * px..(k + 1) * px].copy_from_slice(&before[from * px..(from + 1) * px]);
-        }
-    }
 }
 
 fn tmp_paths() -> (tempfile::TempDir, PathBuf) {
@@ -137,10 +111,7 @@ fn frames_out_of_order_are_unreliable_and_exit_four_with_files_written() {
         "intensity",
         &["--samples", "200", "--size", "32"],
     );
-    let mut order = rng(1);
-    let npy = altered(&data, &dir.join("shuffled.npy"), |t, px, x| {
-        shuffle_frames(x, t, px, &mut order)
-    });
+    let npy = altered(&data, &dir.join("shuffled.npy"), Failure::Shuffled);
     let out = dir.join("run");
     let o = Estimate::new(&npy)
         .args([
@@ -173,27 +144,8 @@ fn a_scene_that_does_not_move_is_unreliable() {
     );
     // Each clip's first frame held still, with sensor noise; and held still under a
     // flickering light.
-    let (mut noise, sensor) = (rng(2), Normal::new(0.0f32, 0.05).unwrap());
-    let still = altered(&data, &dir.join("noise.npy"), |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            for k in 1..t {
-                for p in 0..px {
-                    clip[k * px + p] = clip[p] + sensor.sample(&mut noise);
-                }
-            }
-        }
-    });
-    let mut light = rng(3);
-    let flicker = altered(&data, &dir.join("flicker.npy"), |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            for k in 1..t {
-                let gain: f32 = light.random_range(0.8..1.2);
-                for p in 0..px {
-                    clip[k * px + p] = clip[p] * gain;
-                }
-            }
-        }
-    });
+    let still = altered(&data, &dir.join("noise.npy"), Failure::StillWithNoise);
+    let flicker = altered(&data, &dir.join("flicker.npy"), Failure::StillUnderFlicker);
     for (npy, name) in [(still, "noise"), (flicker, "flicker")] {
         let out = dir.join(name);
         run(&npy, &["--dt", "0.2", "--model", "damped-oscillator"], &out);

@@ -7,11 +7,7 @@
 use crate::runner::{DataSpec, Runner};
 use crate::table::{Cell, Table};
 use estimator::report::Report;
-use physvid_shared::npy::{read_npy, write_npy};
-use rand::seq::SliceRandom;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
+use physvid_testkit::failures::Failure;
 use std::path::{Path, PathBuf};
 
 /// The accuracy bar of a reported value (relative error), where it has ground truth.
@@ -188,38 +184,11 @@ fn right(r: &Runner, spec: &DataSpec, flags: &[&str]) -> anyhow::Result<Row> {
     })
 }
 
-/// A data set's frames changed by `f` (clip length, pixels per frame, the frames), as a bare
-/// `.npy` in the scratch directory.
-fn altered(
-    r: &Runner,
-    data: &Path,
-    name: &str,
-    mut f: impl FnMut(usize, usize, &mut [f32]),
-) -> anyhow::Result<PathBuf> {
-    let mut a = read_npy(&data.join("frames.npy"))?;
-    let frames = a.shape[1];
-    let pixels: usize = a.shape[2..].iter().product();
-    f(frames, pixels, &mut a.data);
+/// A data set's frames with `failure`, as a bare `.npy` named `name` in the scratch directory.
+fn altered(r: &Runner, data: &Path, name: &str, failure: Failure) -> anyhow::Result<PathBuf> {
     let path = r.scratch.join(format!("{name}.npy"));
-    write_npy(std::fs::File::create(&path)?, &a.shape, &a.data)?;
+    failure.write(data, &path)?;
     Ok(path)
-}
-
-/// A seeded random source for the constructed failures.
-fn rng(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
-
-/// Every clip's `t` frames of `px` values put in a random order.
-fn shuffle_frames(x: &mut [f32], t: usize, px: usize, rng: &mut ChaCha8Rng) {
-    for clip in x.chunks_mut(t * px) {
-        let mut order: Vec<usize> = (0..t).collect();
-        order.shuffle(rng);
-        let before = clip.to_vec();
-        for (k, &from) in order.iter().enumerate() {
-            clip[k * px..(k + 1) * px].copy_from_slice(&before[from * px..(from + 1) * px]);
-        }
-    }
 }
 
 /// The constructed failures.
@@ -248,10 +217,7 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
     )?;
     let intensity = DataSpec::new("intensity", quick);
     let data = r.dataset(&intensity)?;
-    let mut order = rng(1);
-    let shuffled = altered(r, &data, "shuffled", |t, px, x| {
-        shuffle_frames(x, t, px, &mut order)
-    })?;
+    let shuffled = altered(r, &data, "shuffled", Failure::Shuffled)?;
     run(
         "frames shuffled within each clip",
         &shuffled,
@@ -260,33 +226,14 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
     )?;
     let position = DataSpec::new("position", quick);
     let data = r.dataset(&position)?;
-    let (mut noise, sensor) = (rng(2), Normal::new(0.0f32, 0.05).unwrap());
-    let still = altered(r, &data, "still-noise", |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            for k in 1..t {
-                for p in 0..px {
-                    clip[k * px + p] = clip[p] + sensor.sample(&mut noise);
-                }
-            }
-        }
-    })?;
+    let still = altered(r, &data, "still-noise", Failure::StillWithNoise)?;
     run(
         "a still scene with sensor noise (σ 0.05)",
         &still,
         format!("{} (first frame held, noise)", position.command()),
         &osc,
     )?;
-    let mut light = rng(3);
-    let flicker = altered(r, &data, "still-flicker", |t, px, x| {
-        for clip in x.chunks_mut(t * px) {
-            for k in 1..t {
-                let gain: f32 = light.random_range(0.8..1.2);
-                for p in 0..px {
-                    clip[k * px + p] = clip[p] * gain;
-                }
-            }
-        }
-    })?;
+    let flicker = altered(r, &data, "still-flicker", Failure::StillUnderFlicker)?;
     run(
         "a still scene under a flickering light (±20 %)",
         &flicker,

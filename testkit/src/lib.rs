@@ -1,7 +1,10 @@
 //! Test support shared by the end-to-end tests of `gen`, `estimate` and `reproduce`:
 //! `TestCommand`, a small builder for running a real binary and asserting on its outcome (as
 //! ripgrep's tests/util.rs does). Each crate's tests find their binary with
-//! `env!("CARGO_BIN_EXE_…")` and add their own helpers.
+//! `env!("CARGO_BIN_EXE_…")` and add their own helpers. `failures` holds the verdict's
+//! constructed failures, which `reproduce verdict` draws too.
+
+pub mod failures;
 
 use std::ffi::{OsStr, OsString};
 use std::path::{Path, PathBuf};

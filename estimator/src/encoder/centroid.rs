@@ -10,6 +10,7 @@
 //! wherever it is, so the law's fit tests the footage rather than the encoder's interpolation.
 //! The window keeps the rest of the frame (compression flicker, exposure steps) out of it.
 
+use super::keypoints::centres;
 use tch::nn::{self, Module};
 use tch::{Kind, Tensor};
 
@@ -50,8 +51,8 @@ fn signed(x: &Tensor, (c, h, w): (i64, i64, i64), polarity: f64) -> Tensor {
     x.view([f, c, h, w]).sum_dim_intlist(1, false, Kind::Float) * polarity
 }
 
-/// The window's width: twice the object's radius (its pixels above half the peak, on the
-/// median training frame), at least 2 pixels.
+/// The window's width: twice the object's radius (the median over training frames of the
+/// number of pixels above half the frame's peak, taken as a disc), at least 2 pixels.
 pub(crate) fn window(train: &Tensor, frame: (i64, i64, i64), polarity: f64) -> f64 {
     tch::no_grad(|| {
         let v = signed(
@@ -71,16 +72,12 @@ pub(crate) fn window(train: &Tensor, frame: (i64, i64, i64), polarity: f64) -> f
     })
 }
 
-/// Coordinates of the centres of `n` pixels in units of half the larger side `side`, centred.
-fn axis(n: i64, side: i64, like: &Tensor) -> Tensor {
-    (Tensor::arange(n, (Kind::Float, like.device())) + 0.5 - n as f64 / 2.0) * (2.0 / side as f64)
-}
-
 /// Each frame's object position (x, y) [F, 2] in units of half the larger side, from the
 /// centre: a sharp softmax finds the object, the centroid of the positive difference within a
 /// Gaussian window there says where it is to a fraction of a pixel.
 pub fn positions(x: &Tensor, frame: (i64, i64, i64), polarity: f64, window: f64) -> Tensor {
-    located(x, x, frame, polarity, window)
+    let v = signed(x, frame, polarity);
+    measured(&v, &v, window)
 }
 
 /// As [`positions`], the object found where `by` [F, C·H·W] is largest in its direction (a
@@ -92,12 +89,21 @@ pub fn located(
     polarity: f64,
     window: f64,
 ) -> Tensor {
-    let (_, h, w) = frame;
+    measured(
+        &signed(by, frame, polarity),
+        &signed(x, frame, polarity),
+        window,
+    )
+}
+
+/// Positions [F, 2] of the object found where the signed differences `by` [F, H, W] peak,
+/// measured on the signed differences `v` [F, H, W].
+fn measured(by: &Tensor, v: &Tensor, window: f64) -> Tensor {
+    let (f, h, w) = v.size3().expect("signed differences are [F, H, W]");
     let side = h.max(w);
-    let v = signed(x, frame, polarity);
-    let f = v.size()[0];
-    let (xs, ys) = (axis(w, side, x), axis(h, side, x));
-    let locate = (signed(by, frame, polarity).view([f, h * w]) * SHARPNESS)
+    let cell = 2.0 / side as f64;
+    let (xs, ys) = (centres(w, cell, v), centres(h, cell, v));
+    let locate = (by.view([f, h * w]) * SHARPNESS)
         .softmax(1, Kind::Float)
         .view([f, h, w]);
     let cx =

@@ -85,7 +85,7 @@ pub fn polarity(x: &Tensor) -> f64 {
 }
 
 /// Coordinates of the centres of `n` cells of `size` units each, centred on 0.
-fn centres(n: i64, size: f64, like: &Tensor) -> Tensor {
+pub(super) fn centres(n: i64, size: f64, like: &Tensor) -> Tensor {
     (Tensor::arange(n, (Kind::Float, like.device())) + 0.5 - n as f64 / 2.0) * size
 }
 

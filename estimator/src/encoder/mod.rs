@@ -4,9 +4,9 @@
 
 pub mod centroid;
 mod keypoints;
+mod mlp;
 
 pub use keypoints::polarity;
-mod mlp;
 
 use tch::nn::{self, Module};
 use tch::Tensor;
