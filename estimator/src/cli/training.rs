@@ -74,9 +74,10 @@ fn patience_help() -> String {
 fn encoder_help() -> String {
     format!(
         "Encoder: small (D → 16 → 1), the paper's (D → 1000 → 100 → 1), linear (D → 1), \
-         for laws an MLP could bend where brightness or area is affine in the pixels, or \
-         keypoints (x, y per body, for vector latents) \
-         [default: the model's: {}]",
+         for laws an MLP could bend where brightness or area is affine in the pixels, \
+         keypoints (x, y per body, for vector latents), or centroid (one object's position) \
+         [default: the model's: {}; centroid on a recording where an object released from rest \
+         crosses the frame]",
         per_model(|m| m.encoder().name().to_string())
     )
 }
