@@ -5,6 +5,7 @@
 
 pub mod batch;
 pub mod calibration;
+pub mod choice;
 pub mod cli;
 pub mod config;
 pub mod data;
@@ -33,4 +34,4 @@ pub mod windows;
 pub use cli::EstimateArgs;
 pub use config::RunConfig;
 pub use error::EstimateError;
-pub use run::{estimate, run};
+pub use run::{estimate, estimation, run};

@@ -93,6 +93,11 @@ impl Network {
     }
 
     /// The encoder's and the block's variable stores (for their optimisers).
+    /// Frames each clip's rollout starts from: the states fitted per clip.
+    pub fn start_frames(&self) -> i64 {
+        self.block.order()
+    }
+
     pub fn stores(&self) -> (&nn::VarStore, &nn::VarStore) {
         (&self.enc_vs, &self.phys_vs)
     }

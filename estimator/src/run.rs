@@ -1,6 +1,7 @@
 //! `run`: loads the data, resolves the configuration, picks the device, trains (the ensemble's
 //! members too), and hands the report to `output` and the terminal.
 
+use crate::choice;
 use crate::cli::EstimateArgs;
 use crate::config::RunConfig;
 use crate::data::{load_clips, ClipData};
@@ -24,7 +25,7 @@ pub struct Estimation {
 /// Runs one estimation as the (validated) arguments say, writes its outputs and prints the
 /// table.
 pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
-    let Estimation { mut report, data } = match estimate(args) {
+    let Estimation { mut report, data } = match estimation(args) {
         Ok(e) => e,
         Err(e) => {
             // No estimate: an earlier run's report must not stand in --out as if it were this
@@ -43,6 +44,9 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     ));
     let cfg = &report.config;
     write_outputs(&cfg.out, &data, &report)?;
+    if let Some(c) = &report.model_choice {
+        println!("{}", c.text());
+    }
     println!("{}", report.table());
     if let Some(e) = &report.ensemble {
         println!("{}", e.table());
@@ -61,6 +65,81 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
         return Err(EstimateError::Unreliable(cfg.out.join("report.json")).into());
     }
     Ok(())
+}
+
+/// The model's choice where the run makes one (`choice::wanted`), else one estimation.
+pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
+    if choice::wanted(args)? {
+        choose(args)
+    } else {
+        estimate(args)
+    }
+}
+
+/// Fits every candidate model and keeps the one the evidence favours (`choice`), with the
+/// ranking in its report; writes nothing.
+pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
+    let begun = Instant::now();
+    let tries = choice::candidates(args)?;
+    let quiet = args.output.quiet;
+    let (mut fits, mut summaries, mut errors) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, a) in tries.iter().enumerate() {
+        let model = a.model.given().expect("a candidate names its model");
+        let start = Instant::now();
+        let fit = estimate(a);
+        let summary = choice::summary(
+            model,
+            fit.as_ref().map(|e| &e.report).map_err(|e| e.to_string()),
+        );
+        // A candidate that fails says so in the ranking: a refusal every candidate shares
+        // (the input's) stays one line.
+        if !quiet && fit.is_ok() {
+            eprintln!(
+                "model choice {}/{}: {} ({:.1} s)",
+                i + 1,
+                tries.len(),
+                summary.line(),
+                start.elapsed().as_secs_f64()
+            );
+        }
+        summaries.push(summary);
+        match fit {
+            Ok(e) => fits.push(Some(e)),
+            Err(e) => {
+                errors.push(e);
+                fits.push(None);
+            }
+        }
+    }
+    let Some(mut ranked) = choice::rank::rank(summaries) else {
+        // The same refusal from every candidate is the input's; else each says its own.
+        let first = errors.remove(0);
+        if errors.iter().all(|e| e.to_string() == first.to_string()) {
+            return Err(first);
+        }
+        return Err(EstimateError::NoEstimate(format!(
+            "no candidate model gave an estimate ({}); pass --model",
+            first
+        ))
+        .into());
+    };
+    let i = tries
+        .iter()
+        .position(|a| a.model.given().is_some_and(|m| m.name() == ranked.chosen))
+        .expect("the chosen model is a candidate");
+    let mut chosen = match args.training.ensemble {
+        1 => fits[i].take().expect("the chosen candidate was fitted"),
+        k => {
+            let mut a = tries[i].clone();
+            a.training.ensemble = k;
+            estimate(&a)?
+        }
+    };
+    chosen.report.config.quiet = quiet;
+    ranked.wall_time_s = begun.elapsed().as_secs_f64();
+    chosen.report.model_choice = Some(ranked);
+    chosen.report = verdict::judged(chosen.report);
+    Ok(chosen)
 }
 
 /// Loads the data and trains (and the ensemble's further members); writes nothing.

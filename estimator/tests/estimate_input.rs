@@ -7,7 +7,7 @@ use std::path::Path;
 use util::{f32_bytes, gen_dataset, read_report, stderr, write_npy, Estimate};
 
 #[test]
-fn bare_npy_needs_dt_and_model_and_then_works() {
+fn bare_npy_needs_dt_and_then_works() {
     let tmp = tempfile::tempdir().unwrap();
     let data = gen_dataset(
         &tmp.path().join("data"),
@@ -19,9 +19,6 @@ fn bare_npy_needs_dt_and_model_and_then_works() {
     let o = Estimate::new(&npy).out(&out).output();
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--dt"), "{}", stderr(&o));
-    let o = Estimate::new(&npy).args(["--dt", "0.2"]).out(&out).output();
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--model"), "{}", stderr(&o));
     Estimate::new(&npy)
         .args([
             "--dt",

@@ -67,7 +67,5 @@ fn what_the_spring_refuses() {
     run(&scalar)
         .args(["--reference", "0:0=1/2/3/4,1:0=2/3/4/5"])
         .bad_input("--reference");
-    let npy = format!("{spring}/frames.npy");
-    run(&npy).args(["--dt", "0.3"]).bad_input("--model");
     assert!(!out.exists());
 }

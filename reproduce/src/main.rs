@@ -6,6 +6,7 @@
 mod coverage;
 mod init;
 mod losses;
+mod model_choice;
 mod noise;
 mod robustness;
 mod runner;
@@ -51,12 +52,15 @@ enum TableKind {
     /// Perturbed scenes (texture, distractors, shake, drift, light, occluder, noise; levels
     /// 1–5) on the oscillator's scenes and the pendulum: error and verdict.
     Robustness,
+    /// The model chosen by the evidence (--model auto) on every built-in system of one latent
+    /// number, clean and under footage of others: the share chosen right, the confusion.
+    ModelChoice,
     /// Every table above, one after another.
     All,
 }
 
 impl TableKind {
-    const EACH: [TableKind; 9] = [
+    const EACH: [TableKind; 10] = [
         TableKind::Table3,
         TableKind::Table6,
         TableKind::Init,
@@ -66,6 +70,7 @@ impl TableKind {
         TableKind::Spring,
         TableKind::Verdict,
         TableKind::Robustness,
+        TableKind::ModelChoice,
     ];
 
     fn name(self) -> &'static str {
@@ -79,6 +84,7 @@ impl TableKind {
             TableKind::Spring => "spring",
             TableKind::Verdict => "verdict",
             TableKind::Robustness => "robustness",
+            TableKind::ModelChoice => "model-choice",
             TableKind::All => "all",
         }
     }
@@ -94,6 +100,7 @@ impl TableKind {
             TableKind::Spring => spring::make(r),
             TableKind::Verdict => verdict::make(r),
             TableKind::Robustness => robustness::make(r),
+            TableKind::ModelChoice => model_choice::make(r),
             TableKind::All => unreachable!("expanded before"),
         }
     }

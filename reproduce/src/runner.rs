@@ -6,7 +6,7 @@ use clap::{Parser, ValueEnum};
 use estimator::cli::DeviceChoice;
 use estimator::report::parameters::ParameterResult;
 use estimator::report::Report;
-use estimator::{estimate, EstimateArgs};
+use estimator::{estimation, EstimateArgs};
 use generator::{generate_to_disk, GenArgs, SceneRef};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
@@ -129,7 +129,8 @@ impl Runner {
         }
     }
 
-    /// Trains on `data` as `estimate DATA FLAGS...` would (quietly, outputs discarded).
+    /// Trains on `data` as `estimate DATA FLAGS...` would (quietly, outputs discarded; every
+    /// candidate with `--model auto`).
     pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Report> {
         self.bar
             .set_message(format!("estimate {}", flags.join(" ")));
@@ -148,7 +149,7 @@ impl Runner {
         let args = EstimateArgs::try_parse_from(&args)
             .map_err(|e| anyhow::anyhow!("internal flags {args:?}: {e}"))?
             .validate()?;
-        let report = estimate(&args)?.report;
+        let report = estimation(&args)?.report;
         self.bar.inc(1);
         if self.lines {
             eprintln!(

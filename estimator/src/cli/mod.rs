@@ -13,7 +13,7 @@ mod training;
 pub use crate::data::Framing;
 pub use crate::device::DeviceChoice;
 pub use batch::{parse_shard, BatchArgs, Shard};
-pub use model::{parse_init, parse_reference, ModelArgs};
+pub use model::{parse_init, parse_reference, ModelArgs, ModelSpec};
 pub use recording::{parse_crop, parse_size, RecordingArgs};
 pub use training::TrainingArgs;
 
@@ -41,8 +41,9 @@ use std::path::PathBuf;
 #[command(name = "estimate", version, allow_negative_numbers = true)]
 pub struct EstimateArgs {
     /// A dataset directory written by `gen` (frames.npy + meta.json); a bare float32 .npy of
-    /// shape [N, T, C, H, W] (then --dt and --model are required); a video file (anything
-    /// ffmpeg reads) or a folder of PNG/JPEG images (with --fps), with --model.
+    /// shape [N, T, C, H, W] (then --dt is required); a video file (anything ffmpeg reads) or a
+    /// folder of PNG/JPEG images (with --fps). Without --model, a recording or a bare .npy has
+    /// its model chosen (--model auto).
     #[arg(required_unless_present_any = ["batch", "merge"])]
     pub input: Option<PathBuf>,
     #[command(flatten)]
@@ -55,6 +56,10 @@ pub struct EstimateArgs {
     pub output: OutputArgs,
     #[command(flatten)]
     pub batch: BatchArgs,
+    /// Set for the fits of a model choice (`choice::candidates`): the model is one candidate,
+    /// which a data set's meta.json may contradict.
+    #[arg(skip)]
+    pub trying: bool,
 }
 
 /// Where the results go.
@@ -81,7 +86,8 @@ impl EstimateArgs {
     pub fn load_request(&self) -> crate::data::LoadRequest {
         crate::data::LoadRequest {
             input: self.input().to_path_buf(),
-            model: self.model.model,
+            model: self.model.given(),
+            trying: self.trying,
             dt: self.model.dt,
             recording: self.recording.request(),
         }

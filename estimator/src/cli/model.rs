@@ -12,10 +12,16 @@ use physvid_shared::cli::num;
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Model")]
 pub struct ModelArgs {
-    /// The governing equation: a built-in model, or a model file FILE.toml (see README, "Your
-    /// own model"); taken from meta.json when present, required for recordings.
-    #[arg(long, value_parser = model_parser(), value_name = "MODEL|FILE.toml")]
-    pub model: Option<ModelRef>,
+    /// The governing equation: a built-in model, a model file FILE.toml (see README, "Your own
+    /// model"), or auto (each candidate fitted, the one the evidence favours kept; see README,
+    /// "Choosing the model"). Taken from meta.json for a data set; without it, a recording or
+    /// a bare .npy is auto.
+    #[arg(long, value_parser = model_parser(), value_name = "MODEL|FILE.toml|auto")]
+    pub model: Option<ModelSpec>,
+    /// A model file tried beside the built-in models when the model is chosen (--model auto,
+    /// or none on a recording); repeatable.
+    #[arg(long, value_parser = model_file_parser, value_name = "FILE.toml")]
+    pub candidate: Vec<ModelRef>,
     /// Seconds between frames (taken from meta.json when present).
     #[arg(long)]
     pub dt: Option<f64>,
@@ -48,21 +54,32 @@ pub struct ModelArgs {
     pub rollout_start: RolloutStart,
 }
 
-/// `--model`'s values: the registry's names with their equations (listed in `--help`), or a
-/// model file.
+/// `--model`'s value: one model, or the choice among candidates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModelSpec {
+    Given(ModelRef),
+    /// `--model auto`.
+    Auto,
+}
+
+/// `--model`'s values: the registry's names with their equations (listed in `--help`), a
+/// model file, or auto.
 #[derive(Clone)]
 struct ModelParser;
 
 impl TypedValueParser for ModelParser {
-    type Value = ModelRef;
+    type Value = ModelSpec;
     fn parse_ref(
         &self,
         cmd: &clap::Command,
         arg: Option<&clap::Arg>,
         value: &std::ffi::OsStr,
-    ) -> Result<ModelRef, clap::Error> {
+    ) -> Result<ModelSpec, clap::Error> {
         let text = value.to_string_lossy();
-        ModelRef::parse(&text).map_err(|e| {
+        if text == "auto" {
+            return Ok(ModelSpec::Auto);
+        }
+        ModelRef::parse(&text).map(ModelSpec::Given).map_err(|e| {
             let flag = arg.map_or("--model".into(), |a| a.to_string());
             clap::Error::raw(
                 clap::error::ErrorKind::ValueValidation,
@@ -75,8 +92,23 @@ impl TypedValueParser for ModelParser {
         Some(Box::new(
             MODELS
                 .iter()
-                .map(|m| PossibleValue::new(m.name()).help(m.help())),
+                .map(|m| PossibleValue::new(m.name()).help(m.help()))
+                .chain([PossibleValue::new("auto").help(
+                    "each candidate fitted (the built-in models of one latent number, and \
+                     --candidate files), the one the evidence favours kept",
+                )]),
         ))
+    }
+}
+
+/// `--candidate`: a model file.
+fn model_file_parser(text: &str) -> Result<ModelRef, String> {
+    let m = ModelRef::parse(text)?;
+    match m.info().file {
+        Some(_) => Ok(m),
+        None => Err(format!(
+            "'{text}' is a built-in model, which the choice tries already; --candidate takes a model file (FILE.toml)"
+        )),
     }
 }
 
@@ -214,6 +246,14 @@ impl ModelArgs {
             }
         }
         Ok(())
+    }
+
+    /// The model `--model` names (none for auto or without the flag).
+    pub fn given(&self) -> Option<ModelRef> {
+        match self.model {
+            Some(ModelSpec::Given(m)) => Some(m),
+            _ => None,
+        }
     }
 
     /// The `--init` pairs (none when the flag is absent).

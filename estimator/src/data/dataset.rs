@@ -36,11 +36,12 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
             ds.shape
         )));
     }
-    let model_file = req.model.filter(|m| m.info().file.is_some());
+    let model_file = req.model.filter(|m| m.info().file.is_some() || req.trying);
     let (dt, model) = match (&ds.meta, model_file) {
         (Some(meta), Some(model)) => {
-            // A model file may be tried on any data: meta.json's model is not checked against
-            // it (its ground truth is compared by name where the names agree).
+            // A model file, or a candidate of a choice, may be tried on any data: meta.json's
+            // model is not checked against it (its ground truth is compared by name where the
+            // names agree).
             check_dt(req, meta.dt)?;
             (meta.dt, model)
         }

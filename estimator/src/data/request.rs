@@ -12,6 +12,9 @@ pub struct LoadRequest {
     pub input: PathBuf,
     /// `--model`, when given (a data set's meta.json may name it instead).
     pub model: Option<ModelRef>,
+    /// `model` is one candidate of a choice: a data set's meta.json may name another (its
+    /// ground truth is then compared by name where the names agree).
+    pub trying: bool,
     /// `--dt`, when given.
     pub dt: Option<f64>,
     pub recording: RecordingRequest,

@@ -60,11 +60,14 @@ pub struct LawFit {
     pub latent_within_share: f64,
     /// The range of the latent over the validation clips.
     pub latent_range: (f64, f64),
+    /// Frames each clip's rollout starts from (the states fitted per clip, besides the law).
+    pub start_frames: i64,
 }
 
 impl LawFit {
-    /// From encoded latents `z` and their rollout `z_hat`, [N, T] or [N, T, D].
-    pub fn of(z: &Tensor, z_hat: &Tensor) -> Option<LawFit> {
+    /// From encoded latents `z` and their rollout `z_hat`, [N, T] or [N, T, D], rolled out
+    /// from `start_frames` of each clip.
+    pub fn of(z: &Tensor, z_hat: &Tensor, start_frames: i64) -> Option<LawFit> {
         let z = z.to_kind(Kind::Double);
         let r = &z - z_hat.to_kind(Kind::Double);
         let mean = z.mean_dim(1, true, Kind::Double);
@@ -86,6 +89,7 @@ impl LawFit {
             unexplained_within: ssr / within,
             residual_autocorrelation: if ssr > 0.0 { lagged / ssr } else { 0.0 },
             latent_within_share: within / total,
+            start_frames,
         })
     }
 }
@@ -143,7 +147,7 @@ pub fn gather(
             .chain(split(network, data, &z, &groups, range_split))
             .collect(),
         fold: frames_fold(network, data, recording_latents),
-        law: LawFit::of(val.0, val.1),
+        law: LawFit::of(val.0, val.1, network.start_frames()),
     }
 }
 

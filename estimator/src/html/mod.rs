@@ -187,6 +187,23 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             pixels: f.pixels,
         })
         .collect();
+    let choice = report.model_choice.as_ref().map(|c| {
+        let rows: Vec<_> = c
+            .candidates
+            .iter()
+            .map(|x| {
+                context! {
+                    model => x.model, answer => x.answer, freedom => x.freedom(),
+                    grade => x.grade.map_or("no estimate", |g| g.name()),
+                    unexplained => x.unexplained.map_or("–".into(), |u| format!("{:.3} %", 100.0 * u)),
+                }
+            })
+            .collect();
+        context! {
+            chosen => c.chosen, why => c.why, close => c.close, rows,
+            seconds => format!("{:.1}", c.wall_time_s),
+        }
+    });
     let headline = format!(
         "{} clips, dt {} s; {} epochs in {:.1} s on {}",
         report.train_clips + report.validation_clips,
@@ -201,7 +218,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         context! {
             style => style(),
             model => report.model, input => report.input, headline,
-            parameters, ensemble, cross_check, warnings => report.warnings, facts, recording,
+            parameters, ensemble, cross_check, warnings => report.warnings, facts, recording, choice,
             grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
             version => report.version, libtorch => report.libtorch_version,

@@ -9,6 +9,7 @@ pub mod truth;
 pub mod uncertainty;
 
 use crate::calibration::Calibration;
+use crate::choice::rank::ModelChoice;
 use crate::config::RunConfig;
 use crate::data::recording::RecordingSummary;
 use crate::data::ClipData;
@@ -90,6 +91,9 @@ pub struct Report {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ensemble: Option<Ensemble>,
     pub warnings: Vec<String>,
+    /// The candidates tried when the model was chosen (`--model auto`), ranked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_choice: Option<ModelChoice>,
     /// `ok`, `doubtful` or `unreliable`, with the reasons (`verdict::judged` fills it in).
     pub verdict: Verdict,
     /// What the verdict weighs (the covariance itself is in the parameters' errors).
@@ -195,6 +199,7 @@ impl Report {
             wall_time_s: wall.as_secs_f64(),
             ensemble: None,
             warnings,
+            model_choice: None,
             evidence: outcome.evidence.clone(),
             history: outcome.history.clone(),
             verdict: Verdict {

@@ -4,6 +4,7 @@
 //! describes them, and their thresholds are justified there by measurement.
 
 mod calibration;
+mod choice;
 mod consistency;
 pub mod grade;
 mod harmonic;
@@ -55,6 +56,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &consistency::Halves,
     &physics::Plausible,
     &calibration::References,
+    &choice::Choice,
 ];
 
 #[cfg(test)]
