@@ -103,16 +103,11 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
             );
         }
         summaries.push(summary);
-        match fit {
-            Ok(e) => fits.push(Some(e)),
-            Err(e) => {
-                errors.push(e);
-                fits.push(None);
-            }
-        }
+        fits.push(fit.map_err(|e| errors.push(e)).ok());
     }
     let Some(mut ranked) = choice::rank::rank(summaries) else {
-        // The same refusal from every candidate is the input's; else each says its own.
+        // The same refusal from every candidate is the input's, and stands alone; else the
+        // first is named.
         let first = errors.remove(0);
         if errors.iter().all(|e| e.to_string() == first.to_string()) {
             return Err(first);

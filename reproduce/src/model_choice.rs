@@ -82,8 +82,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                                 "{} ({}, {})",
                                 c.model,
                                 c.grade.map_or("no estimate", |g| g.name()),
-                                c.unexplained
-                                    .map_or("–".into(), |u| format!("{:.3} %", 100.0 * u))
+                                c.unexplained_text()
                             )
                         })
                         .collect();

@@ -10,6 +10,7 @@ use crate::cli::{EstimateArgs, ModelSpec};
 use crate::error::{input_error, EstimateError};
 use crate::physics::{ModelRef, MODELS};
 use crate::report::Report;
+use physvid_shared::dataset::{read_meta, META_FILE};
 use physvid_shared::meta::DatasetMeta;
 use physvid_shared::video::is_recording;
 use rank::Candidate;
@@ -22,11 +23,10 @@ const SAME_LAW: &[(&str, &str)] = &[("sliding-block", "free-fall")];
 /// Whether this run chooses its model: `--model auto`, or no `--model` on an input that does
 /// not name one (a recording or a bare `.npy`; a data set's meta.json names its model).
 pub fn wanted(args: &EstimateArgs) -> Result<bool, EstimateError> {
-    let input = args.input();
     let wanted = match args.model.model {
         Some(ModelSpec::Auto) => true,
         Some(ModelSpec::Given(_)) => false,
-        None => !input.is_dir() || is_recording(input),
+        None => !is_data_set(args.input()),
     };
     if !wanted && !args.model.candidate.is_empty() {
         return Err(input_error(
@@ -41,7 +41,7 @@ pub fn wanted(args: &EstimateArgs) -> Result<bool, EstimateError> {
 /// member and no progress bars.
 pub fn candidates(args: &EstimateArgs) -> Result<Vec<EstimateArgs>, EstimateError> {
     physvid_shared::input::check_kind(args.input()).map_err(input_error)?;
-    let meta = read_meta(args);
+    let meta = meta_of(args);
     let calibration = meta.as_ref().map(|m| &m.calibration);
     let positions = !args.model.reference_positions().is_empty()
         || calibration.is_some_and(|c| !c.reference_positions.is_empty());
@@ -95,14 +95,19 @@ fn candidate_args(args: &EstimateArgs, model: ModelRef) -> EstimateArgs {
     a
 }
 
-/// A data set's meta.json, where the input is one (read for its calibration only).
-fn read_meta(args: &EstimateArgs) -> Option<DatasetMeta> {
+/// Whether `input` is a data set directory (whose meta.json names its model), not a
+/// recording (a video, an image folder) or a bare `.npy`.
+fn is_data_set(input: &std::path::Path) -> bool {
+    input.is_dir() && !is_recording(input)
+}
+
+/// A data set's meta.json, where the input is one (read for its calibration only; a broken one
+/// is reported by each candidate's load).
+fn meta_of(args: &EstimateArgs) -> Option<DatasetMeta> {
     let input = args.input();
-    if !input.is_dir() || is_recording(input) {
-        return None;
-    }
-    let text = std::fs::read(input.join(physvid_shared::dataset::META_FILE)).ok()?;
-    serde_json::from_slice(&text).ok()
+    is_data_set(input)
+        .then(|| read_meta(&input.join(META_FILE)).ok())
+        .flatten()
 }
 
 /// `model`'s fit as the ranking sees it: its report, or why it gave none.

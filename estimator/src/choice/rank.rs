@@ -60,17 +60,28 @@ pub struct ModelChoice {
 }
 
 impl Candidate {
+    /// What the candidate may adjust to fit: its parameters and each clip's starting states.
+    pub fn freedom(&self) -> usize {
+        self.parameters + self.clip_states
+    }
+
+    /// Its unexplained share as a percentage ("–" without one).
+    pub fn unexplained_text(&self) -> String {
+        self.unexplained
+            .map_or("–".into(), |u| format!("{:.3} %", 100.0 * u))
+    }
+
     /// One line: the model, its grade and unexplained share, its answer.
     pub fn line(&self) -> String {
-        match (self.grade, self.unexplained) {
-            (Some(g), u) => format!(
+        match self.grade {
+            Some(g) => format!(
                 "{:<18} {:<10} {:>9}  {}",
                 self.model,
                 g.name(),
-                u.map_or("-".into(), |u| format!("{:.3} %", 100.0 * u)),
+                self.unexplained_text(),
                 self.answer
             ),
-            (None, _) => format!("{:<18} no estimate: {}", self.model, self.answer),
+            None => format!("{:<18} no estimate: {}", self.model, self.answer),
         }
     }
 }
@@ -90,15 +101,8 @@ impl ModelChoice {
     }
 }
 
-impl Candidate {
-    /// What the candidate may adjust to fit: its parameters and each clip's starting states.
-    pub fn freedom(&self) -> usize {
-        self.parameters + self.clip_states
-    }
-}
-
-/// Ranks `candidates` (in the order tried; at least one with an estimate) and returns the
-/// choice, or `None` when none gave an estimate.
+/// Ranks `candidates` (in the order tried) and returns the choice, or `None` when none gave an
+/// estimate.
 pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
     let fitted = |c: &Candidate| c.grade.is_some();
     let usable = |c: &Candidate| fitted(c) && c.grade != Some(Grade::Unreliable);

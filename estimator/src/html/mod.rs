@@ -195,7 +195,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
                 context! {
                     model => x.model, answer => x.answer, freedom => x.freedom(),
                     grade => x.grade.map_or("no estimate", |g| g.name()),
-                    unexplained => x.unexplained.map_or("–".into(), |u| format!("{:.3} %", 100.0 * u)),
+                    unexplained => x.unexplained_text(),
                 }
             })
             .collect();

@@ -123,6 +123,18 @@ pub fn validate_meta(
 /// The latest clip start time taken (s; a year): later ones cannot be a recording's.
 pub const MAX_START_TIME: f64 = 3.2e7;
 
+/// Reads and parses a `meta.json` (a FIFO or device refused before it is opened), without
+/// checking it against its frames (`read_dataset` does).
+pub fn read_meta(path: &Path) -> Result<DatasetMeta, DatasetError> {
+    crate::input::check_kind(path).map_err(|e| bad_meta(path, e))?;
+    let bytes = std::fs::read(path).map_err(|source| DatasetError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    serde_json::from_slice(&bytes)
+        .map_err(|e| bad_meta(path, format!("not valid metadata JSON: {e}")))
+}
+
 /// Reads `DIR` (frames.npy + meta.json) or a bare `.npy` file (no metadata), validating the
 /// rank, the values (finite) and the metadata's consistency with the frames.
 pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
@@ -167,13 +179,7 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
     let meta = match meta_path {
         None => None,
         Some(mp) => {
-            crate::input::check_kind(&mp).map_err(|e| bad_meta(&mp, e))?;
-            let bytes = std::fs::read(&mp).map_err(|source| DatasetError::Read {
-                path: mp.clone(),
-                source,
-            })?;
-            let meta: DatasetMeta = serde_json::from_slice(&bytes)
-                .map_err(|e| bad_meta(&mp, format!("not valid metadata JSON: {e}")))?;
+            let meta = read_meta(&mp)?;
             validate_meta(&meta, &mp, &frames_path, shape)?;
             Some(meta)
         }
