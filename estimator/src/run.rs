@@ -80,7 +80,7 @@ pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 /// ranking in its report; writes nothing.
 pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let begun = Instant::now();
-    let tries = choice::candidates(args)?;
+    let (tries, cut) = choice::candidates(args)?;
     let quiet = args.output.quiet;
     let (mut fits, mut summaries, mut errors) = (Vec::new(), Vec::new(), Vec::new());
     for (i, a) in tries.iter().enumerate() {
@@ -132,6 +132,7 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     };
     chosen.report.config.quiet = quiet;
     ranked.wall_time_s = begun.elapsed().as_secs_f64();
+    ranked.cut = cut;
     chosen.report.model_choice = Some(ranked);
     chosen.report = verdict::judged(chosen.report);
     Ok(chosen)

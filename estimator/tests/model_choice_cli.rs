@@ -4,7 +4,7 @@
 
 mod util;
 
-use util::{gen_dataset, read_report, stderr, Estimate};
+use util::{gen_dataset, oscillator_video, read_report, stderr, Estimate};
 
 /// report.json's `model_choice`: the chosen model and the candidates' names, ranked.
 fn choice(report: &serde_json::Value) -> (String, Vec<String>) {
@@ -97,4 +97,29 @@ fn candidate_files_are_refused_where_nothing_is_chosen() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("model file"), "{}", stderr(&o));
     assert!(!out.join("report.json").exists());
+}
+
+#[test]
+fn a_recordings_candidates_share_one_cut_from_the_motions_period() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    // A disc whose brightness swings every 31.4 frames, played at 20 fps (a period of 1.57 s).
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, video) = oscillator_video(tmp.path(), 20);
+    let out = tmp.path().join("auto");
+    let o = Estimate::new(&video)
+        .args(["--size", "20x15", "--epochs", "3", "--threads", "1"])
+        .out(&out)
+        .output();
+    let r = read_report(&out);
+    let cut = r["model_choice"]["cut"].as_str().unwrap_or_default();
+    assert!(cut.contains("one period"), "{cut}\n{}", stderr(&o));
+    // 31.4 frames a period over 19 gaps: stride 2, not any law's own Table 5 cut (the
+    // oscillator's 0.2 s would be 4, the pendulum's 2 with clips of 20 frames, the tank's 20
+    // shortened to fit).
+    assert_eq!(r["recording"]["stride"], 2, "{cut}");
+    assert_eq!(r["recording"]["frames_per_clip"], 20);
+    let table = physvid_testkit::stdout(&o);
+    assert!(table.contains("clips: every candidate"), "{table}");
 }

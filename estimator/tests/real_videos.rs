@@ -117,7 +117,7 @@ fn a_trim_too_short_for_table_5s_clip_gets_a_shorter_stride_not_a_refusal() {
 }
 
 #[test]
-fn real_free_fall_finds_a_constant_acceleration_and_flags_the_capture_rate() {
+fn real_free_fall_finds_a_constant_acceleration_and_takes_the_capture_rate() {
     let Some(video) = real_video("freefall-ball.mp4") else {
         return;
     };
@@ -150,8 +150,10 @@ fn real_free_fall_finds_a_constant_acceleration_and_flags_the_capture_rate() {
     let mut without = common.to_vec();
     without.extend(["--epochs", "2"]);
     let (r, err) = estimate(&without, &tmp.path().join("b"));
+    // Without --fps the capture tag's rate is taken, and said to be.
     assert!(err.contains("com.android.capture.fps"), "{err}");
-    assert_eq!(r["recording"]["fps_source"], "container");
+    assert_eq!(r["recording"]["fps_source"], "capture tag");
+    assert_eq!(r["recording"]["fps"], 120.0);
 }
 
 #[test]

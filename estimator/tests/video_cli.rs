@@ -5,44 +5,13 @@
 mod util;
 
 use std::path::Path;
-use std::process::Command;
-use util::{estimate_of, read_report, stderr, Estimate};
+use util::{
+    encode_lossless, estimate_of, oscillator_video, read_report, stderr, write_frames, Estimate,
+};
 
 fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
     let o = Estimate::bare().args(args).out(out).quiet().estimated();
     (read_report(out), stderr(&o))
-}
-
-/// Writes `n` grey PNG frames of a damped oscillator (a disc whose brightness follows z) into
-/// `dir` as frame1.png … frameN.png.
-fn write_frames(dir: &Path, n: usize) {
-    std::fs::create_dir_all(dir).unwrap();
-    for k in 0..n {
-        let t = k as f64 * 0.1;
-        let z = (-0.04 * t).exp() * (2.0 * t).cos();
-        let img = image::GrayImage::from_fn(40, 30, |x, y| {
-            let (dx, dy) = (x as f64 - 20.0, y as f64 - 15.0);
-            let v = if dx * dx + dy * dy < 100.0 {
-                0.5 + 0.4 * z
-            } else {
-                0.1
-            };
-            image::Luma([(v * 255.0).round() as u8])
-        });
-        img.save(dir.join(format!("frame{}.png", k + 1))).unwrap();
-    }
-}
-
-/// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at 10 fps.
-fn encode_lossless(frames: &Path, video: &Path) {
-    let o = Command::new("ffmpeg")
-        .args(["-v", "error", "-framerate", "10", "-i"])
-        .arg(frames.join("frame%d.png"))
-        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
-        .arg(video)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 #[test]
@@ -51,11 +20,8 @@ fn an_image_folder_and_a_video_of_the_same_frames_give_the_same_estimate() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();
-    let frames = tmp.path().join("frames");
-    write_frames(&frames, 120);
-    // A lossless grey video of the same frames at 10 fps.
-    let video = tmp.path().join("clip.mkv");
-    encode_lossless(&frames, &video);
+    // The frames, and a lossless grey video of them at 10 fps.
+    let (frames, video) = oscillator_video(tmp.path(), 10);
     let args = [
         "--model",
         "damped-oscillator",
@@ -89,7 +55,7 @@ fn bad_recordings_get_a_one_line_error_and_exit_code_2() {
     let frames = t.join("frames");
     write_frames(&frames, 60);
     let video = t.join("clip.mkv");
-    encode_lossless(&frames, &video);
+    encode_lossless(&frames, &video, 10);
     let bytes = std::fs::read(&video).unwrap();
     let truncated = t.join("truncated.mkv");
     std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();

@@ -4,12 +4,14 @@
 //! line, and each fit summarised for the ranking in `rank.rs`. The fits themselves are run by
 //! `run`, which hands each one's report here.
 
+pub mod cut;
 pub mod rank;
 
 use crate::cli::{EstimateArgs, ModelSpec};
 use crate::error::{input_error, EstimateError};
 use crate::physics::{ModelRef, MODELS};
 use crate::report::Report;
+use cut::CommonCut;
 use physvid_shared::dataset::{read_meta, META_FILE};
 use physvid_shared::meta::DatasetMeta;
 use physvid_shared::video::is_recording;
@@ -37,9 +39,12 @@ pub fn wanted(args: &EstimateArgs) -> Result<bool, EstimateError> {
 }
 
 /// The candidates' command lines: the user's, with the model set, the flags a candidate does
-/// not read dropped (a calibration it has no use for, `--init` of parameters it lacks), one
-/// member and no progress bars.
-pub fn candidates(args: &EstimateArgs) -> Result<Vec<EstimateArgs>, EstimateError> {
+/// not read dropped (a calibration it has no use for, `--init` of parameters it lacks), a
+/// recording's clips cut alike for all (`cut`), one member and no progress bars; and the
+/// common cut's reason.
+pub fn candidates(
+    args: &EstimateArgs,
+) -> Result<(Vec<EstimateArgs>, Option<String>), EstimateError> {
     physvid_shared::input::check_kind(args.input()).map_err(input_error)?;
     let meta = meta_of(args);
     let calibration = meta.as_ref().map(|m| &m.calibration);
@@ -63,15 +68,21 @@ pub fn candidates(args: &EstimateArgs) -> Result<Vec<EstimateArgs>, EstimateErro
             "--model auto: no candidate reads bodies' positions but the built-in spring; pass --model",
         ));
     }
-    Ok(models
+    let cut = cut::common_cut(args)?;
+    let tries = models
         .into_iter()
-        .map(|m| candidate_args(args, m))
-        .collect())
+        .map(|m| candidate_args(args, m, cut.as_ref()))
+        .collect();
+    Ok((tries, cut.map(|c| c.why)))
 }
 
-/// `args` for trying `model`.
-fn candidate_args(args: &EstimateArgs, model: ModelRef) -> EstimateArgs {
+/// `args` for trying `model` (on the `cut` shared by all, unless it is released from rest).
+fn candidate_args(args: &EstimateArgs, model: ModelRef, cut: Option<&CommonCut>) -> EstimateArgs {
     let mut a = args.clone();
+    if let Some(c) = cut.filter(|_| !model.released_from_rest()) {
+        a.recording.frames_per_clip = Some(c.frames_per_clip);
+        a.recording.stride = Some(c.stride);
+    }
     let m = &mut a.model;
     m.model = Some(ModelSpec::Given(model));
     m.candidate.clear();

@@ -16,8 +16,21 @@ pub const TIE_FLOOR: f64 = 1e-3;
 /// (richer, nested): laws that hold another as a limit (the pendulum is the oscillator at
 /// small swings). The richer one has more freedom, yet it is chosen when the nested one is
 /// graded worse: the nested law's doubt (its frequency differs between small and large
-/// swings) is what the richer law explains.
-pub const NESTED: &[(&str, &str)] = &[("pendulum", "damped-oscillator")];
+/// swings) is what the richer law explains. Where the nested law is chosen and the richer one
+/// explains the motion too, the choice says how their answers relate (the third member).
+pub const NESTED: &[(&str, &str, &str)] = &[(
+    "pendulum",
+    "damped-oscillator",
+    "the oscillator is the pendulum at small swings, gamma0 = g/L, gamma1 its damping",
+)];
+
+/// How `nested`'s answer relates to `richer`'s, where one holds the other as a limit.
+fn limit(richer: &str, nested: &str) -> Option<&'static str> {
+    NESTED
+        .iter()
+        .find(|(r, n, _)| *r == richer && *n == nested)
+        .map(|(_, _, how)| *how)
+}
 
 /// One candidate as the ranking sees it.
 #[derive(Debug, Clone, Serialize)]
@@ -55,6 +68,9 @@ pub struct ModelChoice {
     pub close: Option<String>,
     /// How the choice was made, in words.
     pub why: String,
+    /// How a recording was cut into clips for every candidate, and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cut: Option<String>,
     /// Seconds for every candidate's fit (and the chosen one's ensemble).
     pub wall_time_s: f64,
 }
@@ -93,6 +109,12 @@ impl ModelChoice {
             "model chosen: {} ({})\n{:<18} {:<10} {:>9}  answer\n",
             self.chosen, self.why, "candidate", "verdict", "unexpl."
         );
+        if let Some(cut) = &self.cut {
+            out.insert_str(
+                out.find('\n').map_or(0, |i| i + 1),
+                &format!("clips: {cut}\n"),
+            );
+        }
         for c in &self.candidates {
             out.push_str(&c.line());
             out.push('\n');
@@ -149,9 +171,7 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
     // way to it.
     let richer = candidates.first().and_then(|first| {
         candidates.iter().position(|c| {
-            c.explains
-                && c.grade < first.grade
-                && NESTED.contains(&(c.model.as_str(), first.model.as_str()))
+            c.explains && c.grade < first.grade && limit(&c.model, &first.model).is_some()
         })
     });
     if let Some(i) = richer {
@@ -162,7 +182,7 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
     let close = candidates
         .get(1)
         .filter(|c| c.explains && c.grade == first.grade && c.freedom() == first.freedom());
-    let why = match (desperate, candidates.iter().filter(|c| c.explains).count()) {
+    let mut why = match (desperate, candidates.iter().filter(|c| c.explains).count()) {
         _ if richer.is_some() => format!(
             "{} explains the motion as well as the simpler law it holds as a limit, {}, which the verdict doubts",
             first.model, candidates[1].model
@@ -175,11 +195,23 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
             "{n} candidates explain the motion about as well; the one with the least freedom (parameters and per-clip states), then the better verdict, then the least unexplained motion kept"
         ),
     };
+    // The nested law kept where its richer law explains as well: the two answers are one.
+    if let Some(how) = candidates
+        .iter()
+        .filter(|c| c.explains && richer.is_none())
+        .find_map(|c| limit(&c.model, &first.model).map(|how| (how, &c.model)))
+    {
+        why.push_str(&format!(
+            "; the data do not show {}'s further freedom: {} ({}'s answer is in its row)",
+            how.1, how.0, how.1
+        ));
+    }
     Some(ModelChoice {
         chosen: first.model.clone(),
         close: close.map(|c| c.model.clone()),
         candidates,
         why,
+        cut: None,
         wall_time_s: 0.0,
     })
 }
@@ -214,6 +246,15 @@ mod tests {
         assert_eq!(r.chosen, "damped-oscillator");
         assert_eq!(r.close, None);
         assert_eq!(r.candidates[2].model, "led");
+        // Said to be the pendulum's limit, whose answer is the same.
+        assert!(r.why.contains("gamma0 = g/L"), "{}", r.why);
+        // Not where the pendulum does not explain the motion.
+        let r = rank(vec![
+            c("damped-oscillator", Some(Grade::Ok), 1.6e-3, 2),
+            c("pendulum", Some(Grade::Ok), 9e-2, 4),
+        ])
+        .unwrap();
+        assert!(!r.why.contains("g/L"), "{}", r.why);
     }
 
     #[test]

@@ -2,15 +2,12 @@
 //! size, clip length, stride, hop). Their model-dependent defaults (Table 5's clip) are
 //! resolved in `data::recording`.
 
-use crate::data::{Framing, RecordingRequest};
+use crate::data::{Framing, RecordingRequest, DEFAULT_SIZE};
 use crate::error::{input_error, EstimateError};
 use crate::physics::MODELS;
 use physvid_shared::cli::num;
 use physvid_shared::video::Crop;
 use serde::Serialize;
-
-/// The frame size fed to the encoder when `--size` is not given (the paper's 100×56).
-pub const DEFAULT_SIZE: (usize, usize) = (100, 56);
 
 /// The highest frame rate taken (the fastest scientific cameras film ten million frames a
 /// second).
@@ -20,8 +17,9 @@ pub const MAX_FPS: f64 = 1e7;
 #[derive(Debug, Clone, PartialEq, Serialize, clap::Args)]
 #[command(next_help_heading = "Recordings")]
 pub struct RecordingArgs {
-    /// Frames per second of real time; overrides the container's (slow-motion files store
-    /// 30 fps for a 120 fps capture); required for an image folder.
+    /// Frames per second of real time [default: a slow-motion file's capture tag
+    /// (com.android.capture.fps: 120 where the container says 30), else the container's, else
+    /// the frames' timestamps']; required for an image folder.
     #[arg(long)]
     pub fps: Option<f64>,
     /// What part of the frame the encoder sees: X,Y,W,H in pixels of the displayed (rotated)
@@ -39,7 +37,8 @@ pub struct RecordingArgs {
     #[arg(long)]
     pub end: Option<f64>,
     #[arg(long, value_parser = parse_size, value_name = "WxH", help = format!(
-        "Frame size fed to the encoder (grey, area-averaged) [default: {}x{}]",
+        "Frame size fed to the encoder (grey, area-averaged) [default: {}x{}, or as many \
+         pixels at the frame's (or --crop's) shape where it is taller than wide]",
         DEFAULT_SIZE.0, DEFAULT_SIZE.1
     ))]
     pub size: Option<(usize, usize)>,
@@ -47,7 +46,8 @@ pub struct RecordingArgs {
     pub frames_per_clip: Option<usize>,
     /// Recording frames between clip frames, so dt = stride / fps [default: Table 5's dt × fps,
     /// e.g. 6 for the pendulum at 60 fps, shortened with a warning where a clip would span more
-    /// than half of the frames kept].
+    /// than half of the frames kept; with the model chosen, one for every candidate: a clip of
+    /// 20 frames spans the motion's period, else half the frames kept].
     #[arg(long)]
     pub stride: Option<usize>,
     /// Recording frames between the starts of consecutive clips [default: 1, or more to stay
@@ -107,11 +107,6 @@ pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
 }
 
 impl RecordingArgs {
-    /// The frame size: `--size`, else [`DEFAULT_SIZE`].
-    pub fn frame_size(&self) -> (usize, usize) {
-        self.size.unwrap_or(DEFAULT_SIZE)
-    }
-
     /// The flags as the data layer reads them (the frame size resolved).
     pub fn request(&self) -> RecordingRequest {
         RecordingRequest {
@@ -119,7 +114,7 @@ impl RecordingArgs {
             crop: self.crop,
             start: self.start,
             end: self.end,
-            size: self.frame_size(),
+            size: self.size,
             frames_per_clip: self.frames_per_clip,
             stride: self.stride,
             hop: self.hop,

@@ -200,11 +200,13 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
     let far = out.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
     let mut end = out.iter().position(|q| q.1 >= far - tol / 2.0)?;
     let (first_k, first_p) = out[0];
-    // An impact: past a third of the way, a step per frame under half the one before it.
+    // An impact: past a third of the way, a step per frame under half the one before it, or
+    // frames where the object no longer moves clearly (at rest on the floor: a falling object
+    // moves in every frame).
     let step = |i: usize| (out[i].1 - out[i - 1].1) / (out[i].0 - out[i - 1].0) as f64;
     if let Some(i) = (2..=end)
         .filter(|&i| out[i - 1].1 - first_p > (far - first_p) / 3.0)
-        .find(|&i| step(i) < 0.5 * step(i - 1))
+        .find(|&i| step(i) < 0.5 * step(i - 1) || out[i].0 - out[i - 1].0 > 2)
     {
         end = i - 1;
     }

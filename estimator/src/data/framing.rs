@@ -25,21 +25,75 @@ pub enum Framing {
 /// kept): it would gain little resolution.
 pub const AUTO_CROP_MAX_SHARE: f64 = 0.6;
 
-/// The crop for `flags` (`None`: the whole frame), how it was chosen, and the survey when one
-/// was made; `size` is the encoder's frame size (its aspect ratio).
+/// The frame size fed to the encoder when `--size` is not given and the framed region is at
+/// least as wide as it is tall (the paper's 100×56).
+pub const DEFAULT_SIZE: (usize, usize) = (100, 56);
+
+/// What the encoder sees of a recording.
+pub struct Framed {
+    /// The crop (`None`: the whole frame), and how it was chosen.
+    pub crop: Option<Crop>,
+    pub how: &'static str,
+    /// The survey, when one was made.
+    pub survey: Option<Survey>,
+    /// The encoder's frame size: `--size`, else [`default_size`] of the frame's (or the given
+    /// crop's) shape.
+    pub size: (usize, usize),
+}
+
+/// The encoder's frame size without `--size`, for a frame (or `--crop`) `aspect` (width /
+/// height) wide:
+/// [`DEFAULT_SIZE`] for a landscape or square one; for a portrait one as many pixels at its
+/// shape (a phone held upright: 56×100; a ball's fall along a strip ten times taller than
+/// wide: 24×237), so that the long side keeps its resolution.
+pub fn default_size(aspect: f64) -> (usize, usize) {
+    if !(aspect.is_finite() && aspect > 0.0) || aspect >= 1.0 {
+        return DEFAULT_SIZE;
+    }
+    let pixels = (DEFAULT_SIZE.0 * DEFAULT_SIZE.1) as f64;
+    let aspect = aspect.max(0.02);
+    let w = (pixels * aspect).sqrt().round().max(8.0) as usize;
+    let h = ((pixels / aspect).sqrt().round() as usize).min(4096);
+    (w, h)
+}
+
+/// The crop for `flags`, how it was chosen, the survey when one was made, and the encoder's
+/// frame size.
 pub fn frame(
     input: &Path,
     info: Option<&VideoInfo>,
     flags: &RecordingRequest,
-    size: (usize, usize),
-) -> Result<(Option<Crop>, &'static str, Option<Survey>), EstimateError> {
+) -> Result<Framed, EstimateError> {
+    let size_for = |w: usize, h: usize| flags.size.unwrap_or(default_size(w as f64 / h as f64));
+    let whole = |how| match info {
+        Some(i) => Framed {
+            crop: None,
+            how,
+            survey: None,
+            size: size_for(i.width, i.height),
+        },
+        None => Framed {
+            crop: None,
+            how,
+            survey: None,
+            size: flags.size.unwrap_or(DEFAULT_SIZE),
+        },
+    };
     Ok(match (flags.crop, info) {
-        (Some(Framing::Crop(c)), _) => (Some(c), "--crop", None),
-        (Some(Framing::Full), _) => (None, "whole frame (--crop full)", None),
+        (Some(Framing::Crop(c)), _) => Framed {
+            crop: Some(c),
+            how: "--crop",
+            survey: None,
+            size: size_for(c.w, c.h),
+        },
+        (Some(Framing::Full), _) => whole("whole frame (--crop full)"),
         (_, Some(i)) => {
             let s = video::survey(input, i, flags.start, flags.end)?;
-            // The region at the encoder's aspect ratio; not worth it over most of the frame.
             let frame = (i.width, i.height);
+            // The frame's shape, not the region's: a region that misses part of a motion
+            // (a fall's fast path moves each pixel briefly) is widened to it.
+            let size = size_for(i.width, i.height);
+            // The region at the encoder's aspect ratio; not worth it over most of the frame.
             let crop = s
                 .crop
                 .map(|c| c.with_aspect(size.0 as f64 / size.1 as f64, frame))
@@ -49,9 +103,14 @@ pub fn frame(
             } else {
                 "whole frame: the motion fills most of it (--crop auto)"
             };
-            (crop, how, Some(s))
+            Framed {
+                crop,
+                how,
+                survey: Some(s),
+                size,
+            }
         }
-        (_, None) => (None, "whole frame (an image folder)", None),
+        (_, None) => whole("whole frame (an image folder)"),
     })
 }
 

@@ -11,7 +11,7 @@ mod request;
 mod scale;
 mod timing;
 
-pub use framing::Framing;
+pub use framing::{Framing, DEFAULT_SIZE};
 pub use request::{LoadRequest, RecordingRequest};
 
 use crate::error::{input_error, EstimateError};

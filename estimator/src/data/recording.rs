@@ -185,7 +185,6 @@ pub fn load_recording(
     flags: &RecordingRequest,
 ) -> Result<LoadedRecording, EstimateError> {
     let (table_frames, table_dt) = model.table5_clip();
-    let size = flags.size;
     let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
     let mut warnings = Vec::new();
     // The frame rate first (cheap), for the default stride.
@@ -194,59 +193,7 @@ pub fn load_recording(
     } else {
         Some(video::probe(input)?)
     };
-    // The frames' own timestamps: evenly spaced within the part kept, or refused; their rate
-    // where the container gives none or another.
-    let stamped = info
-        .as_ref()
-        .and_then(|i| i.median_interval(flags.start, flags.end))
-        .map(|m| 1.0 / m);
-    if let Some((at, gap)) = info
-        .as_ref()
-        .and_then(|i| i.first_gap(flags.start, flags.end))
-    {
-        return Err(input_error(format!(
-            "{}: the frames are not evenly spaced: a gap of {} s after {} s of the file's \
-             timeline (dropped frames or a variable frame rate), which clips would read as \
-             continuous motion; keep an evenly spaced part with --start/--end",
-            input.display(),
-            approx(gap),
-            approx(at)
-        )));
-    }
-    let container = info.as_ref().and_then(|i| i.container_fps);
-    let (fps, fps_source) = match (flags.fps, container, stamped) {
-        (Some(f), _, _) => (f, "--fps"),
-        (None, Some(c), Some(t)) if (c / t - 1.0).abs() > 0.01 => {
-            warnings.push(format!(
-                "the container says {} fps but the frames' timestamps are {} s apart ({} fps): \
-                 the timestamps' rate is used",
-                approx(c),
-                approx(1.0 / t),
-                approx(t)
-            ));
-            (t, "timestamps")
-        }
-        (None, Some(c), _) => (c, "container"),
-        (None, None, Some(t)) => (t, "timestamps"),
-        (None, None, None) => {
-            return Err(input_error(format!(
-                "{}: no frame rate known (an image folder, or a container without one): pass --fps",
-                input.display()
-            )))
-        }
-    };
-    if let (None, Some(i)) = (flags.fps, &info) {
-        if let (Some(capture), Some(container)) = (i.capture_fps, i.container_fps) {
-            if (capture / container - 1.0).abs() > 0.01 {
-                warnings.push(format!(
-                    "the container says {container:.3} fps but the file's com.android.capture.fps \
-                     tag says {capture} fps (a slow-motion capture?): dt, and every rate, is wrong \
-                     by {:.2}× unless you pass --fps {capture}",
-                    capture / container
-                ));
-            }
-        }
-    }
+    let (fps, fps_source) = timing::frame_rate(input, info.as_ref(), flags, &mut warnings)?;
     let stride = timing::stride(
         flags.stride,
         info.as_ref(),
@@ -259,13 +206,18 @@ pub fn load_recording(
         input,
         info.as_ref(),
         flags,
-        size,
+        flags.size.unwrap_or(framing::DEFAULT_SIZE),
         frames_per_clip,
         MAX_DEFAULT_CLIPS,
     )?;
     let started = std::time::Instant::now();
     // What the encoder sees: the flag's rectangle, the whole frame, or where it moves.
-    let (crop, framing, survey) = framing::frame(input, info.as_ref(), flags, size)?;
+    let framing::Framed {
+        crop,
+        how: framing,
+        survey,
+        size,
+    } = framing::frame(input, info.as_ref(), flags)?;
     let survey_s = started.elapsed().as_secs_f64();
     let opts = VideoOptions {
         fps: Some(fps),

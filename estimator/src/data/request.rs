@@ -31,8 +31,9 @@ pub struct RecordingRequest {
     /// `--start` / `--end`: the part kept, in seconds of the file's timeline.
     pub start: Option<f64>,
     pub end: Option<f64>,
-    /// The encoder's frame size (width, height), `--size` or the default.
-    pub size: (usize, usize),
+    /// `--size`: the encoder's frame size (width, height); `None`: chosen from the framed
+    /// region's shape (`framing::default_size`).
+    pub size: Option<(usize, usize)>,
     pub frames_per_clip: Option<usize>,
     pub stride: Option<usize>,
     pub hop: Option<usize>,

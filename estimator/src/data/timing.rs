@@ -1,9 +1,13 @@
-//! A recording's clips in time: the stride between a clip's frames, Table 5's clip length by
-//! default, shortened where the part kept is too short for it (with a warning saying so).
+//! A recording in time: its frame rate (given, tagged, stamped or the container's), and the
+//! stride between a clip's frames, Table 5's clip length by default, shortened where the part
+//! kept is too short for it (with a warning saying so).
 
+use super::RecordingRequest;
+use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::approx;
 use physvid_shared::video::VideoInfo;
+use std::path::Path;
 
 /// The stride: `--stride` when given; otherwise Table 5's clip time (`table_dt` at `fps`),
 /// shortened so that a clip spans at most half of the frames kept within `trim` (when the
@@ -42,6 +46,70 @@ pub(super) fn stride(
 fn fitting(table: usize, frames_per_clip: usize, kept: usize) -> usize {
     let gaps = frames_per_clip.saturating_sub(1).max(1);
     table.min((kept / 2 / gaps).max(1))
+}
+
+/// The frame rate of real time and where it came from: `--fps`; a slow-motion file's capture
+/// tag where it disagrees with the container (with a warning); the frames' timestamps where the
+/// container's rate disagrees with them or is missing; else the container's. Frames that are not
+/// evenly spaced within the part kept are refused.
+pub(super) fn frame_rate(
+    input: &Path,
+    info: Option<&VideoInfo>,
+    flags: &RecordingRequest,
+    warnings: &mut Vec<String>,
+) -> Result<(f64, &'static str), EstimateError> {
+    // The frames' own timestamps: evenly spaced within the part kept, or refused; their rate
+    // where the container gives none or another.
+    let stamped = info
+        .and_then(|i| i.median_interval(flags.start, flags.end))
+        .map(|m| 1.0 / m);
+    if let Some((at, gap)) = info.and_then(|i| i.first_gap(flags.start, flags.end)) {
+        return Err(input_error(format!(
+            "{}: the frames are not evenly spaced: a gap of {} s after {} s of the file's \
+             timeline (dropped frames or a variable frame rate), which clips would read as \
+             continuous motion; keep an evenly spaced part with --start/--end",
+            input.display(),
+            approx(gap),
+            approx(at)
+        )));
+    }
+    let container = info.and_then(|i| i.container_fps);
+    // A slow-motion capture: the file plays its frames slower than they were taken.
+    let capture = info
+        .and_then(|i| i.capture_fps.zip(i.container_fps))
+        .filter(|(capture, container)| (capture / container - 1.0).abs() > 0.01);
+    Ok(match (flags.fps, capture, container, stamped) {
+        (Some(f), _, _, _) => (f, "--fps"),
+        (None, Some((capture, container)), _, _) => {
+            warnings.push(format!(
+                "the container says {} fps but the file's com.android.capture.fps tag says {} \
+                 fps (a slow-motion capture): one frame is taken as 1/{} s of real time, and \
+                 every rate with it; --fps overrides",
+                approx(container),
+                approx(capture),
+                approx(capture)
+            ));
+            (capture, "capture tag")
+        }
+        (None, None, Some(c), Some(t)) if (c / t - 1.0).abs() > 0.01 => {
+            warnings.push(format!(
+                "the container says {} fps but the frames' timestamps are {} s apart ({} fps): \
+                 the timestamps' rate is used",
+                approx(c),
+                approx(1.0 / t),
+                approx(t)
+            ));
+            (t, "timestamps")
+        }
+        (None, None, Some(c), _) => (c, "container"),
+        (None, None, None, Some(t)) => (t, "timestamps"),
+        (None, None, None, None) => {
+            return Err(input_error(format!(
+                "{}: no frame rate known (an image folder, or a container without one): pass --fps",
+                input.display()
+            )))
+        }
+    })
 }
 
 #[cfg(test)]

@@ -200,7 +200,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             })
             .collect();
         context! {
-            chosen => c.chosen, why => c.why, close => c.close, rows,
+            chosen => c.chosen, why => c.why, close => c.close, cut => c.cut, rows,
             seconds => format!("{:.1}", c.wall_time_s),
         }
     });

@@ -119,3 +119,45 @@ pub fn real_video(name: &str) -> Option<PathBuf> {
     }
     Some(path)
 }
+
+/// Writes `n` grey PNG frames of a damped oscillator (a disc whose brightness follows z) into
+/// `dir` as frame1.png … frameN.png.
+pub fn write_frames(dir: &Path, n: usize) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 0..n {
+        let t = k as f64 * 0.1;
+        let z = (-0.04 * t).exp() * (2.0 * t).cos();
+        let img = image::GrayImage::from_fn(40, 30, |x, y| {
+            let (dx, dy) = (x as f64 - 20.0, y as f64 - 15.0);
+            let v = if dx * dx + dy * dy < 100.0 {
+                0.5 + 0.4 * z
+            } else {
+                0.1
+            };
+            image::Luma([(v * 255.0).round() as u8])
+        });
+        img.save(dir.join(format!("frame{}.png", k + 1))).unwrap();
+    }
+}
+
+/// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at `fps`.
+pub fn encode_lossless(frames: &Path, video: &Path, fps: u32) {
+    let o = std::process::Command::new("ffmpeg")
+        .args(["-v", "error", "-framerate", &fps.to_string(), "-i"])
+        .arg(frames.join("frame%d.png"))
+        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
+        .arg(video)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A damped oscillator's disc (`write_frames`, 120 frames) in `dir`/frames and as a lossless
+/// video `dir`/clip.mkv at `fps`: (frames, video).
+pub fn oscillator_video(dir: &Path, fps: u32) -> (PathBuf, PathBuf) {
+    let frames = dir.join("frames");
+    write_frames(&frames, 120);
+    let video = dir.join("clip.mkv");
+    encode_lossless(&frames, &video, fps);
+    (frames, video)
+}

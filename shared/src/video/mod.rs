@@ -8,6 +8,7 @@ mod folder;
 mod probe;
 mod resize;
 mod survey;
+pub mod timescale;
 
 pub use decode::{decode, DecodedVideo};
 pub use probe::{probe, VideoInfo};

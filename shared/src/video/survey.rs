@@ -9,6 +9,7 @@
 
 use super::decode::read_full;
 use super::probe::tool;
+use super::timescale::Thumbnails;
 use super::{bad, Crop, VideoError, VideoInfo};
 use std::path::Path;
 use std::process::Stdio;
@@ -41,6 +42,9 @@ pub struct Survey {
     pub map_size: (usize, usize),
     /// Frames surveyed.
     pub frames: usize,
+    /// The motion's period in frames, where the picture's change repeats
+    /// (`timescale::Thumbnails::period`); `None` for a motion that does not come back.
+    pub period_frames: Option<f64>,
 }
 
 /// Surveys `input` (trimmed to `start`..`end` seconds, as the decode will be) for where it
@@ -86,11 +90,16 @@ pub fn survey(
     let mut stdout = child.stdout.take().expect("piped stdout");
     let mut buf = vec![0u8; w * h];
     let mut stats = MotionStats::new(w * h);
+    let mut thumbnails = Thumbnails::new((w, h));
     while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
         stats.add(&buf);
+        thumbnails.add(&buf);
     }
     let _ = child.wait();
-    Ok(stats.survey((w, h), (info.width, info.height)))
+    Ok(Survey {
+        period_frames: thumbnails.period(),
+        ..stats.survey((w, h), (info.width, info.height))
+    })
 }
 
 /// Running per-pixel mean and variance of frames with each frame's own mean taken out.
@@ -140,6 +149,7 @@ impl MotionStats {
             map: map.iter().map(|v| v / top.max(1e-12)).collect(),
             map_size: size,
             frames: self.n,
+            period_frames: None,
         };
         if self.n < 3 || top <= 0.0 {
             return empty;
