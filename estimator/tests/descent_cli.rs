@@ -41,6 +41,19 @@ fn draw(dir: &Path, frames: usize, release: f64, floor: f64) {
     }
 }
 
+/// `estimate` on the frames in `dir` as free fall at 30 fps, with `refs` and `extra` flags,
+/// into `out`: its report and stderr.
+fn fall(dir: &Path, refs: &str, extra: &[&str], out: &Path) -> (serde_json::Value, String) {
+    let o = Estimate::new(dir)
+        .args(["--model", "free-fall", "--fps", "30", "--size", "24x128"])
+        .args(["--reference", refs])
+        .args(extra)
+        .out(out)
+        .quiet()
+        .estimated();
+    (read_report(out), stderr(&o))
+}
+
 #[test]
 fn a_fall_of_fifteen_frames_from_rest_gives_g_with_no_trim() {
     let tmp = tempfile::tempdir().unwrap();
@@ -54,15 +67,7 @@ fn a_fall_of_fifteen_frames_from_rest_gives_g_with_no_trim() {
     // ruler would give them.
     let t2 = 22.0 / FPS;
     let refs = format!("{}s=0,{}s={}", 9.0 / FPS, t2, fallen(t2, release));
-    let run = tmp.path().join("run");
-    let o = Estimate::new(&dir)
-        .args(["--model", "free-fall", "--fps", "30", "--size", "24x128"])
-        .args(["--reference", &refs])
-        .out(&run)
-        .quiet()
-        .estimated();
-    let r = read_report(&run);
-    let err = stderr(&o);
+    let (r, err) = fall(&dir, &refs, &[], &tmp.path().join("run"));
     assert!(err.contains("motion from rest"), "{err}");
     let d = &r["recording"]["descent"];
     let found = d["release"].as_f64().unwrap();
@@ -86,14 +91,7 @@ fn a_fall_gives_g_within_its_error_over_training_seeds() {
     let refs = format!("{}s=0,{}s={}", 6.0 / FPS, t2, fallen(t2, release));
     let mut values = Vec::new();
     for seed in ["1", "2", "3"] {
-        let run = tmp.path().join(seed);
-        Estimate::new(&dir)
-            .args(["--model", "free-fall", "--fps", "30", "--size", "24x128"])
-            .args(["--reference", &refs, "--seed", seed])
-            .out(&run)
-            .quiet()
-            .estimated();
-        let r = read_report(&run);
+        let (r, _) = fall(&dir, &refs, &["--seed", seed], &tmp.path().join(seed));
         let se = r["parameters"][0]["standard_error"].as_f64().unwrap();
         values.push((estimate_of(&r, "g"), se));
     }

@@ -47,7 +47,7 @@ pub fn common_cut(args: &EstimateArgs) -> Result<Option<CommonCut>, EstimateErro
     let (stride, why) = match flags.stride {
         Some(s) => (s, "--stride".to_string()),
         None => {
-            let survey = video::survey(input, &info, flags.start, flags.end)?;
+            let survey = video::survey(input, &info, (flags.start, flags.end), true)?;
             stride_for(survey.period_frames, frames, kept, &seconds)
         }
     };

@@ -196,14 +196,13 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
         ),
     };
     // The nested law kept where its richer law explains as well: the two answers are one.
-    if let Some(how) = candidates
+    let kept_limit = candidates
         .iter()
         .filter(|c| c.explains && richer.is_none())
-        .find_map(|c| limit(&c.model, &first.model).map(|how| (how, &c.model)))
-    {
+        .find_map(|c| Some((c.model.as_str(), limit(&c.model, &first.model)?)));
+    if let Some((wider, how)) = kept_limit {
         why.push_str(&format!(
-            "; the data do not show {}'s further freedom: {} ({}'s answer is in its row)",
-            how.1, how.0, how.1
+            "; the data do not show {wider}'s further freedom: {how} ({wider}'s answer is in its row)"
         ));
     }
     Some(ModelChoice {

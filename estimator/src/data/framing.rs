@@ -65,19 +65,16 @@ pub fn frame(
     flags: &RecordingRequest,
 ) -> Result<Framed, EstimateError> {
     let size_for = |w: usize, h: usize| flags.size.unwrap_or(default_size(w as f64 / h as f64));
-    let whole = |how| match info {
-        Some(i) => Framed {
-            crop: None,
-            how,
-            survey: None,
-            size: size_for(i.width, i.height),
-        },
-        None => Framed {
-            crop: None,
-            how,
-            survey: None,
-            size: flags.size.unwrap_or(DEFAULT_SIZE),
-        },
+    // The frame's shape, not a region's: a region that misses part of a motion (a fall's fast
+    // path moves each pixel briefly) is widened to it.
+    let frame_size = info.map_or(flags.size.unwrap_or(DEFAULT_SIZE), |i| {
+        size_for(i.width, i.height)
+    });
+    let whole = |how| Framed {
+        crop: None,
+        how,
+        survey: None,
+        size: frame_size,
     };
     Ok(match (flags.crop, info) {
         (Some(Framing::Crop(c)), _) => Framed {
@@ -88,11 +85,9 @@ pub fn frame(
         },
         (Some(Framing::Full), _) => whole("whole frame (--crop full)"),
         (_, Some(i)) => {
-            let s = video::survey(input, i, flags.start, flags.end)?;
+            let s = video::survey(input, i, (flags.start, flags.end), false)?;
             let frame = (i.width, i.height);
-            // The frame's shape, not the region's: a region that misses part of a motion
-            // (a fall's fast path moves each pixel briefly) is widened to it.
-            let size = size_for(i.width, i.height);
+            let size = frame_size;
             // The region at the encoder's aspect ratio; not worth it over most of the frame.
             let crop = s
                 .crop

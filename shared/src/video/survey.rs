@@ -43,17 +43,19 @@ pub struct Survey {
     /// Frames surveyed.
     pub frames: usize,
     /// The motion's period in frames, where the picture's change repeats
-    /// (`timescale::Thumbnails::period`); `None` for a motion that does not come back.
+    /// (`timescale::Thumbnails::period`), when asked for; `None` for a motion that does not
+    /// come back.
     pub period_frames: Option<f64>,
 }
 
 /// Surveys `input` (trimmed to `start`..`end` seconds, as the decode will be) for where it
-/// moves.
+/// moves, and with `period` for the motion's period too (a second or so more on a long
+/// recording: only the model's choice asks).
 pub fn survey(
     input: &Path,
     info: &VideoInfo,
-    start: Option<f64>,
-    end: Option<f64>,
+    (start, end): (Option<f64>, Option<f64>),
+    period: bool,
 ) -> Result<Survey, VideoError> {
     let scale = SURVEY_SIDE as f64 / info.width.max(info.height) as f64;
     let scale = scale.min(1.0);
@@ -90,14 +92,16 @@ pub fn survey(
     let mut stdout = child.stdout.take().expect("piped stdout");
     let mut buf = vec![0u8; w * h];
     let mut stats = MotionStats::new(w * h);
-    let mut thumbnails = Thumbnails::new((w, h));
+    let mut thumbnails = period.then(|| Thumbnails::new((w, h)));
     while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
         stats.add(&buf);
-        thumbnails.add(&buf);
+        if let Some(t) = thumbnails.as_mut() {
+            t.add(&buf);
+        }
     }
     let _ = child.wait();
     Ok(Survey {
-        period_frames: thumbnails.period(),
+        period_frames: thumbnails.and_then(|t| t.period()),
         ..stats.survey((w, h), (info.width, info.height))
     })
 }
