@@ -192,7 +192,8 @@ impl RunConfig {
 }
 
 /// The encoder: `--encoder`, else the model's, except that on a recording of an object
-/// released from rest across the frame (a descent found) it is read by its position (the
+/// released from rest across the frame (a descent found), or of one object moving about it
+/// where the model's is the small MLP (`data::object`), it is read by its position (the
 /// centroid encoder); and why, when the choice was made here or by the model.
 fn default_encoder(
     flag: Option<EncoderKind>,
@@ -212,6 +213,18 @@ fn default_encoder(
                  it where no training clip did, and an MLP has no weights there); --encoder \
                  chooses",
                 100.0 * d.travel
+            )),
+        );
+    }
+    let object = data.recording.as_ref().and_then(|(r, _)| r.object);
+    if let (Some(o), 1, EncoderKind::Small) = (object, model.latent_dims(), model.encoder()) {
+        return (
+            EncoderKind::Centroid,
+            Some(format!(
+                "an object moves about {:.0} % of the frame: it is read by its position \
+                 (--encoder centroid: an MLP on pixels compresses large swings more than small \
+                 ones, which lowers a damping); --encoder chooses",
+                100.0 * o.travel
             )),
         );
     }

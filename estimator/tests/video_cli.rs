@@ -158,3 +158,87 @@ fn references_by_time_land_on_the_clip_frame_at_that_time() {
         .bad_input("--reference 7s: outside the part of the recording kept, 0–5.9 s");
     run("1.0s=0.2,1.02s=0.3").bad_input("1s=0.2 and 1.02s=0.3 fall on the same frame");
 }
+
+#[test]
+fn the_still_frames_before_a_release_are_left_out_and_one_clips_span_of_the_settled_ones_kept() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    // Held at its release brightness for 3 s (the swing turns there: the first frame or two
+    // after are as still), released into a swing that dies out within about 8 s, then settled
+    // for 10 s; 10 fps.
+    let frames = tmp.path().join("frames");
+    util::write_disc_frames(&frames, 250, |k| match k {
+        0..30 => 1.0,
+        _ => {
+            let t = (k - 30) as f64 * 0.1;
+            (-0.5 * t).exp() * (2.0 * t).cos()
+        }
+    });
+    let video = tmp.path().join("clip.mkv");
+    encode_lossless(&frames, &video, 10);
+    let v = video.to_str().unwrap();
+    let args = [
+        "--model",
+        "damped-oscillator",
+        "--size",
+        "20x15",
+        "--epochs",
+        "4",
+    ];
+    let (r, err) = estimate(&[&[v][..], &args[..]].concat(), &tmp.path().join("a"));
+    let rec = &r["recording"];
+    let (start, end) = (rec["start"].as_f64().unwrap(), rec["end"].as_f64().unwrap());
+    assert!((2.85..=3.25).contains(&start), "kept from {start} s\n{err}");
+    // The swing is within 5 % of its range by about 6 s in; a clip spans 19 × 0.2 s.
+    let span = 19.0 * 0.1 * rec["stride"].as_f64().unwrap();
+    assert!(
+        end < 24.9 && end > 6.0 + span,
+        "kept to {end} s (clip span {span})"
+    );
+    assert!(err.contains("the picture is still before"), "{err}");
+    // --start and --end keep what they say.
+    let (r, _) = estimate(
+        &[&[v, "--start", "0", "--end", "24.9"][..], &args[..]].concat(),
+        &tmp.path().join("b"),
+    );
+    assert_eq!(r["recording"]["start"].as_f64(), Some(0.0));
+    assert_eq!(r["recording"]["frames_decoded"].as_u64(), Some(249));
+}
+
+#[test]
+fn one_object_moving_about_the_frame_is_read_by_its_position_and_a_brightness_is_not() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    // A disc of radius 3 swinging ±14 px, damped: γ0 = 9.01 s⁻², γ1 = 0.2 s⁻¹; 20 fps, 10 s.
+    let swing = tmp.path().join("swing");
+    util::write_frames_of(&swing, 200, 3.0, |k| {
+        let t = k as f64 / 20.0;
+        (0.9, 14.0 * (-0.1 * t).exp() * (3.0 * t).cos())
+    });
+    let args = ["--model", "damped-oscillator", "--threads", "1"];
+    let (r, _) = estimate(
+        &[&[swing.to_str().unwrap(), "--fps", "20"][..], &args[..]].concat(),
+        &tmp.path().join("a"),
+    );
+    assert_eq!(r["config"]["encoder"], "centroid", "{}", r["config"]);
+    let note = r["config"]["encoder_note"].as_str().unwrap();
+    assert!(note.contains("an object moves about"), "{note}");
+    let g1 = estimate_of(&r, "gamma1");
+    assert!((g1 / 0.2 - 1.0).abs() < 0.05, "gamma1 {g1}");
+    // A disc in place, its brightness swinging: the model's own encoder.
+    let glow = tmp.path().join("glow");
+    write_frames(&glow, 60);
+    let (r, _) = estimate(
+        &[
+            &[glow.to_str().unwrap(), "--fps", "10", "--epochs", "1"][..],
+            &args[..],
+        ]
+        .concat(),
+        &tmp.path().join("b"),
+    );
+    assert_eq!(r["config"]["encoder"], "small");
+}

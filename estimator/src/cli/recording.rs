@@ -28,17 +28,18 @@ pub struct RecordingArgs {
     /// it; an image folder keeps its whole frame).
     #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H|auto|full")]
     pub crop: Option<Framing>,
-    /// First second to use (of the file's own timeline). For sliding-block and free-fall the
-    /// release from rest is found in the frames, and without --start/--end only the descent
-    /// is kept (from just before the release to the impact).
+    /// First second to use (of the file's own timeline) [default: where the motion starts:
+    /// still frames before it, held half a second or more, are left out]. For sliding-block
+    /// and free-fall the release from rest is found in the frames, and without --start/--end
+    /// only the descent is kept (from just before the release to the impact).
     #[arg(long)]
     pub start: Option<f64>,
-    /// Last second to use.
+    /// Last second to use [default: one clip's span after the motion settles].
     #[arg(long)]
     pub end: Option<f64>,
     #[arg(long, value_parser = parse_size, value_name = "WxH", help = format!(
         "Frame size fed to the encoder (grey, area-averaged) [default: {}x{}, or as many \
-         pixels at the frame's (or --crop's) shape where it is taller than wide]",
+         pixels at the frame's (or the crop's) shape where it is taller than wide]",
         DEFAULT_SIZE.0, DEFAULT_SIZE.1
     ))]
     pub size: Option<(usize, usize)>,

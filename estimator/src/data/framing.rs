@@ -1,7 +1,8 @@
 //! Framing: what part of a recording's frame the encoder sees. `--crop X,Y,W,H` as given,
 //! `--crop full` the whole frame, and by default (`--crop auto`) the region where the picture
-//! moves, from a quick survey at low resolution (`physvid_shared::video::survey`), widened to
-//! the encoder's aspect ratio; and the figure that shows it above the clips.
+//! moves, from a quick survey at low resolution (`physvid_shared::video::survey`), at the
+//! frame's shape (a tall region in a wide frame at its own); and the figure that shows it
+//! above the clips.
 
 use super::RecordingRequest;
 use crate::error::{input_error, EstimateError};
@@ -36,8 +37,8 @@ pub struct Framed {
     pub how: &'static str,
     /// The survey, when one was made.
     pub survey: Option<Survey>,
-    /// The encoder's frame size: `--size`, else [`default_size`] of the frame's (or the given
-    /// crop's) shape.
+    /// The encoder's frame size: `--size`, else [`default_size`] of the shape of the given crop,
+    /// of a tall region that moves in a wide frame, or of the whole frame.
     pub size: (usize, usize),
 }
 
@@ -57,6 +58,18 @@ pub fn default_size(aspect: f64) -> (usize, usize) {
     (w, h)
 }
 
+/// The shape whose encoder size frames the region that moves, `region`, in a frame of `frame`
+/// (w, h): a tall region in a wide frame (a pendulum filmed landscape) keeps its own shape
+/// rather than being widened into the rest of the picture (something else moving beside it);
+/// otherwise the frame's (a small object's fast path, a fall's, moves each survey pixel too
+/// briefly to be all in the region: a crop at the frame's shape reaches it).
+fn auto_shape(region: Option<Crop>, frame: (usize, usize)) -> (usize, usize) {
+    match region {
+        Some(c) if c.h > c.w && frame.0 >= frame.1 => (c.w, c.h),
+        _ => frame,
+    }
+}
+
 /// The crop for `flags`, how it was chosen, the survey when one was made, and the encoder's
 /// frame size.
 pub fn frame(
@@ -65,8 +78,6 @@ pub fn frame(
     flags: &RecordingRequest,
 ) -> Result<Framed, EstimateError> {
     let size_for = |w: usize, h: usize| flags.size.unwrap_or(default_size(w as f64 / h as f64));
-    // The frame's shape, not a region's: a region that misses part of a motion (a fall's fast
-    // path moves each pixel briefly) is widened to it.
     let frame_size = info.map_or(flags.size.unwrap_or(DEFAULT_SIZE), |i| {
         size_for(i.width, i.height)
     });
@@ -87,7 +98,8 @@ pub fn frame(
         (_, Some(i)) => {
             let s = video::survey(input, i, (flags.start, flags.end), false)?;
             let frame = (i.width, i.height);
-            let size = frame_size;
+            let (w, h) = auto_shape(s.crop, frame);
+            let size = size_for(w, h);
             // The region at the encoder's aspect ratio; not worth it over most of the frame.
             let crop = s
                 .crop
@@ -193,4 +205,31 @@ pub fn drawn_over(
         out.put_pixel(x, y + mh as u32 + 4, *p);
     }
     image::DynamicImage::ImageRgb8(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tall_region_keeps_its_shape_in_a_wide_frame_only() {
+        let tall = Crop {
+            x: 34,
+            y: 0,
+            w: 134,
+            h: 166,
+        };
+        assert_eq!(auto_shape(Some(tall), (320, 180)), (134, 166));
+        let size = default_size(134.0 / 166.0);
+        assert!(size.1 > size.0, "{size:?}");
+        // In a tall frame (the ball's strip) and for a wide region, the frame's shape.
+        assert_eq!(auto_shape(Some(tall), (172, 1716)), (172, 1716));
+        let wide = Crop {
+            w: 166,
+            h: 134,
+            ..tall
+        };
+        assert_eq!(auto_shape(Some(wide), (320, 180)), (320, 180));
+        assert_eq!(auto_shape(None, (320, 180)), (320, 180));
+    }
 }

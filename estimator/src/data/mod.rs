@@ -5,10 +5,12 @@
 mod dataset;
 pub mod descent;
 mod framing;
+pub mod object;
 pub mod photometric;
 pub mod recording;
 mod request;
 mod scale;
+mod stillness;
 mod timing;
 
 pub use framing::{Framing, DEFAULT_SIZE};

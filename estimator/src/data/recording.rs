@@ -2,7 +2,7 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
-use super::{descent, framing, timing};
+use super::{descent, framing, object, stillness, timing};
 use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -40,6 +40,8 @@ pub struct RecordingSummary {
     /// The part kept, in seconds of the file's timeline (`--start`/`--end`, or the descent's).
     pub start: Option<f64>,
     pub end: Option<f64>,
+    /// An object that moves about the frames kept (not a descent), read by its position.
+    pub object: Option<object::MovingObject>,
     /// Motion from rest: the descent found in the frames (frames of the whole decode).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub descent: Option<descent::Descent>,
@@ -231,13 +233,19 @@ pub fn load_recording(
         max_clips: MAX_DEFAULT_CLIPS,
     };
     let mut decoded = video::decode(input, &opts, info)?;
-    // A fall or slide from rest: its release, and the descent alone where no flag trims.
+    // A fall or slide from rest: its release, and the descent alone where no flag trims;
+    // anything else: the frames where it moves.
+    let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
     let kept = if model.released_from_rest() {
-        let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
         descent::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
     } else {
-        descent::Kept::untrimmed(&opts)
+        stillness::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
     };
+    let object = kept
+        .descent
+        .is_none()
+        .then(|| object::find(&decoded.frames, decoded.size))
+        .flatten();
     let decode_s = started.elapsed().as_secs_f64();
     let n = decoded.clip_starts.len();
     let shape = [n, frames_per_clip, 1, size.1, size.0];
@@ -269,6 +277,7 @@ pub fn load_recording(
         preview: flags.preview,
         start: kept.start,
         end: kept.end,
+        object,
         descent: kept.descent,
         release: kept.release,
         decode_s: decode_s + survey_s,

@@ -123,17 +123,36 @@ pub fn real_video(name: &str) -> Option<PathBuf> {
 /// Writes `n` grey PNG frames of a damped oscillator (a disc whose brightness follows z) into
 /// `dir` as frame1.png … frameN.png.
 pub fn write_frames(dir: &Path, n: usize) {
+    write_disc_frames(dir, n, |k| {
+        let t = k as f64 * 0.1;
+        (-0.04 * t).exp() * (2.0 * t).cos()
+    });
+}
+
+/// Writes `n` grey PNG frames of a disc whose brightness is 0.5 + 0.4·`z(k)` at frame k into
+/// `dir` as frame1.png … frameN.png.
+pub fn write_disc_frames(dir: &Path, n: usize, z: impl Fn(usize) -> f64) {
+    write_frames_of(dir, n, 10.0, |k| (0.5 + 0.4 * z(k), 0.0));
+}
+
+/// Writes `n` grey 40×30 PNG frames of a disc of `radius` pixels whose (brightness, shift
+/// right of the centre in pixels) at frame k is `disc(k)`, over a dark background, into `dir` as
+/// frame1.png … frameN.png; each pixel's share of the disc from 4×4 samples, as a camera
+/// averages its edge.
+pub fn write_frames_of(dir: &Path, n: usize, radius: f64, disc: impl Fn(usize) -> (f64, f64)) {
     std::fs::create_dir_all(dir).unwrap();
     for k in 0..n {
-        let t = k as f64 * 0.1;
-        let z = (-0.04 * t).exp() * (2.0 * t).cos();
+        let (b, shift) = disc(k);
         let img = image::GrayImage::from_fn(40, 30, |x, y| {
-            let (dx, dy) = (x as f64 - 20.0, y as f64 - 15.0);
-            let v = if dx * dx + dy * dy < 100.0 {
-                0.5 + 0.4 * z
-            } else {
-                0.1
-            };
+            let inside = (0..16)
+                .filter(|s| {
+                    let dx = x as f64 + (s % 4) as f64 / 4.0 + 0.125 - 20.5 - shift;
+                    let dy = y as f64 + (s / 4) as f64 / 4.0 + 0.125 - 15.5;
+                    dx * dx + dy * dy < radius * radius
+                })
+                .count();
+            let cover = inside as f64 / 16.0;
+            let v = 0.1 + (b - 0.1) * cover;
             image::Luma([(v * 255.0).round() as u8])
         });
         img.save(dir.join(format!("frame{}.png", k + 1))).unwrap();
