@@ -77,7 +77,7 @@ fn encoder_help() -> String {
          for laws an MLP could bend where brightness or area is affine in the pixels, \
          keypoints (x, y per body, for vector latents), or centroid (one object's position) \
          [default: the model's: {}; centroid on a recording where an object released from rest \
-         crosses the frame, or where one object moves about it and the model's is small]",
+         crosses the frame, or where one object moves about it and the built-in model's is small]",
         per_model(|m| m.encoder().name().to_string())
     )
 }
