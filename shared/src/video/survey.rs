@@ -100,9 +100,16 @@ pub fn survey(
         }
     }
     let _ = child.wait();
+    let found = stats.survey((w, h), (info.width, info.height));
+    // The period where the picture moves most (in survey pixels).
+    let region = found.crop.map(|c| {
+        let s = w as f64 / info.width as f64;
+        let at = |v: usize| (v as f64 * s).floor() as usize;
+        (at(c.x), at(c.y), at(c.w).max(1), at(c.h).max(1))
+    });
     Ok(Survey {
-        period_frames: thumbnails.and_then(|t| t.period()),
-        ..stats.survey((w, h), (info.width, info.height))
+        period_frames: thumbnails.and_then(|t| t.period(region)),
+        ..found
     })
 }
 

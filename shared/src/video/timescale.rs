@@ -77,19 +77,33 @@ impl Thumbnails {
         self.n == 0
     }
 
-    /// The motion's period in frames, where one of the picture's leading changes repeats.
-    pub fn period(&self) -> Option<f64> {
-        let d = self.thumb.0 * self.thumb.1;
+    /// The motion's period in frames, where one of the picture's leading changes repeats,
+    /// within `region` (x, y, w, h in survey pixels: where the picture moves most; something
+    /// moving elsewhere, a passer-by, a drifting light, has periods of its own) or the whole
+    /// frame.
+    pub fn period(&self, region: Option<(usize, usize, usize, usize)>) -> Option<f64> {
+        let (tw, th) = self.thumb;
+        let d = tw * th;
         if self.n < 4 * PERIODS_SEEN || d == 0 {
             return None;
         }
+        // The thumbnail blocks the region touches.
+        let (x0, y0, x1, y1) = region.map_or((0, 0, tw, th), |(x, y, w, h)| {
+            let x1 = (x + w).div_ceil(BLOCK).clamp(1, tw);
+            let y1 = (y + h).div_ceil(BLOCK).clamp(1, th);
+            ((x / BLOCK).min(x1 - 1), (y / BLOCK).min(y1 - 1), x1, y1)
+        });
+        let kept: Vec<usize> = (y0..y1)
+            .flat_map(|ty| (x0..x1).map(move |tx| ty * tw + tx))
+            .collect();
         // Each frame's mean out (a light that flickers moves every pixel alike).
         let rows: Vec<Vec<f64>> = self
             .pixels
             .chunks(d)
             .map(|f| {
-                let m = f.iter().map(|&v| v as f64).sum::<f64>() / d as f64;
-                f.iter().map(|&v| v as f64 - m).collect()
+                let f: Vec<f64> = kept.iter().map(|&i| f[i] as f64).collect();
+                let m = f.iter().sum::<f64>() / f.len() as f64;
+                f.iter().map(|v| v - m).collect()
             })
             .collect();
         leading_components(&rows, COMPONENTS)
@@ -239,8 +253,30 @@ mod tests {
             let y = 10.0 + 12.0 * a * a;
             t.add(&frame(x.round() as usize, y.round() as usize));
         }
-        let p = t.period().expect("a period");
+        let p = t.period(None).expect("a period");
         assert!((p - 50.0).abs() <= 2.0, "{p}");
+    }
+
+    #[test]
+    fn within_the_region_that_moves_most_a_slower_motion_elsewhere_is_not_the_period() {
+        // A square swinging at 30 frames in the left half, another drifting to and fro at 150
+        // frames in the right half.
+        let mut t = Thumbnails::new((64, 36));
+        for k in 0..600 {
+            let x = 14.0 + 10.0 * (k as f64 * std::f64::consts::TAU / 30.0).sin();
+            let mut f = frame(x.round() as usize, 10);
+            let u = 46.0 + 10.0 * (k as f64 * std::f64::consts::TAU / 150.0).sin();
+            for dy in 0..4 {
+                for dx in 0..4 {
+                    f[(24 + dy) * 64 + u.round() as usize + dx] = 220;
+                }
+            }
+            t.add(&f);
+        }
+        let whole = t.period(None).expect("a period");
+        assert!((whole - 150.0).abs() <= 5.0, "{whole}");
+        let p = t.period(Some((0, 4, 32, 14))).expect("a period");
+        assert!((p - 30.0).abs() <= 2.0, "{p}");
     }
 
     #[test]
@@ -251,13 +287,13 @@ mod tests {
             let y = 30.0 * (1.0 - (1.0 - k as f64 / 300.0).powi(2));
             t.add(&frame(30, y.round() as usize));
         }
-        assert_eq!(t.period(), None);
+        assert_eq!(t.period(None), None);
         // A still picture has no period either.
         let mut still = Thumbnails::new((64, 36));
         for _ in 0..100 {
             still.add(&frame(10, 10));
         }
-        assert_eq!(still.period(), None);
+        assert_eq!(still.period(None), None);
     }
 
     #[test]
