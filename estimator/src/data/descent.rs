@@ -52,6 +52,30 @@ impl Kept {
             descent: None,
         }
     }
+
+    /// Seconds on the file's timeline of frame `f` of a decode cut with `opts`.
+    pub fn time_of(opts: &VideoOptions, timeline_fps: f64, f: f64) -> f64 {
+        opts.start.unwrap_or(0.0) + f / timeline_fps
+    }
+
+    /// Keeps frames `first..=last` of `decoded` (cut with `opts`) where two clips still fit
+    /// between them, the ends `--start`/`--end` fix as they say; whether it did.
+    pub fn keep(
+        &mut self,
+        decoded: &mut DecodedVideo,
+        opts: &VideoOptions,
+        (first, last): (usize, usize),
+        timeline_fps: f64,
+    ) -> bool {
+        if (last + 1).saturating_sub(first) <= (opts.frames_per_clip - 1) * opts.stride + 1 {
+            return false;
+        }
+        let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
+        self.start = self.start.or(Some(at(first)));
+        self.end = self.end.or(Some(at(last)));
+        decoded.keep(first, last, opts);
+        true
+    }
 }
 
 /// Finds the descent in `decoded` (cut with `opts`) and keeps only it where `--start` /
@@ -73,14 +97,12 @@ pub fn trim(
     } else {
         decoded.frame_count() - 1
     };
-    let at = |f: f64| opts.start.unwrap_or(0.0) + f / timeline_fps;
-    let mut dropped = 0;
-    if last + 1 - first > (opts.frames_per_clip - 1) * opts.stride + 1 {
-        kept.end = kept.end.or(Some(at(last as f64)));
-        kept.start = kept.start.or(Some(at(first as f64)));
-        decoded.keep(first, last, opts);
-        dropped = first;
-    }
+    let at = |f: f64| Kept::time_of(opts, timeline_fps, f);
+    let dropped = if kept.keep(decoded, opts, (first, last), timeline_fps) {
+        first
+    } else {
+        0
+    };
     kept.release = d.release - dropped as f64;
     warnings.push(format!(
         "motion from rest: the object is released at {} s (the vertex of the parabola its path \

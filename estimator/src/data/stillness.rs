@@ -102,13 +102,13 @@ pub fn trim(
     if first == 0 && last == n - 1 {
         return kept;
     }
-    let at = |f: usize| opts.start.unwrap_or(0.0) + f as f64 / timeline_fps;
+    let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
     let held = format!(
         "the picture is still before {} s and after {} s",
         approx(at(first)),
         approx(at(settled))
     );
-    if last - first < span + 1 {
+    if !kept.keep(decoded, opts, (first, last), timeline_fps) {
         warnings.push(format!(
             "{held}, but two clips of {} frames at stride {} do not fit between: every frame \
              kept (lower --stride, or trim with --start/--end)",
@@ -116,13 +116,10 @@ pub fn trim(
         ));
         return kept;
     }
-    kept.start = Some(at(first));
-    kept.end = Some(at(last));
-    decoded.keep(first, last, opts);
     warnings.push(format!(
         "{held}: kept {}–{} s, where it moves and one clip's span after (--start/--end choose)",
-        approx(at(first)),
-        approx(at(last))
+        approx(kept.start.unwrap_or(0.0)),
+        approx(kept.end.unwrap_or(at(last)))
     ));
     kept
 }

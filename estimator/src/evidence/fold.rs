@@ -78,18 +78,7 @@ pub fn fold(frames: &Tensor, z: &[f64]) -> Option<Fold> {
 
 /// R² of `y` explained by an affine function of `x`.
 fn affine_r2(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len().max(1) as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
-    for (a, b) in x.iter().zip(y) {
-        sxy += (a - mx) * (b - my);
-        sxx += (a - mx).powi(2);
-        syy += (b - my).powi(2);
-    }
-    if sxx <= 0.0 || syy <= 0.0 {
-        return 0.0;
-    }
-    sxy * sxy / (sxx * syy)
+    physvid_shared::stats::correlation(x, y).powi(2)
 }
 
 /// Indices of `x` in increasing order.

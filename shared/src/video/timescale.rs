@@ -6,6 +6,8 @@
 //! repeats at half of it, so the longest period among the leading components is the
 //! fundamental's.
 
+use crate::stats::correlation;
+
 /// Survey pixels averaged into one thumbnail pixel along each side.
 const BLOCK: usize = 4;
 
@@ -208,23 +210,6 @@ pub fn period_of(signal: &[f64]) -> Option<f64> {
         lag += 1;
     }
     Some((lag * g) as f64)
-}
-
-/// Pearson's correlation of `a` and `b` (0 where either is constant).
-fn correlation(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len() as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        ab += (x - ma) * (y - mb);
-        aa += (x - ma).powi(2);
-        bb += (y - mb).powi(2);
-    }
-    if aa <= 0.0 || bb <= 0.0 {
-        0.0
-    } else {
-        ab / (aa * bb).sqrt()
-    }
 }
 
 #[cfg(test)]
