@@ -16,6 +16,7 @@ pub mod evidence;
 pub mod html;
 pub use physvid_shared::linalg;
 pub mod loss;
+pub mod memory;
 pub mod network;
 pub mod output;
 pub mod pca;

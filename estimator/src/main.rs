@@ -7,6 +7,7 @@ use estimator::EstimateArgs;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    estimator::memory::keep_freed_memory();
     let parsed = EstimateArgs::command()
         .try_get_matches()
         .and_then(|m| Ok((EstimateArgs::from_arg_matches(&m)?, m)));

@@ -142,6 +142,10 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     tch::set_num_threads(args.training.thread_count() as i32);
+    // The shooting fits' pool (the first run of a process sizes it; later ones find it made).
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.training.thread_count())
+        .build_global();
     let (device, device_warning) = select_device(args.training.device)?;
     let mut data = load_clips(&args.load_request(), device)?;
     data.warnings.extend(device_warning);

@@ -14,9 +14,10 @@ use estimator::EstimateArgs;
 
 #[test]
 fn trains_on_the_gpu_and_recovers_the_parameters() {
-    assert!(tch::Cuda::is_available(), "cuda-tests needs a CUDA GPU");
+    // select_device opens libtorch_cuda first: asking libtorch about CUDA before that would
+    // disable it for the process.
     let (device, _) = select_device(DeviceChoice::Auto).unwrap();
-    assert!(device.is_cuda());
+    assert!(device.is_cuda(), "cuda-tests needs a CUDA GPU");
     let tmp = tempfile::tempdir().unwrap();
     let data_dir = util::gen_dataset(
         &tmp.path().join("data"),
@@ -44,4 +45,40 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
     let (g0, g1) = (outcome.parameters[0], outcome.parameters[1]);
     assert!((g0 / 4.0016 - 1.0).abs() < 0.01, "gamma0 {g0}");
     assert!((g1 / 0.08 - 1.0).abs() < 0.10, "gamma1 {g1}");
+}
+
+#[test]
+fn the_binary_trains_on_the_gpu_by_default_and_agrees_with_the_cpu() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = util::gen_dataset(
+        &tmp.path().join("data"),
+        "intensity",
+        &["--samples", "200", "--size", "32", "--seed", "6"],
+    );
+    let run = |name: &str, device: &[&str]| {
+        let out = tmp.path().join(name);
+        util::Estimate::new(&data)
+            .args(["--single-start"])
+            .args(device)
+            .out(&out)
+            .quiet()
+            .ok();
+        util::read_report(&out)
+    };
+    let gpu = run("gpu", &[]);
+    let cpu = run("cpu", &["--device", "cpu"]);
+    assert!(
+        gpu["device"].as_str().unwrap().contains("Cuda"),
+        "{}",
+        gpu["device"]
+    );
+    assert!(
+        cpu["device"].as_str().unwrap().contains("Cpu"),
+        "{}",
+        cpu["device"]
+    );
+    for name in ["gamma0", "gamma1"] {
+        let (g, c) = (util::estimate_of(&gpu, name), util::estimate_of(&cpu, name));
+        assert!((g / c - 1.0).abs() < 0.01, "{name}: GPU {g}, CPU {c}");
+    }
 }

@@ -165,7 +165,10 @@ impl ShootingBlock {
         let p = self.physical();
         let p_host = host(&p);
         let rows = (t * d) as usize;
-        let mut fits = self.fit_batch(&target, &p_host, clips, b as usize, t as usize, rows);
+        // On the CPU the training step's fits run one clip after another (see `fit_batch`).
+        let parallel = theta.device() != Device::Cpu;
+        let shape = (b as usize, t as usize, rows);
+        let mut fits = self.fit_batch(&target, &p_host, clips, shape, parallel);
         let failed = poor_cost(&target, rows) * FAILED_FIT / POOR_FIT;
         for (i, f) in fits.iter_mut().enumerate() {
             if f.cost.is_nan() || f.cost > failed {
@@ -205,47 +208,57 @@ impl ShootingBlock {
 
     /// The fits of `b` clips of `frames` frames (`rows` values each) of `target` with
     /// parameters `p`, warm-started from (and updating) the clips' last fits where the batch
-    /// names its clips. One clip after another: libtorch's OpenMP workers spin between
-    /// operations, and fits spread over threads would compete with them for the cores
-    /// (measured slower).
+    /// names its clips. With `parallel` the fits are spread over rayon's pool (`--threads`
+    /// workers); each depends on its own clip alone, so the answers are the same either way.
+    /// Spread where no tensor work competes for the cores: training on a GPU (the spring's
+    /// epoch 530 → 106 ms on 16 cores) and the refinement and scan with the encoder held. Not in
+    /// a CPU training step: libtorch's OpenMP workers spin between operations, and the fits
+    /// spread beside them took the pendulum's 16-thread epoch from 66 to 123 ms.
     pub(super) fn fit_batch(
         &self,
         target: &[f64],
         p: &[f64],
         clips: Clips,
-        b: usize,
-        frames: usize,
-        rows: usize,
+        (b, frames, rows): (usize, usize, usize),
+        parallel: bool,
     ) -> Vec<ClipFit> {
+        use rayon::prelude::*;
         let poor = poor_cost(target, rows);
         let t0 = clips.start.map(host).unwrap_or_else(|| vec![0.0; b]);
         let mut warm = self.warm.borrow_mut();
-        (0..b)
-            .map(|i| {
-                let span = Span {
-                    t0: t0[i],
-                    dt: self.dt,
-                    frames,
-                    substeps: self.substeps,
-                };
-                let id = clips.ids.map(|ids| ids[i]);
-                let start = id.and_then(|id| warm.get(&id)).map(Vec::as_slice);
-                let clip = &target[i * rows..(i + 1) * rows];
-                let fit = fit_clip(
-                    self.system.as_ref(),
-                    p,
-                    clip,
-                    span,
-                    &self.observed,
-                    poor,
-                    start,
-                );
-                if let Some(id) = id {
-                    warm.insert(id, fit.x0.clone());
-                }
-                fit
-            })
-            .collect()
+        let starts: Vec<Option<Vec<f64>>> = (0..b)
+            .map(|i| clips.ids.and_then(|ids| warm.get(&ids[i]).cloned()))
+            .collect();
+        let (system, observed) = (self.system.as_ref(), &self.observed);
+        let (dt, substeps) = (self.dt, self.substeps);
+        let fit = |i: usize| {
+            let span = Span {
+                t0: t0[i],
+                dt,
+                frames,
+                substeps,
+            };
+            fit_clip(
+                system,
+                p,
+                &target[i * rows..(i + 1) * rows],
+                span,
+                observed,
+                poor,
+                starts[i].as_deref(),
+            )
+        };
+        let fits: Vec<ClipFit> = if parallel {
+            (0..b).into_par_iter().map(fit).collect()
+        } else {
+            (0..b).map(fit).collect()
+        };
+        if let Some(ids) = clips.ids {
+            for (id, f) in ids.iter().zip(&fits) {
+                warm.insert(*id, f.x0.clone());
+            }
+        }
+        fits
     }
 
     /// Parameter values: the physical parameters, then s and c per latent coordinate (none

@@ -22,8 +22,9 @@ impl ShootingBlock {
         let target = host(&theta);
         let rows = (t * d) as usize;
         let (n, m) = (self.system.states(), self.system.params());
-        let fit_all =
-            |p: &[f64]| self.fit_batch(&target, p, clips, n_clips as usize, t as usize, rows);
+        // The encoder is held: nothing competes with the fits for the cores.
+        let shape = (n_clips as usize, t as usize, rows);
+        let fit_all = |p: &[f64]| self.fit_batch(&target, p, clips, shape, true);
         let total = |fits: &[ClipFit]| fits.iter().map(|f| f.cost).sum::<f64>();
         let mut p = host(&self.physical());
         let mut fits = fit_all(&p);
@@ -102,7 +103,8 @@ impl ShootingBlock {
             ids: None,
         };
         let cost = |p: &[f64]| -> f64 {
-            let fits = self.fit_batch(&target, p, fresh, n_clips as usize, t as usize, rows);
+            let shape = (n_clips as usize, t as usize, rows);
+            let fits = self.fit_batch(&target, p, fresh, shape, true);
             let c: f64 = fits.iter().map(|f| f.cost).sum();
             if c.is_nan() {
                 f64::INFINITY
