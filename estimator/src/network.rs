@@ -104,8 +104,13 @@ impl Network {
 
     /// Encodes clips `x` [B, T, D] and rolls the latent out: (encoded, rolled out) [B, T] each.
     pub fn forward(&self, x: &Tensor, clips: Clips, steps: i64) -> (Tensor, Tensor) {
+        self.forward_input(&self.encoder.input(x), clips, steps)
+    }
+
+    /// As [`Network::forward`], from what [`Encoder::input`] made of the clips.
+    pub fn forward_input(&self, i: &Tensor, clips: Clips, steps: i64) -> (Tensor, Tensor) {
         self.calibrate();
-        let z = self.encoder.encode(x);
+        let z = self.encoder.encode_input(i);
         let z_hat = self.block.rollout(&z, clips, steps);
         (z, z_hat)
     }

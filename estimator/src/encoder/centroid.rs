@@ -11,18 +11,18 @@
 //! The window keeps the rest of the frame (compression flicker, exposure steps) out of it.
 
 use super::keypoints::centres;
-use tch::nn::{self, Module};
+use tch::nn;
 use tch::{Kind, Tensor};
 
 /// The locating softmax's sharpness per standardised unit: an object 10 units above the
 /// background outweighs 10⁴ background pixels by e²⁰.
 const SHARPNESS: f64 = 2.0;
 
-/// The centroid encoder.
+/// The centroid encoder's fixed front end: frames to the object's (x, y). It has no weights,
+/// so training computes it once per frame (`Encoder::input`) and learns only the affine head.
 #[derive(Debug)]
-pub struct Centroid {
-    head: nn::Linear,
-    /// Height and width of a frame (channels are summed).
+pub struct Front {
+    /// Channels, height and width of a frame (channels are summed).
     frame: (i64, i64, i64),
     /// +1 when the object is brighter than the mean frame, −1 when darker.
     polarity: f64,
@@ -30,19 +30,28 @@ pub struct Centroid {
     window: f64,
 }
 
-impl Centroid {
-    /// An encoder of frames of `frame` = (C, H, W) to `dims` numbers, the window sized on the
-    /// standardised training frames `train` [.., C·H·W].
-    pub fn new(path: &nn::Path, frame: (i64, i64, i64), dims: i64, train: &Tensor) -> Centroid {
+impl Front {
+    /// The front end for frames of `frame` = (C, H, W), the window sized on the standardised
+    /// training frames `train` [.., C·H·W].
+    pub fn new(frame: (i64, i64, i64), train: &Tensor) -> Front {
         let polarity = super::keypoints::polarity(train);
         let window = window(train, frame, polarity);
-        Centroid {
-            head: nn::linear(path / "head", 2, dims, Default::default()),
+        Front {
             frame,
             polarity,
             window,
         }
     }
+
+    /// Frames [F, C·H·W] → positions [F, 2].
+    pub fn positions(&self, x: &Tensor) -> Tensor {
+        positions(x, self.frame, self.polarity, self.window)
+    }
+}
+
+/// The encoder's learned part: an affine map of the position (x, y) to `dims` numbers.
+pub fn head(path: &nn::Path, dims: i64) -> nn::Linear {
+    nn::linear(path / "head", 2, dims, Default::default())
 }
 
 /// Signed difference [F, H, W] of frames `x` [F, C·H·W] in the object's direction.
@@ -123,14 +132,6 @@ fn measured(by: &Tensor, v: &Tensor, window: f64) -> Tensor {
         (mass.sum_dim_intlist(2, false, Kind::Float) * &ys).sum_dim_intlist(1, false, Kind::Float)
             / &total;
     Tensor::stack(&[px, py], -1)
-}
-
-impl Module for Centroid {
-    /// Frames [F, C·H·W] → latents [F, dims].
-    fn forward(&self, x: &Tensor) -> Tensor {
-        let p = positions(x, self.frame, self.polarity, self.window);
-        self.head.forward(&p)
-    }
 }
 
 #[cfg(test)]

@@ -47,9 +47,10 @@ impl EncoderKind {
     }
 }
 
-/// The encoder of a run.
+/// The encoder of a run: a fixed front end (none but for the centroid) and a learned net.
 #[derive(Debug)]
 pub struct Encoder {
+    front: Option<centroid::Front>,
     net: Box<dyn Module>,
     dims: i64,
 }
@@ -66,6 +67,7 @@ impl Encoder {
         train: &Tensor,
     ) -> Encoder {
         let inputs = frame.0 * frame.1 * frame.2;
+        let front = (kind == EncoderKind::Centroid).then(|| centroid::Front::new(frame, train));
         let net: Box<dyn Module> = match kind {
             // The small encoder widens with the latent.
             EncoderKind::Small => Box::new(mlp::mlp(path, inputs, &[16 * dims], dims)),
@@ -75,16 +77,43 @@ impl Encoder {
                 let polarity = keypoints::polarity(train);
                 Box::new(keypoints::Keypoints::new(path, frame, dims / 2, polarity))
             }
-            EncoderKind::Centroid => Box::new(centroid::Centroid::new(path, frame, dims, train)),
+            EncoderKind::Centroid => Box::new(centroid::head(path, dims)),
         };
-        Encoder { net, dims }
+        Encoder { front, net, dims }
+    }
+
+    /// What the learned net reads of clips `x` [B, T, pixels]: the fixed front end's output
+    /// [B, T, k] (computed without gradients, 64 clips at a time), or `x` itself. Training
+    /// computes it once (`train::Trainer`): recomputed at every step, the centroid's front end
+    /// had taken the shared pendulum recording's run from 9.6 to 27.9 s.
+    pub fn input(&self, x: &Tensor) -> Tensor {
+        let Some(front) = &self.front else {
+            return x.shallow_clone();
+        };
+        let (b, t, d) = x.size3().expect("clips are [B, T, pixels]");
+        tch::no_grad(|| {
+            let parts: Vec<Tensor> = (0..b)
+                .step_by(64)
+                .map(|s| {
+                    let n = (b - s).min(64);
+                    let p = front.positions(&x.narrow(0, s, n).reshape([n * t, d]));
+                    p.view([n, t, -1])
+                })
+                .collect();
+            Tensor::cat(&parts, 0)
+        })
     }
 
     /// Latents of clips `x` [B, T, pixels]: [B, T] for one number per frame, else
     /// [B, T, dims]; all B·T frames in one pass.
     pub fn encode(&self, x: &Tensor) -> Tensor {
-        let (b, t, d) = x.size3().expect("clips are [B, T, pixels]");
-        let z = self.net.forward(&x.reshape([b * t, d]));
+        self.encode_input(&self.input(x))
+    }
+
+    /// Latents of what [`Encoder::input`] made of clips: the learned net alone.
+    pub fn encode_input(&self, i: &Tensor) -> Tensor {
+        let (b, t, d) = i.size3().expect("inputs are [B, T, k]");
+        let z = self.net.forward(&i.reshape([b * t, d]));
         if self.dims == 1 {
             z.view([b, t])
         } else {

@@ -27,6 +27,8 @@ pub struct Trainer<'a> {
     data: &'a ClipData,
     device: Device,
     network: Network,
+    /// What the encoder's learned part reads of the training and validation clips, made once.
+    inputs: (Tensor, Tensor),
     opt_enc: nn::Optimizer,
     opt_phys: nn::Optimizer,
     lr: f64,
@@ -59,6 +61,10 @@ impl<'a> Trainer<'a> {
     ) -> Result<Trainer<'a>, EstimateError> {
         let full = data.frames_per_clip;
         let network = Network::new(cfg, data, device, init);
+        let inputs = (
+            network.encoder.input(&data.train),
+            network.encoder.input(&data.val),
+        );
         let (enc_vs, phys_vs) = network.stores();
         let opt_enc = nn::Adam::default().build(enc_vs, cfg.lr)?;
         let opt_phys = nn::Adam::default().build(phys_vs, cfg.lr_phys)?;
@@ -68,6 +74,7 @@ impl<'a> Trainer<'a> {
             data,
             device,
             network,
+            inputs,
             opt_enc,
             opt_phys,
             lr: cfg.lr,
@@ -120,14 +127,14 @@ impl<'a> Trainer<'a> {
         for s in (0..n_train).step_by(batch as usize) {
             let len = batch.min(n_train - s);
             let idx = perm.narrow(0, s, len);
-            let x = first(data.train.index_select(0, &idx));
+            let x = first(self.inputs.0.index_select(0, &idx));
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
             let ids = &order[s as usize..(s + len) as usize];
             let clips = Clips {
                 start: start.as_ref(),
                 ids: Some(ids),
             };
-            let (z, z_hat) = network.forward(&x, clips, steps);
+            let (z, z_hat) = network.forward_input(&x, clips, steps);
             let residual = network.residual(cfg.loss, &z);
             let kl_z = cfg.model.kl_coordinates(&z);
             let (mut l, _) = loss(cfg.loss, &z, &kl_z, &z_hat, residual.as_ref());
@@ -148,12 +155,12 @@ impl<'a> Trainer<'a> {
         let finite = total.is_finite();
         let val_ids: Vec<usize> = (n_train as usize..data.shape[0]).collect();
         let (val_loss, val_mse, latent_std, parameters) = tch::no_grad(|| {
-            let val = first(data.val.shallow_clone());
+            let val = first(self.inputs.1.shallow_clone());
             let clips = Clips {
                 start: data.val_start.as_ref(),
                 ids: Some(&val_ids),
             };
-            let (z, z_hat) = network.forward(&val, clips, steps);
+            let (z, z_hat) = network.forward_input(&val, clips, steps);
             let residual = network.residual(cfg.loss, &z);
             let kl_z = cfg.model.kl_coordinates(&z);
             let (l, mse) = loss(cfg.loss, &z, &kl_z, &z_hat, residual.as_ref());
