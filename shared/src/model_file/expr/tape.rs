@@ -14,6 +14,15 @@ enum Node {
     Neg(usize),
     Bin(Op, usize, usize),
     Call(Func, usize, Option<usize>),
+    /// sin and cos of one argument at once (`sin_cos`), the sine here and the cosine into the
+    /// slot of the later node, which becomes [`Node::Done`] (made by [`TapeBuilder::finish`]).
+    SinCos {
+        arg: usize,
+        sin_here: bool,
+        other: usize,
+    },
+    /// Computed by an earlier node.
+    Done,
 }
 
 /// Compiles expressions into a [`Tape`].
@@ -68,7 +77,26 @@ impl TapeBuilder {
         self.nodes.is_empty()
     }
 
-    pub fn finish(self) -> Tape {
+    /// The tape, with each sin and cos of the same argument computed together (a pendulum's
+    /// law and its derivative name both).
+    pub fn finish(mut self) -> Tape {
+        for i in 0..self.nodes.len() {
+            let Node::Call(f @ (Func::Sin | Func::Cos), arg, None) = self.nodes[i] else {
+                continue;
+            };
+            let partner = if f == Func::Sin { Func::Cos } else { Func::Sin };
+            if let Some(&j) = self.index.get(&Node::Call(partner, arg, None)) {
+                if j > i {
+                    let sin_here = f == Func::Sin;
+                    self.nodes[i] = Node::SinCos {
+                        arg,
+                        sin_here,
+                        other: j,
+                    };
+                    self.nodes[j] = Node::Done;
+                }
+            }
+        }
         Tape {
             nodes: self.nodes,
             outputs: self.outputs,
@@ -94,7 +122,8 @@ impl Tape {
         self.nodes.is_empty()
     }
 
-    /// Evaluates the first `upto` operations at `vars` into `buf` (at least `upto` long).
+    /// Evaluates the first `upto` operations at `vars` into `buf` (as long as the tape: a fused
+    /// sin and cos may write past `upto`).
     pub fn run(&self, vars: &[f64], upto: usize, buf: &mut [f64]) {
         for (i, n) in self.nodes[..upto].iter().enumerate() {
             buf[i] = match *n {
@@ -103,6 +132,17 @@ impl Tape {
                 Node::Neg(a) => -buf[a],
                 Node::Bin(op, a, b) => op.apply(buf[a], buf[b]),
                 Node::Call(f, a, b) => f.apply(buf[a], b.map_or(0.0, |b| buf[b])),
+                Node::SinCos {
+                    arg,
+                    sin_here,
+                    other,
+                } => {
+                    let (sin, cos) = buf[arg].sin_cos();
+                    let (here, there) = if sin_here { (sin, cos) } else { (cos, sin) };
+                    buf[other] = there;
+                    here
+                }
+                Node::Done => buf[i],
             };
         }
     }
