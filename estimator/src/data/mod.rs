@@ -9,6 +9,7 @@ pub mod object;
 pub mod photometric;
 pub mod recording;
 mod request;
+mod reuse;
 mod scale;
 mod stillness;
 mod timing;

@@ -156,7 +156,7 @@ pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateErro
             req.input.display()
         )));
     }
-    let rec = load_recording(&req.input, model, &req.recording)?;
+    let rec = load_recording(&req.input, model, &req.recording, req.trying)?;
     // Systems released from rest: clip start times count from the release (found in the
     // frames, else the first frame kept).
     let start_times = model.released_from_rest().then(|| {
@@ -180,11 +180,13 @@ pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateErro
     })
 }
 
-/// Decodes `input` for `model` and cuts it into clips.
+/// Decodes `input` for `model` and cuts it into clips; with `keep` (a model choice's
+/// candidate) the decoded frames are kept for, or taken from, the other candidates.
 pub fn load_recording(
     input: &Path,
     model: ModelRef,
     flags: &RecordingRequest,
+    keep: bool,
 ) -> Result<LoadedRecording, EstimateError> {
     let (table_frames, table_dt) = model.table5_clip();
     let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
@@ -232,7 +234,7 @@ pub fn load_recording(
         hop: flags.hop,
         max_clips: MAX_DEFAULT_CLIPS,
     };
-    let mut decoded = video::decode(input, &opts, info)?;
+    let mut decoded = super::reuse::decode(input, &opts, info, keep)?;
     // A fall or slide from rest: its release, and the descent alone where no flag trims;
     // anything else: the frames where it moves.
     let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
