@@ -219,7 +219,7 @@ fn default_encoder(
     // Built-in models only: a model file's pendulum read this way lost its g/L on the shared
     // pendulum (+14 %, the built-in +0.5 %), not yet understood.
     let object = data.recording.as_ref().and_then(|(r, _)| r.object);
-    let built_in = ModelRef::by_name(model.name()) == Some(model);
+    let built_in = model.info().file.is_none();
     if let (Some(o), 1, EncoderKind::Small, true) =
         (object, model.latent_dims(), model.encoder(), built_in)
     {

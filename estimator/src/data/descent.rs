@@ -9,7 +9,7 @@ use crate::encoder::centroid;
 use physvid_shared::cli::approx;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
 use serde::Serialize;
-use tch::{Kind, Tensor};
+use tch::Tensor;
 
 /// An object that moves less than this share of the larger frame side is not a descent
 /// across the frame (a ball receding from the camera, a dimming light).
@@ -134,10 +134,7 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         // Against the median frame (the background, where the object spends under half its
         // time); found where the frame differs from one `lag` frames earlier (what moves now,
         // not what was moved once and stays: a hand, a door).
-        let d = &x - x.median_dim(0, true).0;
-        let d = &d / d.square().mean(Kind::Float).sqrt().clamp_min(1e-9);
-        let polarity = crate::encoder::polarity(&d);
-        let window = centroid::window(&d, frame, polarity);
+        let (d, polarity, window) = centroid::from_background(&x, frame);
         let lag = (n / 40).max(1);
         let earlier = Tensor::cat(&[d.narrow(0, 0, lag), d.narrow(0, 0, n - lag)], 0);
         let moved = &d - earlier;

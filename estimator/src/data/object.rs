@@ -7,9 +7,9 @@
 //! rendered pendulums and a disc, where the centroid is within 1 %).
 
 use super::descent::MIN_TRAVEL;
-use crate::encoder::{centroid, polarity};
+use crate::encoder::centroid;
 use serde::Serialize;
-use tch::{Kind, Tensor};
+use tch::Tensor;
 
 /// At most this many frames, evenly spaced, are located.
 const MAX_FRAMES: usize = 600;
@@ -46,10 +46,7 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<MovingObject> {
     let frame = (1, size.1 as i64, size.0 as i64);
     let path = tch::no_grad(|| {
         let x = Tensor::from_slice(&sampled).view([-1, per as i64]);
-        let d = &x - x.median_dim(0, true).0;
-        let d = &d / d.square().mean(Kind::Float).sqrt().clamp_min(1e-9);
-        let polarity = polarity(&d);
-        let window = centroid::window(&d, frame, polarity);
+        let (d, polarity, window) = centroid::from_background(&x, frame);
         centroid::positions(&d, frame, polarity, window)
     });
     let p: Vec<f32> = Vec::try_from(path.reshape([-1])).ok()?;

@@ -81,6 +81,17 @@ pub(crate) fn window(train: &Tensor, frame: (i64, i64, i64), polarity: f64) -> f
     })
 }
 
+/// Frames `x` [F, H·W] as their difference from the median frame (the background, where a
+/// moving object spends under half its time), standardised, with the polarity of what differs
+/// and the window that measures it.
+pub(crate) fn from_background(x: &Tensor, frame: (i64, i64, i64)) -> (Tensor, f64, f64) {
+    let d = x - x.median_dim(0, true).0;
+    let d = &d / d.square().mean(Kind::Float).sqrt().clamp_min(1e-9);
+    let polarity = super::keypoints::polarity(&d);
+    let window = window(&d, frame, polarity);
+    (d, polarity, window)
+}
+
 /// Each frame's object position (x, y) [F, 2] in units of half the larger side, from the
 /// centre: a sharp softmax finds the object, the centroid of the positive difference within a
 /// Gaussian window there says where it is to a fraction of a pixel.
