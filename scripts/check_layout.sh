@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The layout invariants of ARCHITECTURE.md: no import cycles inside a crate, no source file over
-# 350 lines, no #[path] test files. Prints what breaks them; exit code 1 if anything does.
+# 350 lines, no #[path] test files, and in `estimator` only the command-line layer (cli/,
+# config.rs, run.rs, batch/, main.rs, lib.rs) names the CLI's types. Prints what breaks them; exit code 1 if anything does.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -53,7 +54,24 @@ for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
             if v not in seen:
                 seen.add(v)
                 todo.extend(g[v])
+# Below the command line, no module names the CLI's types.
+cli_layer = ("cli", "config", "run", "batch", "main", "lib")
+src = os.path.join("estimator", "src")
+for d, _, fs in os.walk(src):
+    for f in fs:
+        if not f.endswith(".rs"):
+            continue
+        path = os.path.join(d, f)
+        top = os.path.relpath(path, src).split(os.sep)[0].removesuffix(".rs")
+        if top in cli_layer:
+            continue
+        text = open(path, encoding="utf-8").read()
+        text = text[: text.find("#[cfg(test)]")] if "#[cfg(test)]" in text else text
+        code = "\n".join(l for l in text.splitlines() if not l.lstrip().startswith("//"))
+        if re.search(r"crate::cli\b|crate::EstimateArgs\b|\bEstimateArgs\b|\bModelArgs\b", code):
+            print(f"estimator: {path} names the CLI's types below the command line")
+            bad += 1
 sys.exit(1 if bad else 0)
 PY
-[ "$status" = 0 ] && echo "layout: ok (no cycles, no file over 350 lines, no #[path])"
+[ "$status" = 0 ] && echo "layout: ok (no cycles, no file over 350 lines, no #[path], the CLI's types only in its layer)"
 exit "$status"

@@ -64,6 +64,7 @@ impl Network {
             cfg.encoder,
             data.model.latent_dims() as i64,
             &data.train,
+            data.line(),
         );
         let block = data.model.build(
             &(phys_vs.root() / "physics"),

@@ -67,9 +67,10 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The model's choice where the run makes one (`choice::wanted`), else one estimation.
+/// The model's choice where the run makes one (`EstimateArgs::chooses_model`), else one
+/// estimation.
 pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
-    if choice::wanted(args)? {
+    if args.chooses_model()? {
         choose(args)
     } else {
         estimate(args)
@@ -80,7 +81,13 @@ pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 /// ranking in its report; writes nothing.
 pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let begun = Instant::now();
-    let (tries, cut) = choice::candidates(args)?;
+    let recording = args.recording.request();
+    let (models, cut) = choice::candidates(&args.choice_request(&recording))?;
+    let tries: Vec<EstimateArgs> = models
+        .into_iter()
+        .map(|m| args.for_candidate(m, cut.as_ref()))
+        .collect();
+    let cut = cut.map(|c| c.why);
     let quiet = args.output.quiet;
     let (mut fits, mut summaries, mut errors) = (Vec::new(), Vec::new(), Vec::new());
     for (i, a) in tries.iter().enumerate() {

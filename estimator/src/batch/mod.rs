@@ -7,6 +7,7 @@
 mod file;
 mod index;
 mod merge;
+pub mod shard;
 pub mod summary;
 
 pub use file::{command_line_flags, read_batch_file, BatchRow, BATCH_ONLY};
@@ -81,7 +82,7 @@ pub fn write_summary(out: &Path, summary: &Summary) -> Result<(), EstimateError>
 }
 
 /// A row before it runs.
-fn pending(row: &BatchRow, shard: Option<crate::cli::Shard>) -> RowResult {
+fn pending(row: &BatchRow, shard: Option<shard::Shard>) -> RowResult {
     let own = shard.is_none_or(|s| s.holds(row.number));
     RowResult {
         row: row.number,

@@ -2,7 +2,7 @@
 //! so), written as summary.json (what `--merge` reads), summary.csv (one line per row, one
 //! group of columns per reported value) and summary.md.
 
-use crate::cli::Shard;
+use super::shard::Shard;
 use crate::html::sig;
 use crate::report::text::significant;
 use serde::{Deserialize, Serialize};

@@ -7,10 +7,11 @@
 //! frames kept (a decay, a drain). The falls and slides from rest keep their own (the descent
 //! alone, found in the frames).
 
-use crate::cli::EstimateArgs;
+use crate::data::RecordingRequest;
 use crate::error::EstimateError;
 use physvid_shared::cli::approx;
 use physvid_shared::video::{self, is_recording};
+use std::path::Path;
 
 /// Frames per clip of the common cut (Table 5's for every system with a clip of 20).
 pub const FRAMES: usize = 20;
@@ -23,11 +24,13 @@ pub struct CommonCut {
     pub why: String,
 }
 
-/// The common cut for `args`' input: `None` for a data set or a bare array (clips of their
-/// own), an image folder, or where `--frames-per-clip` and `--stride` both say it.
-pub fn common_cut(args: &EstimateArgs) -> Result<Option<CommonCut>, EstimateError> {
-    let input = args.input();
-    let flags = &args.recording;
+/// The common cut for `input` with the recording `flags`: `None` for a data set or a bare
+/// array (clips of their own), an image folder, or where `--frames-per-clip` and `--stride`
+/// both say it.
+pub fn common_cut(
+    input: &Path,
+    flags: &RecordingRequest,
+) -> Result<Option<CommonCut>, EstimateError> {
     if !is_recording(input) || input.is_dir() {
         return Ok(None);
     }

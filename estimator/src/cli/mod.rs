@@ -6,6 +6,7 @@
 //! each table row is a command a user can type.
 
 mod batch;
+mod candidate;
 mod model;
 mod recording;
 mod training;
@@ -56,7 +57,7 @@ pub struct EstimateArgs {
     pub output: OutputArgs,
     #[command(flatten)]
     pub batch: BatchArgs,
-    /// Set for the fits of a model choice (`choice::candidates`): the model is one candidate,
+    /// Set for the fits of a model choice (`EstimateArgs::for_candidate`): the model is one candidate,
     /// which a data set's meta.json may contradict.
     #[arg(skip)]
     pub trying: bool,

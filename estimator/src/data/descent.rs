@@ -1,13 +1,13 @@
 //! A fall or slide from rest found in a recording's frames: the object's path (the centroid
 //! encoder's position, `encoder::centroid`), the release as the vertex of the parabola it
 //! traces, and the end of the descent (where the object stops moving away: an impact, a
-//! bounce, the edge of the frame). Systems released from rest read their clips' start times
-//! from the release, and the recording is trimmed to the descent where `--start`/`--end` do
-//! not say otherwise.
+//! bounce, the edge of the frame), its path's bend by perspective where it shows
+//! (`perspective`). Systems released from rest read their clips' start times from the release,
+//! and the recording is trimmed to the descent (`kept::trim_to_descent`) where `--start`/`--end`
+//! do not say otherwise.
 
-use crate::encoder::centroid;
-use physvid_shared::cli::approx;
-use physvid_shared::video::{DecodedVideo, VideoOptions};
+use super::perspective::{self, Bend};
+use crate::encoder::centroid::{self, Line};
 use serde::Serialize;
 use tch::Tensor;
 
@@ -30,94 +30,13 @@ pub struct Descent {
     pub last: usize,
     /// How far the object travels, as a share of the larger frame side.
     pub travel: f64,
-}
-
-/// The part of a recording kept, and its release.
-pub struct Kept {
-    /// In seconds of the file's timeline (`--start`/`--end`, or the descent's).
-    pub start: Option<f64>,
-    pub end: Option<f64>,
-    /// The release in frames of the part kept (0: the first frame kept).
-    pub release: f64,
-    pub descent: Option<Descent>,
-}
-
-impl Kept {
-    /// The part `--start`/`--end` keep, released at its first frame.
-    pub fn untrimmed(opts: &VideoOptions) -> Kept {
-        Kept {
-            start: opts.start,
-            end: opts.end,
-            release: 0.0,
-            descent: None,
-        }
-    }
-
-    /// Seconds on the file's timeline of frame `f` of a decode cut with `opts`.
-    pub fn time_of(opts: &VideoOptions, timeline_fps: f64, f: f64) -> f64 {
-        opts.start.unwrap_or(0.0) + f / timeline_fps
-    }
-
-    /// Keeps frames `first..=last` of `decoded` (cut with `opts`) where two clips still fit
-    /// between them, the ends `--start`/`--end` fix as they say; whether it did.
-    pub fn keep(
-        &mut self,
-        decoded: &mut DecodedVideo,
-        opts: &VideoOptions,
-        (first, last): (usize, usize),
-        timeline_fps: f64,
-    ) -> bool {
-        if (last + 1).saturating_sub(first) <= (opts.frames_per_clip - 1) * opts.stride + 1 {
-            return false;
-        }
-        let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
-        self.start = self.start.or(Some(at(first)));
-        self.end = self.end.or(Some(at(last)));
-        decoded.keep(first, last, opts);
-        true
-    }
-}
-
-/// Finds the descent in `decoded` (cut with `opts`) and keeps only it where `--start` /
-/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
-pub fn trim(
-    decoded: &mut DecodedVideo,
-    opts: &VideoOptions,
-    timeline_fps: f64,
-    warnings: &mut Vec<String>,
-) -> Kept {
-    let mut kept = Kept::untrimmed(opts);
-    let Some(d) = find(&decoded.frames, decoded.size) else {
-        return kept;
-    };
-    kept.descent = Some(d);
-    let first = if opts.start.is_none() { d.first } else { 0 };
-    let last = if opts.end.is_none() {
-        d.last
-    } else {
-        decoded.frame_count() - 1
-    };
-    let at = |f: f64| Kept::time_of(opts, timeline_fps, f);
-    let dropped = if kept.keep(decoded, opts, (first, last), timeline_fps) {
-        first
-    } else {
-        0
-    };
-    kept.release = d.release - dropped as f64;
-    warnings.push(format!(
-        "motion from rest: the object is released at {} s (the vertex of the parabola its path \
-         traces) and moves away until {} s; kept {}–{} s{}",
-        approx(at(d.release)),
-        approx(at(d.last as f64)),
-        approx(kept.start.unwrap_or(0.0)),
-        approx(kept.end.unwrap_or(at((decoded.frame_count() - 1) as f64))),
-        if opts.start.is_some() || opts.end.is_some() {
-            " (as --start/--end say)"
-        } else {
-            " (--start/--end choose)"
-        }
-    ));
-    kept
+    /// The path's bend by perspective, where it shows (`perspective`): the release is then
+    /// the bent parabola's.
+    pub bend: Option<Bend>,
+    /// The path's direction in the frame (x, y), and how the centroid encoder reads positions
+    /// along it: a (in its units, half the larger side from the centre) as a/(1 + bend·a),
+    /// the bend by perspective undone (0 without one).
+    pub line: Line,
 }
 
 /// The descent in frames `[F, H·W]` of `size` = (W, H), or `None` when no object crosses
@@ -160,12 +79,21 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         .filter(|&k| peak[k] >= strong && peak[k] > 0.0)
         .map(|k| (k, [p[2 * k], p[2 * k + 1]]))
         .collect();
-    along(&project(&seen)?, 2.0 * half)
+    let (path, axis) = project(&seen)?;
+    let mut d = along(&path, 2.0 * half)?;
+    d.line = Line {
+        axis,
+        bend: d.bend.map_or(0.0, |b| b.per_pixel * half),
+    };
+    Some(d)
 }
 
+/// A path: (frame, pixels along it).
+type Path = Vec<(usize, f64)>;
+
 /// Positions `seen` (frame, [x, y]) projected on their principal axis, oriented so that the
-/// first half of them moves forward: (frame, pixels along the path).
-fn project(seen: &[(usize, [f64; 2])]) -> Option<Vec<(usize, f64)>> {
+/// first half of them moves forward: (frame, pixels along the path), and the axis.
+fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
     if seen.len() < 5 {
         return None;
     }
@@ -193,7 +121,10 @@ fn project(seen: &[(usize, [f64; 2])]) -> Option<Vec<(usize, f64)>> {
     } else {
         -1.0
     };
-    Some(along.into_iter().map(|(k, v)| (k, sign * v)).collect())
+    Some((
+        along.into_iter().map(|(k, v)| (k, sign * v)).collect(),
+        u.map(|c| c * sign),
+    ))
 }
 
 /// The descent in `path` (frame, position along the path in pixels, time order) on a frame
@@ -250,7 +181,11 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
     if c <= 0.0 {
         return None;
     }
-    let release = (-b / (2.0 * c)).clamp(0.0, first_k as f64);
+    let whole: Vec<(f64, f64)> = out[..=end].iter().map(|q| (q.0 as f64, q.1)).collect();
+    let bend = perspective::fit(&whole, first_k as f64);
+    let release = bend
+        .map_or(-b / (2.0 * c), |b| b.release)
+        .clamp(0.0, first_k as f64);
     let frames = last as f64 - release;
     let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;
     Some(Descent {
@@ -258,6 +193,11 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
         first,
         last,
         travel: (hi - lo) / side,
+        bend,
+        line: Line {
+            axis: [0.0, 1.0],
+            bend: 0.0,
+        },
     })
 }
 
@@ -318,7 +258,7 @@ mod tests {
         let seen: Vec<(usize, [f64; 2])> = (0..10)
             .map(|k| (k, [5.0 - 0.6 * k as f64, 3.0 - 0.8 * k as f64]))
             .collect();
-        let p = project(&seen).unwrap();
+        let (p, _) = project(&seen).unwrap();
         assert!((p[9].1 - p[0].1 - 9.0).abs() < 1e-9, "{:?}", p);
     }
 }

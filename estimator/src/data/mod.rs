@@ -5,7 +5,9 @@
 mod dataset;
 pub mod descent;
 mod framing;
+pub mod kept;
 pub mod object;
+pub mod perspective;
 pub mod photometric;
 pub mod recording;
 mod request;
@@ -58,6 +60,14 @@ pub struct ClipData {
 }
 
 impl ClipData {
+    /// A recording's descent's line, as the centroid encoder reads positions along it.
+    pub fn line(&self) -> Option<crate::encoder::centroid::Line> {
+        self.recording
+            .as_ref()
+            .and_then(|(s, _)| s.descent)
+            .map(|d| d.line)
+    }
+
     pub fn n_train(&self) -> i64 {
         self.train.size()[0]
     }

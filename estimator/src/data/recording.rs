@@ -2,7 +2,7 @@
 //! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
 //! (appendix Table 5's clip), and cuts the frames into clips.
 
-use super::{descent, framing, object, stillness, timing};
+use super::{descent, framing, kept, object, stillness, timing};
 use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -239,7 +239,7 @@ pub fn load_recording(
     // anything else: the frames where it moves.
     let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
     let kept = if model.released_from_rest() {
-        descent::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
+        kept::trim_to_descent(&mut decoded, &opts, timeline_fps, &mut warnings)
     } else {
         stillness::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
     };

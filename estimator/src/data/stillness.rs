@@ -6,7 +6,7 @@
 //! `--start`/`--end` do not say otherwise. Falls and slides from rest keep their descent
 //! instead (`descent`).
 
-use super::descent::Kept;
+use super::kept::Kept;
 use physvid_shared::cli::approx;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
 

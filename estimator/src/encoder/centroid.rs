@@ -11,6 +11,7 @@
 //! The window keeps the rest of the frame (compression flicker, exposure steps) out of it.
 
 use super::keypoints::centres;
+use serde::Serialize;
 use tch::nn;
 use tch::{Kind, Tensor};
 
@@ -28,24 +29,47 @@ pub struct Front {
     polarity: f64,
     /// The window's standard deviation (pixels).
     window: f64,
+    /// A descent's line: the position along it, a, read as a/(1 + bend·a) (its bend by
+    /// perspective undone, `data::perspective`), and nothing across it (a fall's sideways
+    /// wobble gave every training seed its own mix of the two: g spread 2.5 % over seeds).
+    line: Option<Line>,
+}
+
+/// The line of a descent (`data::descent`) along which the front end reads positions.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Line {
+    /// The path's direction (x, y), a unit vector.
+    pub axis: [f64; 2],
+    /// κ in a/(1 + κ·a), a the position along `axis` in the front end's units (0: no bend).
+    pub bend: f64,
 }
 
 impl Front {
     /// The front end for frames of `frame` = (C, H, W), the window sized on the standardised
     /// training frames `train` [.., C·H·W].
-    pub fn new(frame: (i64, i64, i64), train: &Tensor) -> Front {
+    pub fn new(frame: (i64, i64, i64), train: &Tensor, line: Option<Line>) -> Front {
         let polarity = super::keypoints::polarity(train);
         let window = window(train, frame, polarity);
         Front {
             frame,
             polarity,
             window,
+            line,
         }
     }
 
     /// Frames [F, C·H·W] → positions [F, 2].
     pub fn positions(&self, x: &Tensor) -> Tensor {
-        positions(x, self.frame, self.polarity, self.window)
+        let p = positions(x, self.frame, self.polarity, self.window);
+        let Some(line) = self.line else {
+            return p;
+        };
+        let axis = Tensor::from_slice(&line.axis.map(|v| v as f32))
+            .to_device(p.device())
+            .view([2, 1]);
+        let a = p.matmul(&axis);
+        let a = &a / (&a * line.bend + 1.0);
+        Tensor::cat(&[&a, &a.zeros_like()], 1)
     }
 }
 

@@ -12,6 +12,13 @@
 //! share Σ var(e_k)·R²(e_k² | z) / Σ var(y_k) is near zero for a faithful latent, even when
 //! clutter, noise or light leave much of the picture unexplained (that part does not depend on
 //! the latent), and a large part of the picture for a folded one.
+//!
+//! The neighbours must be alike pictures for this to hold. Where the object moves far between
+//! frames (a fall filmed at 60 fps in 30 frames: the ball is never where it was one frame
+//! before), even a faithful latent's neighbours differ by an amount that depends on where the
+//! object is (how fast it moves there). For a recording, whose frames are in time order, the
+//! same share measured with each frame's neighbours in time (which cannot fold) is that
+//! sampling's part, and only the excess over it counts as folded.
 
 use crate::pca::{principal_directions, project};
 use serde::Serialize;
@@ -29,8 +36,13 @@ pub const COMPONENTS: i64 = 6;
 /// How much of the picture the latent folds.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fold {
-    /// The share of the leading components' variance that is folded (see the module's text).
+    /// The share of the leading components' variance that is folded (see the module's text),
+    /// beyond [`Fold::sampling_share`] where that was measured.
     pub folded_share: f64,
+    /// For frames in time order: the share that would seem folded with each frame's neighbours
+    /// in time (the frame rate's coarseness, not a fold).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sampling_share: Option<f64>,
     /// The share the latent explains as a function of it.
     pub explained_share: f64,
     /// The share an affine function of the latent explains (the whole explained share when
@@ -41,9 +53,9 @@ pub struct Fold {
     pub variance_share: f64,
 }
 
-/// The fold of latent `z` (one per frame) in the principal components of `frames` [M, D];
-/// `None` when the frames do not vary.
-pub fn fold(frames: &Tensor, z: &[f64]) -> Option<Fold> {
+/// The fold of latent `z` (one per frame) in the principal components of `frames` [M, D]
+/// (in time order when `timed`); `None` when the frames do not vary.
+pub fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
     let m = z.len();
     if m < 20 || frames.size()[0] as usize != m {
         return None;
@@ -54,26 +66,40 @@ pub fn fold(frames: &Tensor, z: &[f64]) -> Option<Fold> {
     let y = Vec::<f64>::try_from(&y.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
     let neighbours = (m / 200).clamp(3, 20);
     let order = sorted(z);
-    let (mut total, mut unexplained, mut folded, mut off_line) = (0.0, 0.0, 0.0, 0.0);
+    let in_time: Vec<usize> = (0..m).collect();
+    let (mut total, mut unexplained, mut folded, mut by_time, mut off_line) =
+        (0.0, 0.0, 0.0, 0.0, 0.0);
     for c in 0..k {
         let yc: Vec<f64> = (0..m).map(|i| y[i * k + c]).collect();
-        let fit = neighbour_means(&order, &yc, neighbours);
-        let e: Vec<f64> = yc.iter().zip(&fit).map(|(a, b)| a - b).collect();
-        let e2: Vec<f64> = e.iter().map(|v| v * v).collect();
-        let size = r2(&e2, &neighbour_means(&order, &e2, neighbours)).clamp(0.0, 1.0);
-        let (vy, ve) = (variance(&yc), variance(&e));
+        let (ve, f) = folding(&order, &yc, neighbours);
+        let vy = variance(&yc);
         off_line += vy * (1.0 - affine_r2(z, &yc));
         total += vy;
         unexplained += ve;
-        folded += ve * size;
+        folded += f;
+        if timed {
+            by_time += folding(&in_time, &yc, neighbours).1;
+        }
     }
     (total > 0.0).then(|| Fold {
-        folded_share: folded / total,
+        folded_share: (folded - by_time).max(0.0) / total,
+        sampling_share: timed.then_some(by_time / total),
         explained_share: 1.0 - unexplained / total,
         affine_share: 1.0 - off_line / total,
         components: k,
         variance_share: shares.iter().sum(),
     })
+}
+
+/// What the neighbours in `order` leave of `y` unexplained (its variance) and the part of that
+/// whose size they fix (the variance times R² of its square).
+fn folding(order: &[usize], y: &[f64], k: usize) -> (f64, f64) {
+    let fit = neighbour_means(order, y, k);
+    let e: Vec<f64> = y.iter().zip(&fit).map(|(a, b)| a - b).collect();
+    let e2: Vec<f64> = e.iter().map(|v| v * v).collect();
+    let size = r2(&e2, &neighbour_means(order, &e2, k)).clamp(0.0, 1.0);
+    let ve = variance(&e);
+    (ve, ve * size)
 }
 
 /// R² of `y` explained by an affine function of `x`.
@@ -142,12 +168,35 @@ mod tests {
             .flat_map(|&v| [v as f32, (0.4 * v * v) as f32, 0.1 * (v as f32).powi(3)])
             .collect();
         let frames = Tensor::from_slice(&pix).view([n as i64, 3]);
-        let faithful = fold(&frames, &x).unwrap();
+        let faithful = fold(&frames, &x, true).unwrap();
         assert!(faithful.folded_share < 0.02, "{faithful:?}");
         assert!(faithful.explained_share > 0.98, "{faithful:?}");
         let height: Vec<f64> = x.iter().map(|v| v * v).collect();
-        let folded = fold(&frames, &height).unwrap();
+        let folded = fold(&frames, &height, true).unwrap();
         assert!(folded.folded_share > 0.5, "{folded:?}");
+        assert!(folded.sampling_share.unwrap() < 0.02, "{folded:?}");
+        assert_eq!(fold(&frames, &height, false).unwrap().sampling_share, None);
+    }
+
+    #[test]
+    fn an_object_that_jumps_between_frames_is_not_folded_when_its_latent_follows_it() {
+        // A dot falling across 40 pixels in 30 frames, quadratically: late frames share no
+        // pixel with the frame before. Its faithful latent (the position) orders the frames as
+        // time does.
+        let (n, w) = (30usize, 41usize);
+        let pos: Vec<f64> = (0..n).map(|i| 40.0 * (i as f64 / 29.0).powi(2)).collect();
+        let pix: Vec<f32> = pos
+            .iter()
+            .flat_map(|&p| (0..w).map(move |x| (-(x as f64 - p).powi(2) / 2.0).exp() as f32))
+            .collect();
+        let frames = Tensor::from_slice(&pix).view([n as i64, w as i64]);
+        let raw = fold(&frames, &pos, false).unwrap();
+        let timed = fold(&frames, &pos, true).unwrap();
+        assert!(
+            timed.folded_share < 0.01,
+            "{timed:?} (without the time baseline {raw:?})"
+        );
+        assert!(raw.folded_share > 0.05, "{raw:?}");
     }
 
     #[test]

@@ -218,10 +218,14 @@ fn frames_fold(
     if data.model.latent_dims() != 1 {
         return None;
     }
-    let (frames, z) = match (&data.recording, recording_latents) {
+    let (frames, z, timed) = match (&data.recording, recording_latents) {
         (Some((_, frames)), Some(latents)) => {
             let f = frames.squeeze_dim(0);
-            (f, latents.iter().map(|&v| v as f64).collect::<Vec<_>>())
+            (
+                f,
+                latents.iter().map(|&v| v as f64).collect::<Vec<_>>(),
+                true,
+            )
         }
         _ => {
             let all = Tensor::cat(&[&data.train, &data.val], 0);
@@ -236,8 +240,8 @@ fn frames_fold(
             let f = flat.index_select(0, &idx);
             let z = tch::no_grad(|| network.encoder.encode(&f.unsqueeze(0)));
             let z = Vec::<f64>::try_from(&z.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
-            (f, z)
+            (f, z, false)
         }
     };
-    fold::fold(&frames, &z)
+    fold::fold(&frames, &z, timed)
 }

@@ -1,0 +1,103 @@
+//! The part of a recording kept: what `--start`/`--end` say, else the frames the data show
+//! matter (the still ones trimmed by `stillness`, a fall or slide from rest's descent by
+//! [`trim_to_descent`]), and where the release is in it.
+
+use super::descent::{self, Descent};
+use physvid_shared::cli::approx;
+use physvid_shared::video::{DecodedVideo, VideoOptions};
+
+/// The part of a recording kept, and its release.
+pub struct Kept {
+    /// In seconds of the file's timeline (`--start`/`--end`, or the descent's).
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    /// The release in frames of the part kept (0: the first frame kept).
+    pub release: f64,
+    pub descent: Option<Descent>,
+}
+
+impl Kept {
+    /// The part `--start`/`--end` keep, released at its first frame.
+    pub fn untrimmed(opts: &VideoOptions) -> Kept {
+        Kept {
+            start: opts.start,
+            end: opts.end,
+            release: 0.0,
+            descent: None,
+        }
+    }
+
+    /// Seconds on the file's timeline of frame `f` of a decode cut with `opts`.
+    pub fn time_of(opts: &VideoOptions, timeline_fps: f64, f: f64) -> f64 {
+        opts.start.unwrap_or(0.0) + f / timeline_fps
+    }
+
+    /// Keeps frames `first..=last` of `decoded` (cut with `opts`) where two clips still fit
+    /// between them, the ends `--start`/`--end` fix as they say; whether it did.
+    pub fn keep(
+        &mut self,
+        decoded: &mut DecodedVideo,
+        opts: &VideoOptions,
+        (first, last): (usize, usize),
+        timeline_fps: f64,
+    ) -> bool {
+        if (last + 1).saturating_sub(first) <= (opts.frames_per_clip - 1) * opts.stride + 1 {
+            return false;
+        }
+        let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
+        self.start = self.start.or(Some(at(first)));
+        self.end = self.end.or(Some(at(last)));
+        decoded.keep(first, last, opts);
+        true
+    }
+}
+
+/// Finds the descent in `decoded` (cut with `opts`) and keeps only it where `--start` /
+/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
+pub fn trim_to_descent(
+    decoded: &mut DecodedVideo,
+    opts: &VideoOptions,
+    timeline_fps: f64,
+    warnings: &mut Vec<String>,
+) -> Kept {
+    let mut kept = Kept::untrimmed(opts);
+    let Some(d) = descent::find(&decoded.frames, decoded.size) else {
+        return kept;
+    };
+    kept.descent = Some(d);
+    let first = if opts.start.is_none() { d.first } else { 0 };
+    let last = if opts.end.is_none() {
+        d.last
+    } else {
+        decoded.frame_count() - 1
+    };
+    let at = |f: f64| Kept::time_of(opts, timeline_fps, f);
+    let dropped = if kept.keep(decoded, opts, (first, last), timeline_fps) {
+        first
+    } else {
+        0
+    };
+    kept.release = d.release - dropped as f64;
+    let vertex = match d.bend {
+        Some(b) => format!(
+            "the vertex of the parabola its path traces, seen in perspective: the picture's \
+             scale changes by {} % along the path, undone in the positions the encoder reads",
+            approx(100.0 * b.change)
+        ),
+        None => "the vertex of the parabola its path traces".to_string(),
+    };
+    warnings.push(format!(
+        "motion from rest: the object is released at {} s ({vertex}) and moves away until {} \
+         s; kept {}–{} s{}",
+        approx(at(d.release)),
+        approx(at(d.last as f64)),
+        approx(kept.start.unwrap_or(0.0)),
+        approx(kept.end.unwrap_or(at((decoded.frame_count() - 1) as f64))),
+        if opts.start.is_some() || opts.end.is_some() {
+            " (as --start/--end say)"
+        } else {
+            " (--start/--end choose)"
+        }
+    ));
+    kept
+}
