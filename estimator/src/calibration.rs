@@ -28,6 +28,27 @@ pub struct Calibration {
 /// The largest reference value taken (SI): a million metres or radians is no measurement.
 pub const MAX_REFERENCE: f64 = 1e6;
 
+/// What a model's answers can be calibrated by (each given by one flag of the command line or
+/// by meta.json); a model lists those it reads (`ModelInfo::calibration`), and the others are
+/// refused for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CalibrationInput {
+    /// The physical quantity at reference frames or times (`--reference`).
+    Reference,
+    /// An incline's angle (`--incline-deg`).
+    InclineDeg,
+    /// The gravitational acceleration (`--g`).
+    G,
+}
+
+impl CalibrationInput {
+    pub const ALL: [CalibrationInput; 3] = [
+        CalibrationInput::Reference,
+        CalibrationInput::InclineDeg,
+        CalibrationInput::G,
+    ];
+}
+
 /// Gravitational acceleration assumed when neither `--g` nor meta.json gives it (m/s²).
 pub const DEFAULT_G: f64 = 9.81;
 

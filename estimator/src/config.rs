@@ -4,7 +4,7 @@
 //! the checks that need the data. Nothing downstream re-derives a default.
 
 use crate::calibration::Calibration;
-use crate::cli::{EstimateArgs, ModelArgs};
+use crate::cli::{calibration_flag, EstimateArgs, ModelArgs};
 use crate::data::ClipData;
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
@@ -267,25 +267,22 @@ pub fn initial_values(model: ModelRef, init: &[(String, f64)]) -> Result<Vec<f64
 
 /// Refuses a calibration flag the model's answers do not read, naming the models that do.
 fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), EstimateError> {
-    let given = [
-        ("--reference", m.reference.is_some()),
-        ("--incline-deg", m.incline_deg.is_some()),
-        ("--g", m.g.is_some()),
-    ];
-    let Some((flag, _)) = given
+    let Some(c) = m
+        .calibration_given()
         .into_iter()
-        .find(|&(flag, given)| given && !model.info().calibration_flags.contains(&flag))
+        .find(|c| !model.info().calibration.contains(c))
     else {
         return Ok(());
     };
     let readers: Vec<&str> = MODELS
         .iter()
-        .filter(|r| r.info().calibration_flags.contains(&flag))
+        .filter(|r| r.info().calibration.contains(&c))
         .map(|r| r.name())
         .collect();
     Err(input_error(format!(
-        "{flag}: {} does not use it (its answers need no calibration of that kind); it applies \
+        "{}: {} does not use it (its answers need no calibration of that kind); it applies \
          to {}; drop it",
+        calibration_flag(c),
         model.name(),
         readers.join(", ")
     )))

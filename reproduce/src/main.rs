@@ -112,7 +112,8 @@ impl TableKind {
 /// varies it) into a temporary directory, trains with `estimate`'s own arguments (every row
 /// names them), and writes OUT/TABLE.md and OUT/TABLE.csv, the paper's values and the ground
 /// truth in their own columns. `all` also writes OUT/RESULTS.md. Deterministic on CPU. Full
-/// set: about 100 minutes on 2 cores (40 of them the spring's); --quick: about 2.5.
+/// set: about 2 hours on 2 cores without model-choice (each table's own time is printed under
+/// it; docs/status.md lists them); --quick: about 2.5 minutes.
 #[derive(Debug, Parser)]
 #[command(name = "reproduce", version)]
 struct Cli {

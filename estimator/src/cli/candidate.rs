@@ -4,6 +4,7 @@
 //! these types.
 
 use super::{EstimateArgs, ModelSpec};
+use crate::calibration::CalibrationInput;
 use crate::choice::{self, cut::CommonCut, ChoiceRequest};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -55,15 +56,10 @@ impl EstimateArgs {
         let m = &mut a.model;
         m.model = Some(ModelSpec::Given(model));
         m.candidate.clear();
-        let reads = |flag: &str| model.info().calibration_flags.contains(&flag);
-        if !reads("--reference") {
-            m.reference = None;
-        }
-        if !reads("--incline-deg") {
-            m.incline_deg = None;
-        }
-        if !reads("--g") {
-            m.g = None;
+        for c in CalibrationInput::ALL {
+            if !model.info().calibration.contains(&c) {
+                m.drop_calibration(c);
+            }
         }
         if let Some(init) = m.init.as_mut() {
             init.0

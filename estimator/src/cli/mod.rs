@@ -9,13 +9,15 @@ mod batch;
 mod candidate;
 mod model;
 mod recording;
+mod reference;
 mod training;
 
 pub use crate::data::Framing;
 pub use crate::device::DeviceChoice;
 pub use batch::{parse_shard, BatchArgs, Shard};
-pub use model::{parse_init, parse_reference, ModelArgs, ModelSpec};
+pub use model::{parse_init, ModelArgs, ModelSpec};
 pub use recording::{parse_crop, parse_size, RecordingArgs};
+pub use reference::{calibration_flag, parse_reference, ReferencePoints};
 pub use training::TrainingArgs;
 
 use crate::error::{input_error, EstimateError};
@@ -103,6 +105,17 @@ impl EstimateArgs {
         physvid_shared::check_output_dir("--out", &self.output.out).map_err(input_error)?;
         Ok(self)
     }
+}
+
+/// The flag whose clap id is `id` (its field's name), as written on the command line: the name
+/// comes from its one definition (`--incline-deg` for `incline_deg`).
+pub fn flag_name(id: &str) -> String {
+    use clap::CommandFactory;
+    EstimateArgs::command()
+        .get_arguments()
+        .find(|a| a.get_id() == id)
+        .and_then(|a| a.get_long())
+        .map_or_else(|| id.to_string(), |l| format!("--{l}"))
 }
 
 /// `v` must be finite and > 0.

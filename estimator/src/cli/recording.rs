@@ -125,20 +125,21 @@ impl RecordingArgs {
     }
 
     /// The recording flags given, as written on the command line.
-    pub fn given(&self) -> Vec<&'static str> {
+    pub fn given(&self) -> Vec<String> {
         [
-            ("--fps", self.fps.is_some()),
-            ("--crop", self.crop.is_some()),
-            ("--start", self.start.is_some()),
-            ("--end", self.end.is_some()),
-            ("--size", self.size.is_some()),
-            ("--frames-per-clip", self.frames_per_clip.is_some()),
-            ("--stride", self.stride.is_some()),
-            ("--hop", self.hop.is_some()),
-            ("--preview", self.preview),
+            ("fps", self.fps.is_some()),
+            ("crop", self.crop.is_some()),
+            ("start", self.start.is_some()),
+            ("end", self.end.is_some()),
+            ("size", self.size.is_some()),
+            ("frames_per_clip", self.frames_per_clip.is_some()),
+            ("stride", self.stride.is_some()),
+            ("hop", self.hop.is_some()),
+            ("preview", self.preview),
         ]
         .into_iter()
-        .filter_map(|(flag, given)| given.then_some(flag))
+        .filter(|&(_, given)| given)
+        .map(|(id, _)| super::flag_name(id))
         .collect()
     }
 
@@ -181,6 +182,27 @@ impl RecordingArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_flags_given_are_named_as_written() {
+        use clap::Parser;
+        let args = crate::EstimateArgs::try_parse_from([
+            "estimate",
+            "clip.mp4",
+            "--fps",
+            "30",
+            "--start",
+            "1",
+            "--frames-per-clip",
+            "10",
+            "--preview",
+        ])
+        .unwrap();
+        assert_eq!(
+            args.recording.given(),
+            ["--fps", "--start", "--frames-per-clip", "--preview"]
+        );
+    }
 
     #[test]
     fn crop_and_size_parse_or_say_what_is_expected() {

@@ -165,8 +165,9 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
     if reach < MIN_TRAVEL * side {
         return None;
     }
-    // The release: the vertex of the parabola through the first part of the descent (the
-    // least extrapolated: perspective and drag bend the later part).
+    // The release: on a descent long enough, the vertex of the parabola through all of it seen
+    // through a projective bend (`perspective`); on a short one, the vertex of the parabola
+    // through its first part (the least extrapolated: perspective and drag bend the later).
     let early: Vec<(f64, f64)> = out[..=end]
         .iter()
         .filter(|q| q.1 - first_p <= 0.3 * reach)
@@ -182,9 +183,10 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
         return None;
     }
     let whole: Vec<(f64, f64)> = out[..=end].iter().map(|q| (q.0 as f64, q.1)).collect();
-    let bend = perspective::fit(&whole, first_k as f64);
-    let release = bend
-        .map_or(-b / (2.0 * c), |b| b.release)
+    let fitted = perspective::fit(&whole, first_k as f64);
+    let bend = fitted.and_then(|f| f.bend);
+    let release = fitted
+        .map_or(-b / (2.0 * c), |f| f.release)
         .clamp(0.0, first_k as f64);
     let frames = last as f64 - release;
     let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;

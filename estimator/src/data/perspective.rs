@@ -21,11 +21,17 @@ const MIN_GAIN: f64 = 1.5;
 /// the frame; the picture's scale changing at most tenfold along the path).
 const LEAST_DENOMINATOR: f64 = 0.3;
 
-/// The bend of a descent's path, and its release.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Bend {
+/// A whole descent fitted: its release, and its bend where one shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fitted {
     /// The release, in frames.
     pub release: f64,
+    pub bend: Option<Bend>,
+}
+
+/// The bend of a descent's path.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Bend {
     /// The picture's scale along the path at its end against at its start, minus one (the
     /// shared ball: the last metre of the fall drawn smaller).
     pub change: f64,
@@ -86,10 +92,13 @@ fn best(
     out
 }
 
-/// The bend of `path` (frame, pixels along the path, from its first frame that moves to the
-/// end of the descent), released at or before frame `first_moving`; `None` where the path is
-/// short, or bends too little to tell from a plain parabola.
-pub fn fit(path: &[(f64, f64)], first_moving: f64) -> Option<Bend> {
+/// The release and the bend of `path` (frame, pixels along the path, from its first frame that
+/// moves to the end of the descent), released at or before frame `first_moving`; `None` where
+/// the path is too short to fit whole. The bend is kept where it fits the path
+/// [`MIN_GAIN`] times better than a plain parabola; the release is the bent fit's either way
+/// (a whole path places it better than its first part: on a level 60-fps fall drawn here with
+/// a hand's wobble before the release, 1.2 frames nearer).
+pub fn fit(path: &[(f64, f64)], first_moving: f64) -> Option<Fitted> {
     if path.len() < MIN_FRAMES {
         return None;
     }
@@ -107,9 +116,6 @@ pub fn fit(path: &[(f64, f64)], first_moving: f64) -> Option<Bend> {
         .collect();
     let near = ((r - 0.05).max(releases.0), (r + 0.05).min(releases.1));
     let (e, release, b, c, s) = best(path, (near, 0.005), &finer)?;
-    if e * MIN_GAIN > plain.0 || b == 0.0 {
-        return None;
-    }
     // p = c + s·w with w = v/(1 + b·v), so v = w/(1 − b·w): affine in p/(1 + κ·p) with
     // κ = −b/(s + b·c).
     let per_pixel = -b / (s + b * c);
@@ -120,15 +126,19 @@ pub fn fit(path: &[(f64, f64)], first_moving: f64) -> Option<Bend> {
         .map(|q| den(q.1))
         .fold(f64::NEG_INFINITY, f64::max);
     if !per_pixel.is_finite() || lo <= 0.0 || lo < LEAST_DENOMINATOR * hi {
-        return None;
+        // A pole near the frame: not a camera's bend; the plain parabola's release.
+        return Some(Fitted {
+            release: plain.1,
+            bend: None,
+        });
     }
     // The picture's scale dp/dz ∝ den(p)²; at the path's end against its start.
     let (p0, p1) = (path[0].1, path.last()?.1);
     let change = (den(p1) / den(p0)).powi(2) - 1.0;
-    Some(Bend {
+    let shows = e * MIN_GAIN <= plain.0 && b != 0.0;
+    Some(Fitted {
         release,
-        change,
-        per_pixel,
+        bend: shows.then_some(Bend { change, per_pixel }),
     })
 }
 
@@ -152,22 +162,26 @@ mod tests {
     fn a_bent_fall_gives_its_release_and_the_map_that_straightens_it() {
         // The end drawn at 0.35 of the start's scale.
         let path = bent(0.0002);
-        let f = fit(&path, 22.0).expect("a bend");
-        assert!((f.release - 20.3).abs() < 0.15, "{f:?}");
+        let fitted = fit(&path, 22.0).expect("a fit");
+        assert!((fitted.release - 20.3).abs() < 0.15, "{fitted:?}");
+        let f = fitted.bend.expect("a bend");
         // Straightened, the path is a parabola in time again.
         let straight: Vec<(f64, f64)> = path
             .iter()
             .map(|&(k, p)| (k, p / (1.0 + f.per_pixel * p)))
             .collect();
-        let (e, ..) = best(&straight, ((f.release, f.release), 1.0), &[0.0]).unwrap();
+        let r = fitted.release;
+        let (e, ..) = best(&straight, ((r, r), 1.0), &[0.0]).unwrap();
         let range = straight.last().unwrap().1 - straight[0].1;
         assert!(e < 2e-3 * range.abs(), "rms {e} of {range}");
         assert!(f.change < -0.2, "{f:?}");
     }
 
     #[test]
-    fn a_fall_drawn_without_perspective_has_no_bend() {
-        assert_eq!(fit(&bent(0.0), 22.0), None);
+    fn a_fall_drawn_without_perspective_has_no_bend_and_its_release() {
+        let level = fit(&bent(0.0), 22.0).expect("a fit");
+        assert_eq!(level.bend, None);
+        assert!((level.release - 20.3).abs() < 0.15, "{level:?}");
         assert_eq!(fit(&bent(0.0002)[..20], 22.0), None);
     }
 }

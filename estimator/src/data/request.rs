@@ -40,5 +40,5 @@ pub struct RecordingRequest {
     /// `--preview`: write clips.png.
     pub preview: bool,
     /// The recording flags given, as written (a data set refuses them by name).
-    pub given: Vec<&'static str>,
+    pub given: Vec<String>,
 }

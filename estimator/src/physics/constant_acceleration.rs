@@ -4,7 +4,7 @@
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
 use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
-use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
+use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
 use physvid_shared::cli::approx;
 use physvid_shared::systems;
 use tch::nn;
@@ -31,7 +31,11 @@ pub struct ConstantAcceleration {
 /// The block sliding down an incline of Delfys75.
 pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        calibration_flags: &["--reference", "--incline-deg", "--g"],
+        calibration: &[
+            CalibrationInput::Reference,
+            CalibrationInput::InclineDeg,
+            CalibrationInput::G,
+        ],
         truth: &[TruthKey::signed("acceleration"), TruthKey::signed("mu")],
         ..ModelInfo::of(
             &systems::SLIDING_BLOCK,
@@ -45,7 +49,7 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
 /// The ball falling away from the camera of Delfys75.
 pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        calibration_flags: &["--reference"],
+        calibration: &[CalibrationInput::Reference],
         truth: &[TruthKey::positive("g")],
         ..ModelInfo::of(
             &systems::FREE_FALL,

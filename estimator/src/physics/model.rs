@@ -3,7 +3,7 @@
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
 use super::bounds::Bounds;
-use crate::calibration::{Calibration, DerivedValue, Readings};
+use crate::calibration::{Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::PeakDecay;
 use physvid_shared::systems::System;
@@ -139,9 +139,8 @@ pub struct ModelInfo {
     pub has_euler: bool,
     /// The smallest frame side (pixels) that can show the system (0: any), with what needs it.
     pub min_frame: (usize, &'static str),
-    /// The calibration flags its answers read (`--reference`, `--incline-deg`, `--g`); the
-    /// others are refused for it.
-    pub calibration_flags: &'static [&'static str],
+    /// The calibrations its answers read; the others are refused for it.
+    pub calibration: &'static [CalibrationInput],
     /// The ground-truth values its report compares with (meta.json checks against them).
     pub truth: &'static [TruthKey],
     /// What its reference values are when they cannot be below zero (`None`: any sign).
@@ -194,7 +193,7 @@ impl ModelInfo {
             has_euler: true,
             min_frame: (0, ""),
             max_dt: (f64::INFINITY, ""),
-            calibration_flags: &[],
+            calibration: &[],
             nonnegative_reference: None,
             truth: &[],
             file: None,

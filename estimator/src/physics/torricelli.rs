@@ -2,7 +2,7 @@
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
-use crate::calibration::{needs_reference, Calibration, DerivedValue, Readings};
+use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use physvid_shared::systems;
 use tch::nn;
@@ -15,7 +15,7 @@ pub struct Torricelli;
 /// which an MLP could learn: a linear encoder pins the latent.
 const INFO: ModelInfo = ModelInfo {
     encoder: EncoderKind::Linear,
-    calibration_flags: &["--reference"],
+    calibration: &[CalibrationInput::Reference],
     nonnegative_reference: Some("a water level (m above the tank's bottom)"),
     truth: &[TruthKey::positive("k")],
     ..ModelInfo::of(

@@ -15,7 +15,7 @@ mod system;
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, Settles, TruthKey};
 use super::{Bounds, ModelRef};
-use crate::calibration::{Calibration, Readings};
+use crate::calibration::{Calibration, CalibrationInput, Readings};
 use crate::encoder::EncoderKind;
 use crate::spectral::spectral_start;
 use block::FileBlock;
@@ -134,7 +134,7 @@ impl FileModel {
             latent_dims: d,
             encoder,
             encoder_note,
-            calibration_flags: &["--reference"],
+            calibration: &[CalibrationInput::Reference],
             calibrates_in_training: d == 1,
             has_euler: false,
             truth: Box::leak(truth.into_boxed_slice()),

@@ -13,7 +13,7 @@ pub use block::{PendulumBlock, PendulumSystem};
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
-use crate::calibration::{Calibration, DerivedValue, Readings};
+use crate::calibration::{Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
 use physvid_shared::systems;
@@ -26,7 +26,7 @@ pub struct Pendulum;
 /// The calibrated answers need the latent affine to a few parts in 10⁴: patience 30.
 pub(super) const INFO: ModelInfo = ModelInfo {
     calibrates_in_training: true,
-    calibration_flags: &["--reference", "--g"],
+    calibration: &[CalibrationInput::Reference, CalibrationInput::G],
     truth: &[TruthKey::positive("length"), TruthKey::signed("damping")],
     max_dt: (
         10.0,

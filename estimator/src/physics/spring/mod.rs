@@ -20,7 +20,9 @@ mod system;
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
 use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
 use super::ode::{ObservationMap, ShootingBlock};
-use crate::calibration::{position_scale, Calibration, DerivedValue, Readings, POSITION_FIT_R2};
+use crate::calibration::{
+    position_scale, Calibration, CalibrationInput, DerivedValue, Readings, POSITION_FIT_R2,
+};
 use crate::encoder::EncoderKind;
 use crate::spectral::spectral_start;
 use physvid_shared::systems;
@@ -33,7 +35,7 @@ pub struct Spring;
 
 const INFO: ModelInfo = ModelInfo {
     latent_dims: 4,
-    calibration_flags: &["--reference"],
+    calibration: &[CalibrationInput::Reference],
     truth: &[TruthKey::positive("k"), TruthKey::positive("rest_length")],
     has_euler: false,
     encoder: EncoderKind::Keypoints,
