@@ -4,10 +4,10 @@
 //! the position along the path, p = (α·z + β)/(1 + γ·z). From rest, z ∝ (t − r)², so the
 //! picture shows p(t) = c + s·v/(1 + b·v) with v = (t − r)² after the release r. Fitted to a
 //! whole descent, this gives the release (the parabola's vertex read through the bend) and the
-//! map that undoes the bend (`Bend::undo`), which the centroid encoder applies to its
-//! positions. Measured on the shared ball (a 10° tilt, the ball nearer than the wall): the
-//! plain parabola leaves residuals 2.5 times larger, smooth in time (autocorrelation 0.92,
-//! against 0.41), and puts the release five frames early.
+//! map that undoes the bend (`Bend::per_pixel`), which the centroid encoder applies to its
+//! positions (`encoder::centroid::Line`). Measured on the shared ball (a 10° tilt, the ball
+//! nearer than the wall): the plain parabola leaves residuals 2.5 times larger, smooth in time
+//! (autocorrelation 0.92, against 0.41), and puts the release five frames early.
 
 use serde::Serialize;
 

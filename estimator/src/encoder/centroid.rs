@@ -58,7 +58,8 @@ impl Front {
         }
     }
 
-    /// Frames [F, C·H·W] → positions [F, 2].
+    /// Frames [F, C·H·W] → positions [F, 2] (on a descent's line: the position along it with
+    /// the bend undone, and a zero).
     pub fn positions(&self, x: &Tensor) -> Tensor {
         let p = positions(x, self.frame, self.polarity, self.window);
         let Some(line) = self.line else {
