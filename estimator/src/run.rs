@@ -81,8 +81,7 @@ pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 /// ranking in its report; writes nothing.
 pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     let begun = Instant::now();
-    let recording = args.recording.request();
-    let (models, cut) = choice::candidates(&args.choice_request(&recording))?;
+    let (models, cut) = choice::candidates(&args.choice_request())?;
     let tries: Vec<EstimateArgs> = models
         .into_iter()
         .map(|m| args.for_candidate(m, cut.as_ref()))

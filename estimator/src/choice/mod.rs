@@ -17,26 +17,26 @@ use physvid_shared::dataset::{read_meta, META_FILE};
 use physvid_shared::meta::DatasetMeta;
 use physvid_shared::video::is_recording;
 use rank::Candidate;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Laws that differ only in what their answer is calibrated by: the frames cannot tell them
 /// apart, the calibration decides (the first when `--incline-deg` or meta.json gives an
 /// incline, the second otherwise).
 const SAME_LAW: &[(&str, &str)] = &[("sliding-block", "free-fall")];
 
-/// What a model choice reads of the command line (resolved there: `cli::EstimateArgs::
-/// choice_request`).
-#[derive(Debug, Clone, Copy)]
-pub struct ChoiceRequest<'a> {
+/// What a model choice reads of the command line (resolved there:
+/// `cli::EstimateArgs::choice_request`).
+#[derive(Debug, Clone)]
+pub struct ChoiceRequest {
     /// The recording, data set or array.
-    pub input: &'a Path,
-    pub recording: &'a RecordingRequest,
+    pub input: PathBuf,
+    pub recording: RecordingRequest,
     /// References give bodies' positions (the spring's calibration).
     pub positions: bool,
     /// An incline's angle is given (`--incline-deg`).
     pub incline: bool,
     /// The model files named as candidates (`--candidate`).
-    pub files: &'a [ModelRef],
+    pub files: Vec<ModelRef>,
 }
 
 /// Whether a run without `--model` chooses its model: a recording or a bare `.npy` does, a
@@ -51,8 +51,8 @@ pub fn chosen_without_model(input: &Path) -> bool {
 pub fn candidates(
     req: &ChoiceRequest,
 ) -> Result<(Vec<ModelRef>, Option<CommonCut>), EstimateError> {
-    physvid_shared::input::check_kind(req.input).map_err(input_error)?;
-    let meta = meta_of(req.input);
+    physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
+    let meta = meta_of(&req.input);
     let calibration = meta.as_ref().map(|m| &m.calibration);
     let positions = req.positions || calibration.is_some_and(|c| !c.reference_positions.is_empty());
     let incline = req.incline || calibration.is_some_and(|c| c.incline_deg.is_some());
@@ -72,7 +72,7 @@ pub fn candidates(
             "--model auto: no candidate reads bodies' positions but the built-in spring; pass --model",
         ));
     }
-    Ok((models, cut::common_cut(req.input, req.recording)?))
+    Ok((models, cut::common_cut(&req.input, &req.recording)?))
 }
 
 /// Whether `input` is a data set directory (whose meta.json names its model), not a

@@ -27,20 +27,14 @@ impl EstimateArgs {
         Ok(wanted)
     }
 
-    /// What the model choice reads of these flags; `recording` is [`RecordingArgs::request`]'s
-    /// (the caller keeps it).
-    ///
-    /// [`RecordingArgs::request`]: super::RecordingArgs::request
-    pub fn choice_request<'a>(
-        &'a self,
-        recording: &'a crate::data::RecordingRequest,
-    ) -> ChoiceRequest<'a> {
+    /// What the model choice reads of these flags.
+    pub fn choice_request(&self) -> ChoiceRequest {
         ChoiceRequest {
-            input: self.input(),
-            recording,
+            input: self.input().to_path_buf(),
+            recording: self.recording.request(),
             positions: !self.model.reference_positions().is_empty(),
             incline: self.model.incline_deg.is_some(),
-            files: &self.model.candidate,
+            files: self.model.candidate.clone(),
         }
     }
 

@@ -80,12 +80,7 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         .map(|k| (k, [p[2 * k], p[2 * k + 1]]))
         .collect();
     let (path, axis) = project(&seen)?;
-    let mut d = along(&path, 2.0 * half)?;
-    d.line = Line {
-        axis,
-        bend: d.bend.map_or(0.0, |b| b.per_pixel * half),
-    };
-    Some(d)
+    along(&path, axis, 2.0 * half)
 }
 
 /// A path: (frame, pixels along it).
@@ -127,9 +122,9 @@ fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
     ))
 }
 
-/// The descent in `path` (frame, position along the path in pixels, time order) on a frame
-/// whose larger side is `side` pixels.
-fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
+/// The descent in `path` (frame, position along the path in pixels, time order; the path's
+/// direction `axis`) on a frame whose larger side is `side` pixels.
+fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     let lo = path.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
     let hi = path.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
     if hi - lo < MIN_TRAVEL * side {
@@ -197,8 +192,9 @@ fn along(path: &[(usize, f64)], side: f64) -> Option<Descent> {
         travel: (hi - lo) / side,
         bend,
         line: Line {
-            axis: [0.0, 1.0],
-            bend: 0.0,
+            axis,
+            // κ in the centroid's units: half the larger side per unit.
+            bend: bend.map_or(0.0, |b| b.per_pixel * side / 2.0),
         },
     })
 }
@@ -243,7 +239,7 @@ mod tests {
             .collect();
         let top = path.last().unwrap().1;
         path.extend((0..10).map(|k| (70 + k, top - 30.0 * (k + 1) as f64)));
-        let d = along(&path, 2000.0).expect("a descent");
+        let d = along(&path, [0.0, 1.0], 2000.0).expect("a descent");
         assert_eq!(d.last, 69);
         assert!((d.release - release).abs() < 0.3, "{}", d.release);
         assert!(d.first >= 25 && d.first <= 30, "{}", d.first);
@@ -252,7 +248,7 @@ mod tests {
     #[test]
     fn a_small_motion_is_no_descent() {
         let path: Vec<(usize, f64)> = (0..50).map(|k| (k, 0.1 * k as f64)).collect();
-        assert!(along(&path, 200.0).is_none());
+        assert!(along(&path, [0.0, 1.0], 200.0).is_none());
     }
 
     #[test]

@@ -66,7 +66,7 @@ pub fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
     let y = Vec::<f64>::try_from(&y.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
     let neighbours = (m / 200).clamp(3, 20);
     let order = sorted(z);
-    let in_time: Vec<usize> = (0..m).collect();
+    let in_time: Option<Vec<usize>> = timed.then(|| (0..m).collect());
     let (mut total, mut unexplained, mut folded, mut by_time, mut off_line) =
         (0.0, 0.0, 0.0, 0.0, 0.0);
     for c in 0..k {
@@ -77,8 +77,8 @@ pub fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
         total += vy;
         unexplained += ve;
         folded += f;
-        if timed {
-            by_time += folding(&in_time, &yc, neighbours).1;
+        if let Some(in_time) = &in_time {
+            by_time += folding(in_time, &yc, neighbours).1;
         }
     }
     (total > 0.0).then(|| Fold {
