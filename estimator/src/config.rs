@@ -10,7 +10,7 @@ use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
-use crate::physics::model::DT_RANGE;
+use crate::physics::info::DT_RANGE;
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use physvid_shared::cli::num;
 use serde::Serialize;
@@ -68,7 +68,7 @@ impl RunConfig {
                 model.name()
             )));
         }
-        if m.integrator == Integrator::Euler && !model.info().has_euler {
+        if m.integrator == Integrator::Euler && !model.info().training.has_euler {
             return Err(input_error(format!(
                 "--integrator euler: {} has no Euler step (it is integrated by RK4); use --integrator exact",
                 model.name()
@@ -86,7 +86,7 @@ impl RunConfig {
         check_dt(model, data)?;
         check_calibration_flags(model, m)?;
         let [n, frames, _, height, width] = data.shape;
-        let (min_side, why) = model.info().min_frame;
+        let (min_side, why) = model.info().footage.min_frame;
         if height.min(width) < min_side {
             return Err(input_error(format!(
                 "{}: frames of {width}×{height} px are too small for {} ({why}); need at least {min_side}×{min_side}",
@@ -133,7 +133,7 @@ impl RunConfig {
             )));
         }
         calibration
-            .check_values(model.info().nonnegative_reference)
+            .check_values(model.info().calibration.nonnegative_reference)
             .map_err(input_error)?;
         if let Some((c, f, p)) = calibration.positions.iter().find(|(_, _, p)| {
             p.chunks(2).any(|xy| {
@@ -219,7 +219,7 @@ fn default_encoder(
     // Built-in models only: a model file's pendulum read this way lost its g/L on the shared
     // pendulum (+14 %, the built-in +0.5 %), not yet understood.
     let object = data.recording.as_ref().and_then(|(r, _)| r.object);
-    let built_in = model.info().file.is_none();
+    let built_in = model.info().law.file.is_none();
     if let (Some(o), 1, EncoderKind::Small, true) =
         (object, model.latent_dims(), model.encoder(), built_in)
     {
@@ -233,7 +233,10 @@ fn default_encoder(
             )),
         );
     }
-    (model.encoder(), model.info().encoder_note.map(String::from))
+    (
+        model.encoder(),
+        model.info().training.encoder_note.map(String::from),
+    )
 }
 
 /// Starting values for `model`, in its parameter order: its defaults, overridden by `--init`;
@@ -270,13 +273,13 @@ fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), Estimat
     let Some(c) = m
         .calibration_given()
         .into_iter()
-        .find(|c| !model.info().calibration.contains(c))
+        .find(|c| !model.info().calibration.inputs.contains(c))
     else {
         return Ok(());
     };
     let readers: Vec<&str> = MODELS
         .iter()
-        .filter(|r| r.info().calibration.contains(&c))
+        .filter(|r| r.info().calibration.inputs.contains(&c))
         .map(|r| r.name())
         .collect();
     Err(input_error(format!(
@@ -305,7 +308,7 @@ fn check_dt(model: ModelRef, data: &ClipData) -> Result<(), EstimateError> {
             num(dt)
         )));
     }
-    let (max, why) = model.info().max_dt;
+    let (max, why) = model.info().footage.max_dt;
     if dt > max {
         return Err(input_error(format!(
             "{source} {} s: {} takes dt ≤ {max} s ({why})",

@@ -16,6 +16,7 @@ pub mod meta;
 pub mod model_file;
 pub mod npy;
 pub mod recurrence;
+pub mod rk4;
 pub mod stats;
 pub mod systems;
 pub mod video;

@@ -51,7 +51,7 @@ impl EstimateArgs {
         m.model = Some(ModelSpec::Given(model));
         m.candidate.clear();
         for c in CalibrationInput::ALL {
-            if !model.info().calibration.contains(&c) {
+            if !model.info().calibration.inputs.contains(&c) {
                 m.drop_calibration(c);
             }
         }

@@ -106,7 +106,7 @@ impl TypedValueParser for ModelParser {
 /// `--candidate`: a model file.
 fn model_file_parser(text: &str) -> Result<ModelRef, String> {
     let m = ModelRef::parse(text)?;
-    match m.info().file {
+    match m.info().law.file {
         Some(_) => Ok(m),
         None => Err(format!(
             "'{text}' is a built-in model, which the choice tries already; --candidate takes a model file (FILE.toml)"

@@ -36,13 +36,15 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
             ds.shape
         )));
     }
-    let model_file = req.model.filter(|m| m.info().file.is_some() || req.trying);
+    let model_file = req
+        .model
+        .filter(|m| m.info().law.file.is_some() || req.trying);
     let (dt, model) = match (&ds.meta, model_file) {
         (Some(meta), Some(model)) => {
             // A model file, or a candidate of a choice, may be tried on any data: meta.json's
             // model is not checked against it (its ground truth is compared by name where the
             // names agree).
-            check_dt(req, meta.dt)?;
+            dt_flag_agrees(req, meta.dt)?;
             (meta.dt, model)
         }
         (Some(meta), None) if meta.model.file.is_some() && req.model.is_none() => {
@@ -51,7 +53,7 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
             let origin = ds.frames_path.with_file_name("meta.json (model.file)");
             let model = crate::physics::file::FileModel::from_text(&origin, text)
                 .map_err(|e| input_error(e.to_string()))?;
-            check_dt(req, meta.dt)?;
+            dt_flag_agrees(req, meta.dt)?;
             (meta.dt, model)
         }
         (Some(meta), None) => {
@@ -63,7 +65,7 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
                     ModelRef::names()
                 ))
             })?;
-            check_dt(req, meta.dt)?;
+            dt_flag_agrees(req, meta.dt)?;
             if let Some(m) = req.model {
                 if m != meta_model {
                     return Err(input_error(format!(
@@ -106,7 +108,7 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
 }
 
 /// `--dt`, when given, must be meta.json's.
-fn check_dt(req: &LoadRequest, meta_dt: f64) -> Result<(), EstimateError> {
+fn dt_flag_agrees(req: &LoadRequest, meta_dt: f64) -> Result<(), EstimateError> {
     match req.dt {
         Some(dt) if (dt - meta_dt).abs() > 1e-12 * meta_dt.max(1.0) => Err(input_error(format!(
             "--dt {dt} contradicts meta.json's dt {meta_dt}; drop --dt to use the metadata"
@@ -122,7 +124,7 @@ pub const MAX_TRUTH: f64 = 1e15;
 /// the model reports, each finite and within ±[`MAX_TRUTH`], and > 0 where no such system has
 /// it otherwise.
 fn check_truth(truth: &BTreeMap<String, f64>, model: ModelRef) -> Result<(), EstimateError> {
-    let keys = model.info().truth;
+    let keys = model.info().law.truth;
     let bad = |what: String| input_error(format!("meta.json's ground truth {what}"));
     if !truth.is_empty() && !keys.iter().any(|k| truth.contains_key(k.name)) {
         let names: Vec<&str> = keys.iter().map(|k| k.name).collect();

@@ -3,7 +3,8 @@
 //! differ in what their SI answers are.
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
-use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{Calibrates, ModelInfo, ParamSpec, TruthKey};
+use super::model::{Derived, Implausible, Model};
 use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
 use physvid_shared::cli::approx;
 use physvid_shared::systems;
@@ -31,16 +32,16 @@ pub struct ConstantAcceleration {
 /// The block sliding down an incline of Delfys75.
 pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        calibration: &[
+        calibration: Calibrates::by(&[
             CalibrationInput::Reference,
             CalibrationInput::InclineDeg,
             CalibrationInput::G,
-        ],
-        truth: &[TruthKey::signed("acceleration"), TruthKey::signed("mu")],
+        ]),
         ..ModelInfo::of(
             &systems::SLIDING_BLOCK,
             "s'' = g·(sin α − μ·cos α), constant (acceleration_latent)",
             &PARAMETERS,
+            &[TruthKey::signed("acceleration"), TruthKey::signed("mu")],
         )
     },
     incline: true,
@@ -49,12 +50,12 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
 /// The ball falling away from the camera of Delfys75.
 pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        calibration: &[CalibrationInput::Reference],
-        truth: &[TruthKey::positive("g")],
+        calibration: Calibrates::by(&[CalibrationInput::Reference]),
         ..ModelInfo::of(
             &systems::FREE_FALL,
             "h'' = g (acceleration_latent)",
             &PARAMETERS,
+            &[TruthKey::positive("g")],
         )
     },
     incline: false,

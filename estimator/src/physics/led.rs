@@ -1,7 +1,8 @@
 //! The LED I' = −γ·I (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{Footage, ModelInfo, ParamSpec, Training, TruthKey};
+use super::model::{Derived, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use physvid_shared::systems;
@@ -13,18 +14,27 @@ pub struct Led;
 
 /// Brightness is affine in the pixels, and the law is invariant under I → I^p (which decays at
 /// p·γ), which an MLP could learn: a linear encoder pins the latent.
-const INFO: ModelInfo = ModelInfo {
-    encoder: EncoderKind::Linear,
-    truth: &[TruthKey::positive("gamma")],
-    affine_picture: Some("an LED's brightness scales the light of every pixel"),
-    ..ModelInfo::of(
+const INFO: ModelInfo = {
+    let info = ModelInfo::of(
         &systems::LED,
         "I' = −γ·I (gamma, offset)",
         &[
             ParamSpec::new("gamma", 1.0, true),
             ParamSpec::offset("offset", -2.0),
         ],
-    )
+        &[TruthKey::positive("gamma")],
+    );
+    ModelInfo {
+        training: Training {
+            encoder: EncoderKind::Linear,
+            ..Training::DEFAULT
+        },
+        footage: Footage {
+            affine_picture: Some("an LED's brightness scales the light of every pixel"),
+            ..info.footage
+        },
+        ..info
+    }
 };
 
 impl Model for Led {

@@ -7,6 +7,7 @@ pub mod block;
 pub mod bounds;
 pub mod constant_acceleration;
 pub mod file;
+pub mod info;
 pub mod led;
 pub mod model;
 pub mod ode;
@@ -18,7 +19,8 @@ pub mod torricelli;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use bounds::Bounds;
-pub use model::{Derived, Implausible, Model, ModelInfo, ModelRef, ParamSpec, Settles};
+pub use info::{ModelInfo, ParamSpec, Settles};
+pub use model::{Derived, Implausible, Model, ModelRef};
 
 /// Every model, in the order `--help` lists them.
 pub static MODELS: &[&dyn Model] = &[
@@ -98,7 +100,7 @@ mod tests {
                 "{}",
                 sys.model
             );
-            let keys: Vec<&str> = m.info().truth.iter().map(|t| t.name).collect();
+            let keys: Vec<&str> = m.info().law.truth.iter().map(|t| t.name).collect();
             assert_eq!(keys, sys.truth, "{}", sys.model);
         }
         assert_eq!(physvid_shared::systems::SYSTEMS.len(), MODELS.len());

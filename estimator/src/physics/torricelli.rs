@@ -1,7 +1,8 @@
 //! Torricelli's tank h' = −k·√h (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{Calibrates, ModelInfo, ParamSpec, Training, TruthKey};
+use super::model::{Derived, Model};
 use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use physvid_shared::systems;
@@ -14,10 +15,14 @@ pub struct Torricelli;
 /// The water's area is affine in the pixels, and any √u = p + q·√h drains by the same law,
 /// which an MLP could learn: a linear encoder pins the latent.
 const INFO: ModelInfo = ModelInfo {
-    encoder: EncoderKind::Linear,
-    calibration: &[CalibrationInput::Reference],
-    nonnegative_reference: Some("a water level (m above the tank's bottom)"),
-    truth: &[TruthKey::positive("k")],
+    training: Training {
+        encoder: EncoderKind::Linear,
+        ..Training::DEFAULT
+    },
+    calibration: Calibrates {
+        nonnegative_reference: Some("a water level (m above the tank's bottom)"),
+        ..Calibrates::by(&[CalibrationInput::Reference])
+    },
     ..ModelInfo::of(
         &systems::TORRICELLI,
         "h' = −k·√h (k_latent, base)",
@@ -25,6 +30,7 @@ const INFO: ModelInfo = ModelInfo {
             ParamSpec::new("k_latent", 0.1, true),
             ParamSpec::offset("base", -3.0),
         ],
+        &[TruthKey::positive("k")],
     )
 };
 

@@ -5,8 +5,11 @@ use super::Report;
 impl Report {
     /// The closing table: parameter, estimate, ground truth, relative error.
     pub fn table(&self) -> String {
+        let noise = self.outcome.training_noise.map_or(String::new(), |s| {
+            format!(", fresh noise σ {s:.2} on the training frames")
+        });
         let mut s = format!(
-            "{} on {} ({}, {} integrator, {} epochs, best {}, {:.1} s on {})\n",
+            "{} on {} ({}, {} integrator, {} epochs, best {}{noise}, {:.1} s on {})\n",
             self.model,
             self.input,
             self.config.loss.name(),

@@ -1,6 +1,7 @@
 //! Training: `fit` probes each start for a few epochs with a `Trainer`, keeps the one with the
 //! lowest validation error and trains it to the end; `outcome` holds what comes out.
 
+mod jitter;
 pub mod outcome;
 mod readings;
 mod refine;

@@ -59,6 +59,10 @@ pub struct TrainOutcome {
     pub epochs_run: usize,
     pub stop: StopReason,
     pub latent_std: f64,
+    /// The standard deviation of the fresh noise added to every training batch (in the
+    /// standardised frames' units), where a dense encoder could memorise the frames' own
+    /// (`train::jitter`); `None` where none was added.
+    pub training_noise: Option<f64>,
     pub history: Vec<EpochRecord>,
     /// Encoded latents and their physics rollout for up to four validation clips, [clip][frame].
     #[serde(skip)]

@@ -4,7 +4,7 @@
 //! the kept checkpoint.
 
 use super::outcome::{EpochRecord, StopReason, TrainOutcome};
-use super::{readings, refine};
+use super::{jitter, readings, refine};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
@@ -43,6 +43,9 @@ pub struct Trainer<'a> {
     horizon: i64,
     /// The first epoch at the current horizon.
     stage_start: usize,
+    /// Fresh noise added to every training batch (`jitter`), where the encoder could
+    /// memorise the frames' own.
+    jitter: Option<f64>,
 }
 
 /// A curriculum stage whose validation error falls below this has fitted its horizon.
@@ -65,6 +68,7 @@ impl<'a> Trainer<'a> {
             network.encoder.input(&data.train),
             network.encoder.input(&data.val),
         );
+        let jitter = jitter::level(cfg, data, &inputs.0);
         let (enc_vs, phys_vs) = network.stores();
         let opt_enc = nn::Adam::default().build(enc_vs, cfg.lr)?;
         let opt_phys = nn::Adam::default().build(phys_vs, cfg.lr_phys)?;
@@ -86,6 +90,7 @@ impl<'a> Trainer<'a> {
             start,
             horizon: horizon.map_or(full, |h| (h as i64).clamp(3, full)),
             stage_start: 1,
+            jitter,
         })
     }
 
@@ -128,6 +133,7 @@ impl<'a> Trainer<'a> {
             let len = batch.min(n_train - s);
             let idx = perm.narrow(0, s, len);
             let x = first(self.inputs.0.index_select(0, &idx));
+            let x = jitter::jittered(x, self.jitter);
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
             let ids = &order[s as usize..(s + len) as usize];
             let clips = Clips {
@@ -240,7 +246,7 @@ impl<'a> Trainer<'a> {
         if let Some(window) = self.converged() {
             self.stop = Some(StopReason::Converged {
                 window,
-                spread: self.cfg.model.info().converged_spread,
+                spread: self.cfg.model.info().training.converged_spread,
             });
         } else if epoch >= cfg.epochs {
             self.stop = Some(StopReason::MaxEpochs);
@@ -274,7 +280,7 @@ impl<'a> Trainer<'a> {
                     Settles::LatentOffset => mean.abs().max(1.0),
                     _ => mean.abs(),
                 };
-                hi - lo <= self.cfg.model.info().converged_spread * scale
+                hi - lo <= self.cfg.model.info().training.converged_spread * scale
             })
             .then_some(w)
     }
@@ -329,6 +335,7 @@ impl<'a> Trainer<'a> {
             epochs_run: self.history.len(),
             stop: self.stop.unwrap_or(StopReason::MaxEpochs),
             latent_std,
+            training_noise: self.jitter,
             history: self.history,
             example_latents: examples,
             example_rollouts: rollouts,

@@ -21,7 +21,10 @@ impl Check for Premise {
         "premise"
     }
     fn judge(&self, r: &Report) -> Vec<Reason> {
-        let (Some(why), Some(f)) = (r.config.model.info().affine_picture, &r.evidence.fold) else {
+        let (Some(why), Some(f)) = (
+            r.config.model.info().footage.affine_picture,
+            &r.evidence.fold,
+        ) else {
             return Vec::new();
         };
         let ratio = f.affine_share / f.explained_share.max(1e-12);

@@ -67,6 +67,7 @@ impl Check for Determined {
                 .or_else(|| {
                     model
                         .info()
+                        .law
                         .truth
                         .iter()
                         .find(|t| t.name == name)

@@ -6,7 +6,7 @@ use super::{params, Params, MIN_PHASE_SPAN};
 use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
 use physvid_shared::cli::{approx, num};
-use physvid_shared::systems;
+use physvid_shared::{rk4, systems};
 use physvid_shared::{Calibration, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -145,22 +145,14 @@ pub fn pendulum_trajectory(
     frames: usize,
     dt: f64,
 ) -> Vec<f64> {
-    let f = |th: f64, om: f64| (om, -w2 * th.sin() - damping * om);
-    let (mut th, mut om) = (theta0, omega0);
-    let h = dt / 64.0;
-    let mut out = Vec::with_capacity(frames);
-    for _ in 0..frames {
-        out.push(th);
-        for _ in 0..64 {
-            let k1 = f(th, om);
-            let k2 = f(th + h / 2.0 * k1.0, om + h / 2.0 * k1.1);
-            let k3 = f(th + h / 2.0 * k2.0, om + h / 2.0 * k2.1);
-            let k4 = f(th + h * k3.0, om + h * k3.1);
-            th += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            om += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-        }
-    }
-    out
+    let law = |_t: f64, x: &[f64], d: &mut [f64]| {
+        d[0] = x[1];
+        d[1] = -w2 * x[0].sin() - damping * x[1];
+    };
+    rk4::trajectory(law, &[theta0, omega0], 0.0, dt, frames, 64)
+        .chunks(2)
+        .map(|x| x[0])
+        .collect()
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use super::{params, Params, Scene};
 use crate::error::{invalid, ConfigError};
 use crate::render::Canvas;
 use crate::sampling::sample_rng;
-use physvid_shared::systems;
+use physvid_shared::{rk4, systems};
 use physvid_shared::{Calibration, PositionPoint, SampleTruth};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -29,34 +29,19 @@ const BORDER: f64 = 2.0;
 /// Draws of a sequence before giving up (validation checks that some succeed).
 const MAX_DRAWS: usize = 10_000;
 
-/// The state (x1, y1, x2, y2, vx1, vy1, vx2, vy2) a time `h` later by one RK4 step.
-fn rk4(s: [f64; 8], k: f64, l: f64, h: f64) -> [f64; 8] {
-    let f = |s: [f64; 8]| {
+/// Both bodies' positions at `frames` frames `dt` apart from state `s` (x1, y1, x2, y2, vx1,
+/// vy1, vx2, vy2) (x1, y1, x2, y2 each).
+pub fn spring_trajectory(s: [f64; 8], k: f64, l: f64, frames: usize, dt: f64) -> Vec<f64> {
+    let law = |_t: f64, s: &[f64], d: &mut [f64]| {
         let (dx, dy) = (s[2] - s[0], s[3] - s[1]);
         let r = (dx * dx + dy * dy).sqrt().max(1e-9);
         let (fx, fy) = (k * (r - l) * dx / r, k * (r - l) * dy / r);
-        [s[4], s[5], s[6], s[7], fx, fy, -fx, -fy]
+        d.copy_from_slice(&[s[4], s[5], s[6], s[7], fx, fy, -fx, -fy]);
     };
-    let add =
-        |a: [f64; 8], b: [f64; 8], c: f64| std::array::from_fn::<f64, 8, _>(|i| a[i] + c * b[i]);
-    let k1 = f(s);
-    let k2 = f(add(s, k1, h / 2.0));
-    let k3 = f(add(s, k2, h / 2.0));
-    let k4 = f(add(s, k3, h));
-    std::array::from_fn(|i| s[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
-}
-
-/// Both bodies' positions at `frames` frames `dt` apart from state `s` (x1, y1, x2, y2 each).
-pub fn spring_trajectory(s: [f64; 8], k: f64, l: f64, frames: usize, dt: f64) -> Vec<f64> {
-    let mut s = s;
-    let mut out = Vec::with_capacity(frames * 4);
-    for _ in 0..frames {
-        out.extend_from_slice(&s[..4]);
-        for _ in 0..SUBSTEPS {
-            s = rk4(s, k, l, dt / SUBSTEPS as f64);
-        }
-    }
-    out
+    rk4::trajectory(law, &s, 0.0, dt, frames, SUBSTEPS)
+        .chunks(8)
+        .flat_map(|s| s[..4].to_vec())
+        .collect()
 }
 
 /// One draw of PAIG's initial state: centre of mass uniform in [r + l/2, size − (r + l/2)] per

@@ -107,40 +107,14 @@ impl CompiledSystem {
         frames: usize,
         substeps: usize,
     ) -> Vec<f64> {
-        let n = self.n;
-        let h = dt / substeps.max(1) as f64;
-        let mut x = x0.to_vec();
-        let mut out = Vec::with_capacity(frames * n);
-        let (mut k1, mut k2, mut k3, mut k4) =
-            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut tmp = vec![0.0; n];
-        let mut t = t0;
-        for frame in 0..frames {
-            out.extend_from_slice(&x);
-            if frame + 1 == frames {
-                break;
-            }
-            for _ in 0..substeps.max(1) {
-                self.eval(&x, p, t, &mut k1, None);
-                for i in 0..n {
-                    tmp[i] = x[i] + 0.5 * h * k1[i];
-                }
-                self.eval(&tmp, p, t + 0.5 * h, &mut k2, None);
-                for i in 0..n {
-                    tmp[i] = x[i] + 0.5 * h * k2[i];
-                }
-                self.eval(&tmp, p, t + 0.5 * h, &mut k3, None);
-                for i in 0..n {
-                    tmp[i] = x[i] + h * k3[i];
-                }
-                self.eval(&tmp, p, t + h, &mut k4, None);
-                for i in 0..n {
-                    x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-                }
-                t += h;
-            }
-        }
-        out
+        crate::rk4::trajectory(
+            |t, x, out| self.eval(x, p, t, out, None),
+            x0,
+            t0,
+            dt,
+            frames,
+            substeps,
+        )
     }
 }
 

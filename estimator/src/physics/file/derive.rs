@@ -71,7 +71,7 @@ impl FileModel {
                     &p.name,
                     self.units[j],
                     params[j],
-                    Some(self.info.truth[j].name),
+                    Some(self.info.law.truth[j].name),
                 ));
             }
         }
@@ -90,11 +90,11 @@ impl FileModel {
                     &d.name,
                     self.units[m + k],
                     v,
-                    Some(self.info.truth[m + k].name),
+                    Some(self.info.law.truth[m + k].name),
                 ));
             }
         }
-        for (spec, v) in self.info.parameters[m..].iter().zip(&params[m..]) {
+        for (spec, v) in self.info.law.parameters[m..].iter().zip(&params[m..]) {
             values.push(DerivedValue::latent(spec.name, *v));
         }
         if !in_latent.is_empty() {

@@ -13,7 +13,8 @@ mod kl;
 mod system;
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, Settles, TruthKey};
+use super::info::{Calibrates, Law, ModelInfo, ParamSpec, Settles, Training, TruthKey};
+use super::model::{Derived, Model};
 use super::{Bounds, ModelRef};
 use crate::calibration::{Calibration, CalibrationInput, Readings};
 use crate::encoder::EncoderKind;
@@ -130,21 +131,30 @@ impl FileModel {
         } else {
             file.description.clone()
         };
+        let info = ModelInfo::new(
+            leak(file.name.clone()),
+            leak(help),
+            Box::leak(specs.into_boxed_slice()),
+            (20, 0.1),
+        );
         let info = ModelInfo {
-            latent_dims: d,
-            encoder,
-            encoder_note,
-            calibration: &[CalibrationInput::Reference],
-            calibrates_in_training: d == 1,
-            has_euler: false,
-            truth: Box::leak(truth.into_boxed_slice()),
-            file: Some(leak(file.path.display().to_string())),
-            ..ModelInfo::new(
-                leak(file.name.clone()),
-                leak(help),
-                Box::leak(specs.into_boxed_slice()),
-                (20, 0.1),
-            )
+            law: Law {
+                latent_dims: d,
+                truth: Box::leak(truth.into_boxed_slice()),
+                file: Some(leak(file.path.display().to_string())),
+                ..info.law
+            },
+            calibration: Calibrates {
+                in_training: d == 1,
+                ..Calibrates::by(&[CalibrationInput::Reference])
+            },
+            training: Training {
+                encoder,
+                encoder_note,
+                has_euler: false,
+                ..Training::DEFAULT
+            },
+            ..info
         };
         let units = file
             .parameters
@@ -164,7 +174,7 @@ impl FileModel {
     }
 
     fn calibrated(&self, cal: &Calibration) -> bool {
-        self.info.calibrates_in_training && cal.reference.len() >= 2
+        self.info.calibration.in_training && cal.reference.len() >= 2
     }
 }
 
@@ -182,7 +192,7 @@ impl Model for FileModel {
             path,
             &self.file,
             &self.system,
-            self.info.parameters,
+            self.info.law.parameters,
             init,
             opts,
             learn,
@@ -224,7 +234,7 @@ impl Model for FileModel {
             })
             .filter(|p| {
                 p.iter()
-                    .zip(self.info.parameters)
+                    .zip(self.info.law.parameters)
                     .all(|(v, s)| s.bounds.contains(*v))
             })
             .map(|mut p| {

@@ -11,7 +11,8 @@ pub(crate) mod two_step_solve;
 pub use block::{DampedOscillatorBlock, FORECAST_FIT_FRAMES};
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
-use super::model::{Derived, Implausible, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{ModelInfo, ParamSpec, Training, TruthKey};
+use super::model::{Derived, Implausible, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
@@ -25,13 +26,16 @@ use tch::Tensor;
 pub struct DampedOscillator;
 
 const INFO: ModelInfo = ModelInfo {
-    encoder: EncoderKind::Small,
-    patience: 20,
-    // The final solve gives (γ0, γ1) exactly on the kept encoder: the band only shows that the
-    // encoder settled, not Adam's ±1 % jitter of γ1 (clean position: 47 epochs instead of 83).
-    converged_spread: 1e-2,
-    truth: &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
-    supports_residual: true,
+    training: Training {
+        encoder: EncoderKind::Small,
+        patience: 20,
+        // The final solve gives (γ0, γ1) exactly on the kept encoder: the band only shows that
+        // the encoder settled, not Adam's ±1 % jitter of γ1 (clean position: 47 epochs instead
+        // of 83).
+        converged_spread: 1e-2,
+        supports_residual: true,
+        ..Training::DEFAULT
+    },
     ..ModelInfo::of(
         &systems::DAMPED_OSCILLATOR,
         "z'' + γ1·z' + γ0·z = 0 (gamma0, gamma1)",
@@ -39,6 +43,7 @@ const INFO: ModelInfo = ModelInfo {
             ParamSpec::new("gamma0", 1.0, true),
             ParamSpec::new("gamma1", 0.1, false),
         ],
+        &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
     )
 };
 

@@ -68,7 +68,7 @@ impl PendulumBlock {
         let shooting = ShootingBlock::new(
             path,
             Box::new(PendulumSystem),
-            &super::INFO.parameters[..2],
+            &super::INFO.law.parameters[..2],
             &init[..2],
             map,
             vec![0],

@@ -12,7 +12,8 @@ mod block;
 pub use block::{PendulumBlock, PendulumSystem};
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{Calibrates, Footage, ModelInfo, ParamSpec, TruthKey};
+use super::model::{Derived, Model};
 use crate::calibration::{Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
 use crate::spectral::spectral_start;
@@ -24,24 +25,32 @@ use tch::Tensor;
 pub struct Pendulum;
 
 /// The calibrated answers need the latent affine to a few parts in 10⁴: patience 30.
-pub(super) const INFO: ModelInfo = ModelInfo {
-    calibrates_in_training: true,
-    calibration: &[CalibrationInput::Reference, CalibrationInput::G],
-    truth: &[TruthKey::positive("length"), TruthKey::signed("damping")],
-    max_dt: (
-        10.0,
-        "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
-    ),
-    ..ModelInfo::of(
-            &systems::PENDULUM,
-            "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",
-            &[
+pub(super) const INFO: ModelInfo = {
+    let info = ModelInfo::of(
+        &systems::PENDULUM,
+        "θ'' = −(g/L)·sin θ − ζ·θ', θ = (z − c)/s (g_over_l, damping, angle_scale, angle_offset)",
+        &[
             ParamSpec::new("g_over_l", 10.0, true),
             ParamSpec::new("damping", 0.1, true),
             ParamSpec::map("angle_scale", 10.0, true),
             ParamSpec::map("angle_offset", 0.0, false),
         ],
-        )
+        &[TruthKey::positive("length"), TruthKey::signed("damping")],
+    );
+    ModelInfo {
+        footage: Footage {
+            max_dt: (
+                10.0,
+                "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
+            ),
+            ..info.footage
+        },
+        calibration: Calibrates {
+            in_training: true,
+            ..Calibrates::by(&[CalibrationInput::Reference, CalibrationInput::G])
+        },
+        ..info
+    }
 };
 
 impl Model for Pendulum {

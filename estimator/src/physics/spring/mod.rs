@@ -18,7 +18,8 @@
 mod system;
 
 use super::block::{BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::model::{Derived, Model, ModelInfo, ParamSpec, TruthKey};
+use super::info::{Calibrates, Footage, Law, ModelInfo, ParamSpec, Training, TruthKey};
+use super::model::{Derived, Model};
 use super::ode::{ObservationMap, ShootingBlock};
 use crate::calibration::{
     position_scale, Calibration, CalibrationInput, DerivedValue, Readings, POSITION_FIT_R2,
@@ -33,21 +34,32 @@ use tch::Tensor;
 /// The two-body spring.
 pub struct Spring;
 
-const INFO: ModelInfo = ModelInfo {
-    latent_dims: 4,
-    calibration: &[CalibrationInput::Reference],
-    truth: &[TruthKey::positive("k"), TruthKey::positive("rest_length")],
-    has_euler: false,
-    encoder: EncoderKind::Keypoints,
-    min_frame: (44, "two 22-px digits side by side"),
-    ..ModelInfo::of(
+const INFO: ModelInfo = {
+    let info = ModelInfo::of(
         &systems::SPRING,
         "two bodies, x_i'' = ±k·(|d| − l)·d̂, latent (x1, y1, x2, y2) (k, rest_length)",
         &[
             ParamSpec::new("k", 1.0, true),
             ParamSpec::new("rest_length", 1.0, true),
         ],
-    )
+        &[TruthKey::positive("k"), TruthKey::positive("rest_length")],
+    );
+    ModelInfo {
+        law: Law {
+            latent_dims: 4,
+            ..info.law
+        },
+        footage: Footage {
+            min_frame: (44, "two 22-px digits side by side"),
+            ..info.footage
+        },
+        calibration: Calibrates::by(&[CalibrationInput::Reference]),
+        training: Training {
+            encoder: EncoderKind::Keypoints,
+            has_euler: false,
+            ..Training::DEFAULT
+        },
+    }
 };
 
 /// Levenberg–Marquardt iterations of the final refinement of k and l.
@@ -113,7 +125,7 @@ impl Model for Spring {
             shooting: ShootingBlock::new(
                 path,
                 Box::new(SpringSystem),
-                INFO.parameters,
+                INFO.law.parameters,
                 init,
                 ObservationMap::Identity,
                 vec![0, 1, 2, 3],
