@@ -40,16 +40,13 @@ impl EncoderKind {
         }
     }
 
-    /// The units of a dense encoder's first layer, each reading every pixel, for `dims`
-    /// numbers per frame (the small encoder widens with the latent); `None` for the encoders
-    /// that read pixels through a fixed or shared front end (keypoints, centroid).
-    pub fn dense_width(self, dims: i64) -> Option<i64> {
-        match self {
-            EncoderKind::Small => Some(16 * dims),
-            EncoderKind::Paper => Some(1000),
-            EncoderKind::Linear => Some(dims),
-            EncoderKind::Keypoints | EncoderKind::Centroid => None,
-        }
+    /// Whether the first layer reads every pixel with a weight of its own (small, paper,
+    /// linear), rather than through a fixed or shared front end (keypoints, centroid).
+    pub fn is_dense(self) -> bool {
+        matches!(
+            self,
+            EncoderKind::Small | EncoderKind::Paper | EncoderKind::Linear
+        )
     }
 
     /// Whether this encoder can give `dims` numbers per frame (keypoints give an (x, y) pair
@@ -84,10 +81,8 @@ impl Encoder {
         let front =
             (kind == EncoderKind::Centroid).then(|| centroid::Front::new(frame, train, line));
         let net: Box<dyn Module> = match kind {
-            EncoderKind::Small => {
-                let width = kind.dense_width(dims).expect("the small encoder is dense");
-                Box::new(mlp::mlp(path, inputs, &[width], dims))
-            }
+            // The small encoder widens with the latent.
+            EncoderKind::Small => Box::new(mlp::mlp(path, inputs, &[16 * dims], dims)),
             EncoderKind::Paper => Box::new(mlp::mlp(path, inputs, &[1000, 100], dims)),
             EncoderKind::Linear => Box::new(mlp::mlp(path, inputs, &[], dims)),
             EncoderKind::Keypoints => {

@@ -78,6 +78,9 @@ pub struct Report {
     pub stop: StopReason,
     pub latent_std: f64,
     pub latent_collapsed: bool,
+    /// The fresh noise added to the training frames (`train::jitter`), where some was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub training_noise: Option<f64>,
     /// With ground truth: how well an affine map of the true latent explains the encoded one
     /// over the validation clips (the method's premise; its sign and scale are arbitrary).
     pub latent_vs_truth: Option<LatentVsTruth>,
@@ -191,6 +194,7 @@ impl Report {
             stop: outcome.stop.clone(),
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
+            training_noise: outcome.training_noise,
             latent_vs_truth: LatentVsTruth::of(data, &outcome.val_latents),
             cross_check: outcome.timeline.as_ref().and_then(|t| {
                 let latents: Vec<f64> = t.latents.iter().map(|&v| v as f64).collect();

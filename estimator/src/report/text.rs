@@ -5,7 +5,7 @@ use super::Report;
 impl Report {
     /// The closing table: parameter, estimate, ground truth, relative error.
     pub fn table(&self) -> String {
-        let noise = self.outcome.training_noise.map_or(String::new(), |s| {
+        let noise = self.training_noise.map_or(String::new(), |s| {
             format!(", fresh noise σ {s:.2} on the training frames")
         });
         let mut s = format!(

@@ -60,7 +60,7 @@ pub struct TrainOutcome {
     pub stop: StopReason,
     pub latent_std: f64,
     /// The standard deviation of the fresh noise added to every training batch (in the
-    /// standardised frames' units), where a dense encoder could memorise the frames' own
+    /// standardised frames' units), twice the frames' own where the encoder is dense
     /// (`train::jitter`); `None` where none was added.
     pub training_noise: Option<f64>,
     pub history: Vec<EpochRecord>,

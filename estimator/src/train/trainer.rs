@@ -43,8 +43,7 @@ pub struct Trainer<'a> {
     horizon: i64,
     /// The first epoch at the current horizon.
     stage_start: usize,
-    /// Fresh noise added to every training batch (`jitter`), where the encoder could
-    /// memorise the frames' own.
+    /// The standard deviation of the fresh noise added to every training batch (`jitter`).
     jitter: Option<f64>,
 }
 

@@ -40,7 +40,7 @@ pub fn spring_trajectory(s: [f64; 8], k: f64, l: f64, frames: usize, dt: f64) ->
     };
     rk4::trajectory(law, &s, 0.0, dt, frames, SUBSTEPS)
         .chunks(8)
-        .flat_map(|s| s[..4].to_vec())
+        .flat_map(|s| s[..4].iter().copied())
         .collect()
 }
 
