@@ -5,7 +5,7 @@
 
 use crate::calibration::Calibration;
 use crate::cli::{calibration_flag, EstimateArgs, ModelArgs};
-use crate::data::ClipData;
+use crate::data::{ClipData, Settled};
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
@@ -57,9 +57,13 @@ pub struct RunConfig {
 }
 
 impl RunConfig {
-    /// Resolves `args` (validated) against the loaded clips.
-    pub fn resolve(args: &EstimateArgs, data: &ClipData) -> Result<RunConfig, EstimateError> {
-        let model = data.model;
+    /// Resolves `args` (validated) against the loaded clips and what their loading settled.
+    pub fn resolve(
+        args: &EstimateArgs,
+        data: &ClipData,
+        settled: Settled,
+    ) -> Result<RunConfig, EstimateError> {
+        let Settled { model, dt } = settled;
         let (m, t) = (&args.model, &args.training);
         let init = initial_values(model, m.init_pairs())?;
         if t.loss == LossKind::ResidualFloor && !model.supports_residual() {
@@ -83,7 +87,7 @@ impl RunConfig {
                 model.latent_dims()
             )));
         }
-        check_dt(model, data)?;
+        check_dt(model, dt, data)?;
         check_calibration_flags(model, m)?;
         let [n, frames, _, height, width] = data.shape;
         let (min_side, why) = model.info().footage.min_frame;
@@ -159,7 +163,7 @@ impl RunConfig {
         Ok(RunConfig {
             input: args.input().to_path_buf(),
             model,
-            dt: data.dt,
+            dt,
             epochs: t.epochs,
             patience: t.patience.unwrap_or(model.patience()),
             batch_size: t.batch_size,
@@ -291,9 +295,8 @@ fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), Estimat
     )))
 }
 
-/// The data's dt against [`DT_RANGE`] and the model's longest, naming where it came from.
-fn check_dt(model: ModelRef, data: &ClipData) -> Result<(), EstimateError> {
-    let dt = data.dt;
+/// The data's `dt` against [`DT_RANGE`] and the model's longest, naming where it came from.
+fn check_dt(model: ModelRef, dt: f64, data: &ClipData) -> Result<(), EstimateError> {
     let source = if data.recording.is_some() {
         "dt = --stride / fps"
     } else if data.meta.is_some() {

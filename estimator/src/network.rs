@@ -6,7 +6,7 @@ use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::encoder::Encoder;
 use crate::loss::LossKind;
-use crate::physics::{BlockOptions, Clips, PhysicsBlock};
+use crate::physics::{BlockOptions, Clips, ModelRef, PhysicsBlock};
 use tch::nn;
 use tch::{Device, Kind, Tensor};
 
@@ -21,9 +21,13 @@ struct ReferenceFrames {
 impl ReferenceFrames {
     /// The reference frames of `reference` (clip, frame, value) for a block that calibrates
     /// during training (the pendulum), when two or more distinct values are given.
-    fn for_training(data: &ClipData, reference: &[(usize, usize, f64)]) -> Option<Self> {
+    fn for_training(
+        model: ModelRef,
+        data: &ClipData,
+        reference: &[(usize, usize, f64)],
+    ) -> Option<Self> {
         let distinct = reference.iter().any(|r| r.2 != reference[0].2);
-        if !data.model.calibrates_in_training() || reference.len() < 2 || !distinct {
+        if !model.calibrates_in_training() || reference.len() < 2 || !distinct {
             return None;
         }
         let frames: Vec<Tensor> = reference
@@ -48,12 +52,15 @@ pub struct Network {
     pub encoder: Encoder,
     block: Box<dyn PhysicsBlock>,
     reference: Option<ReferenceFrames>,
+    /// The model the block is of, and its frame interval (the configuration's).
+    pub model: ModelRef,
+    pub dt: f64,
 }
 
 impl Network {
     /// Builds the network with weights seeded by `cfg.seed` and physics parameters at `init`.
     pub fn new(cfg: &RunConfig, data: &ClipData, device: Device, init: &[f64]) -> Network {
-        let reference = ReferenceFrames::for_training(data, &cfg.calibration.reference);
+        let reference = ReferenceFrames::for_training(cfg.model, data, &cfg.calibration.reference);
         tch::manual_seed(cfg.seed as i64);
         let enc_vs = nn::VarStore::new(device);
         let phys_vs = nn::VarStore::new(device);
@@ -62,16 +69,16 @@ impl Network {
             &(enc_vs.root() / "encoder"),
             (c, h, w),
             cfg.encoder,
-            data.model.latent_dims() as i64,
+            cfg.model.latent_dims() as i64,
             &data.train,
             data.line(),
         );
-        let block = data.model.build(
+        let block = cfg.model.build(
             &(phys_vs.root() / "physics"),
             init,
             BlockOptions {
                 integrator: cfg.integrator,
-                dt: data.dt,
+                dt: cfg.dt,
                 timed: data.train_start.is_some(),
                 calibrated: reference.is_some(),
                 start: cfg.rollout_start,
@@ -83,6 +90,8 @@ impl Network {
             encoder,
             block,
             reference,
+            model: cfg.model,
+            dt: cfg.dt,
         };
         network.prepare();
         network

@@ -101,12 +101,8 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
         "Parameters over epochs",
         plot(out, "parameters.png", parameters_png(report))?,
     )];
-    let latents = latents_png(
-        report,
-        data.dt,
-        data.frames_per_clip,
-        data.model.latent_dims(),
-    );
+    let dims = report.config.model.latent_dims();
+    let latents = latents_png(report, report.config.dt, data.frames_per_clip, dims);
     figures.push(plot_figure(
         "Latents of validation clips",
         plot(out, "latents.png", latents)?,
@@ -116,11 +112,7 @@ pub fn write_outputs(out: &Path, data: &ClipData, report: &Report) -> Result<(),
             "The recording's timeline",
             plot(out, "timeline.png", timeline_png(t))?,
         ));
-        write_file(
-            out,
-            "timeline.csv",
-            t.csv(data.model.latent_dims()).as_bytes(),
-        )?;
+        write_file(out, "timeline.csv", t.csv(dims).as_bytes())?;
     }
     if let Some(png) = &data.preview_png {
         if report.recording.as_ref().is_some_and(|r| r.preview) {

@@ -153,16 +153,16 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         .num_threads(args.training.thread_count())
         .build_global();
     let (device, device_warning) = select_device(args.training.device)?;
-    let mut data = load_clips(&args.load_request(), device)?;
+    let (mut data, settled) = load_clips(&args.load_request(), device)?;
     data.warnings.extend(device_warning);
-    let cfg = &RunConfig::resolve(args, &data)?;
+    let cfg = &RunConfig::resolve(args, &data, settled)?;
     data.warnings.extend(cfg.encoder_note.clone());
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short
     // probe is trained to the end.
     let mut starts = vec![cfg.init.clone()];
     if !cfg.single_start {
-        starts.extend(model.extra_starts(&data.train, data.dt, cfg.integrator, &cfg.init));
+        starts.extend(model.extra_starts(&data.train, cfg.dt, cfg.integrator, &cfg.init));
         if model.calibrates_in_training() && cfg.calibration.reference.len() >= 2 {
             // The map is fitted to the reference frames at every step: starts that differ only
             // in it are one start.

@@ -31,9 +31,9 @@ pub struct Windows {
 impl Windows {
     /// The windows of a recording's encoded timeline `latents` (one per kept frame, `dims`
     /// numbers each), or `None` for a data set or a recording too short for windows.
-    pub fn of(data: &ClipData, latents: &[f32]) -> Option<Windows> {
+    pub fn of(data: &ClipData, dims: usize, latents: &[f32]) -> Option<Windows> {
         let (summary, _) = data.recording.as_ref()?;
-        let dims = data.model.latent_dims().max(1);
+        let dims = dims.max(1);
         let frames = recording_windows(latents.len() / dims, summary.stride, MAX_WINDOW);
         let len = frames.first()?.len();
         let flat: Vec<f32> = frames

@@ -38,9 +38,9 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
     .unwrap()
     .validate()
     .unwrap();
-    let data = load_clips(&args.load_request(), device).unwrap();
+    let (data, settled) = load_clips(&args.load_request(), device).unwrap();
     assert!(data.train.device().is_cuda());
-    let cfg = RunConfig::resolve(&args, &data).unwrap();
+    let cfg = RunConfig::resolve(&args, &data, settled).unwrap();
     let outcome = train(&cfg, &data, device, &mut |_| {}).unwrap();
     let (g0, g1) = (outcome.parameters[0], outcome.parameters[1]);
     assert!((g0 / 4.0016 - 1.0).abs() < 0.01, "gamma0 {g0}");

@@ -1,6 +1,6 @@
 //! `ClipData`: a dataset (or a recording cut into clips) loaded onto the training device as one
-//! tensor, split 80/20 into training and validation clips, with dt, the model and the ground
-//! truth resolved.
+//! tensor, split 80/20 into training and validation clips, with the ground truth; the model
+//! and dt its loading settled go to the configuration (`Settled`), which alone carries them.
 
 mod dataset;
 pub mod descent;
@@ -42,8 +42,6 @@ pub struct ClipData {
     pub frames_per_clip: i64,
     pub inputs: i64,
     pub shape: [usize; 5],
-    pub dt: f64,
-    pub model: ModelRef,
     /// True parameter values by name, when the metadata gives them.
     pub truth: BTreeMap<String, f64>,
     pub meta: Option<DatasetMeta>,
@@ -152,9 +150,18 @@ fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32
     Some(v.filter(|v| frames.iter().all(|x| x == v)))
 }
 
+/// What loading settled that the configuration takes over (`config::RunConfig::resolve`), and
+/// that everything downstream reads from it, not from the clips: the model (`--model` or
+/// meta.json) and the frame interval (`--dt`, meta.json, or a recording's rate and stride).
+#[derive(Debug, Clone, Copy)]
+pub struct Settled {
+    pub model: ModelRef,
+    pub dt: f64,
+}
+
 /// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
 /// and moves the frames to `device`.
-pub fn load_clips(req: &LoadRequest, device: Device) -> Result<ClipData, EstimateError> {
+pub fn load_clips(req: &LoadRequest, device: Device) -> Result<(ClipData, Settled), EstimateError> {
     physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
     let src = if is_recording(&req.input) {
         recording::recording_source(req)?
@@ -238,7 +245,11 @@ pub fn load_clips(req: &LoadRequest, device: Device) -> Result<ClipData, Estimat
         .recording
         .zip(frames)
         .map(|(summary, f)| (summary, f.unsqueeze(0)));
-    Ok(ClipData {
+    let settled = Settled {
+        model: src.model,
+        dt: src.dt,
+    };
+    let data = ClipData {
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),
         train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
@@ -246,15 +257,14 @@ pub fn load_clips(req: &LoadRequest, device: Device) -> Result<ClipData, Estimat
         frames_per_clip: t as i64,
         inputs: d,
         shape: src.shape,
-        dt: src.dt,
-        model: src.model,
         truth,
         meta: src.meta,
         recording,
         warnings: src.warnings,
         preview_png: src.preview_png,
         photometric,
-    })
+    };
+    Ok((data, settled))
 }
 
 #[cfg(test)]

@@ -100,7 +100,7 @@ pub(super) fn split(
     groups: &[usize],
     by: SplitBy,
 ) -> Option<Split> {
-    let p = Pieces::of(data, z, groups, by);
+    let p = Pieces::of(data, network.dt, z, groups, by);
     let n = p.z.size()[0];
     if n < 4 {
         return None;
@@ -162,7 +162,7 @@ struct Pieces {
 const MIN_PIECE: i64 = 4;
 
 impl Pieces {
-    fn of(data: &ClipData, z: &Tensor, groups: &[usize], by: SplitBy) -> Pieces {
+    fn of(data: &ClipData, dt: f64, z: &Tensor, groups: &[usize], by: SplitBy) -> Pieces {
         let (n, t) = (z.size()[0], z.size()[1]);
         if by != SplitBy::Level || t < 2 * MIN_PIECE || z.dim() != 2 {
             return Pieces {
@@ -175,7 +175,7 @@ impl Pieces {
         let h = t / 2;
         let pieces = z.narrow(1, 0, 2 * h).reshape([2 * n, h]);
         let start = data.train_start.as_ref().map(|s| {
-            let shift = Tensor::from_slice(&[0.0f32, (h as f64 * data.dt) as f32])
+            let shift = Tensor::from_slice(&[0.0f32, (h as f64 * dt) as f32])
                 .to_device(s.device())
                 .unsqueeze(0);
             (s.unsqueeze(1) + shift).reshape([2 * n])

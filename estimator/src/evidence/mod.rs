@@ -113,14 +113,14 @@ pub fn gather(
     let groups = clip_groups(data);
     // Across the range of the motion: small and large swings of an oscillation, low and high
     // levels of a decay, a drain or a fall.
-    let range_split = if data.model.oscillates(&network.values(&z)) {
+    let range_split = if network.model.oscillates(&network.values(&z)) {
         SplitBy::Motion
     } else {
         SplitBy::Level
     };
     // A recording's answer was solved on long windows of its timeline: its error and its
     // earlier and later halves come from them; a data set's from its clips.
-    let windows = recording_latents.and_then(|l| Windows::of(data, l));
+    let windows = recording_latents.and_then(|l| Windows::of(data, network.model.latent_dims(), l));
     let (covariance, clusters, order) = match &windows {
         Some(w) => {
             let g = time_blocks(w);
@@ -215,7 +215,7 @@ fn frames_fold(
     data: &ClipData,
     recording_latents: Option<&[f32]>,
 ) -> Option<Fold> {
-    if data.model.latent_dims() != 1 {
+    if network.model.latent_dims() != 1 {
         return None;
     }
     let (frames, z, timed) = match (&data.recording, recording_latents) {

@@ -168,7 +168,7 @@ impl Report {
             version: env!("CARGO_PKG_VERSION").into(),
             input: cfg.input.display().to_string(),
             model: model.name().into(),
-            dt: data.dt,
+            dt: cfg.dt,
             shape: data.shape,
             train_clips: data.n_train(),
             validation_clips: data.n_val(),
@@ -195,7 +195,7 @@ impl Report {
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
             training_noise: outcome.training_noise,
-            latent_vs_truth: LatentVsTruth::of(data, &outcome.val_latents),
+            latent_vs_truth: LatentVsTruth::of(data, cfg.model.latent_dims(), &outcome.val_latents),
             cross_check: outcome.timeline.as_ref().and_then(|t| {
                 let latents: Vec<f64> = t.latents.iter().map(|&v| v as f64).collect();
                 model.cross_check(&outcome.parameters, &latents, t.frame_dt)

@@ -36,10 +36,9 @@ impl LatentVsTruth {
 
     /// Fits the encoded validation latents (one row of T·D values per clip) against the ground
     /// truth of the same clips; `None` without ground truth or when either does not vary.
-    pub fn of(data: &ClipData, encoded: &[Vec<f32>]) -> Option<LatentVsTruth> {
+    pub fn of(data: &ClipData, dims: usize, encoded: &[Vec<f32>]) -> Option<LatentVsTruth> {
         let meta = data.meta.as_ref()?;
         let n_train = data.n_train() as usize;
-        let dims = data.model.latent_dims();
         let pairs = encoded
             .iter()
             .enumerate()

@@ -52,7 +52,7 @@ pub fn fit(
     // One curriculum for every start, so that their probe scores compare.
     let horizon = starts
         .iter()
-        .filter_map(|s| cfg.model.first_horizon(s, data.dt))
+        .filter_map(|s| cfg.model.first_horizon(s, cfg.dt))
         .min();
     for (i, init) in starts.iter().enumerate() {
         let mut t = Trainer::new(cfg, data, device, init, horizon, start)?;

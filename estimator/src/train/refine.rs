@@ -19,7 +19,9 @@ pub fn refine(network: &Network, data: &ClipData, recording_latents: Option<&[f3
     if network.refine(&z, clips) {
         network.prepare();
     }
-    let Some(windows) = recording_latents.and_then(|l| Windows::of(data, l)) else {
+    let Some(windows) =
+        recording_latents.and_then(|l| Windows::of(data, network.model.latent_dims(), l))
+    else {
         return;
     };
     if network.refine(&windows.z, windows.clips()) {
