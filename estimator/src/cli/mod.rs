@@ -1,9 +1,10 @@
 //! `EstimateArgs`: `estimate`'s command line, in argument groups flattened into one command
 //! (the model, training, recording and output flags; ripgrep's low-level arguments). Nothing
 //! here knows the data: `config::RunConfig::resolve` turns these arguments, the loaded clips
-//! and what their loading settled (the model, dt) into the one resolved configuration. Help for `--model`, `--init` and the per-model defaults
-//! is generated from `physics::MODELS`. `reproduce` builds its runs from the same arguments, so
-//! each table row is a command a user can type.
+//! and what their loading settled (the model, dt) into the one resolved configuration. Help
+//! for `--model`, `--init` and the per-model defaults is generated from `physics::MODELS`.
+//! `reproduce` builds its runs from the same arguments, so each table row is a command a user
+//! can type.
 
 mod batch;
 mod candidate;
