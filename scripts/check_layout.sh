@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The layout invariants of ARCHITECTURE.md: no import cycles inside a crate, no source file over
 # 350 lines, no #[path] test files, and in `estimator` only the command-line layer (cli/,
-# config.rs, run.rs, batch/, main.rs, lib.rs) names the CLI's types. Prints what breaks them; exit code 1 if anything does.
+# config/, run.rs, batch/, main.rs, lib.rs) names the CLI's types. Prints what breaks them; exit code 1 if anything does.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"

@@ -58,27 +58,21 @@ impl Calibration {
     pub fn resolve(
         reference: &[(usize, usize, f64)],
         positions: &[(usize, usize, Vec<f64>)],
+        times_given: bool,
         incline_deg: Option<f64>,
         g: Option<f64>,
         meta: Option<&physvid_shared::Calibration>,
     ) -> Calibration {
-        let meta_refs: Vec<(usize, usize, f64)> = meta
-            .map(|m| {
-                m.reference_points
-                    .iter()
-                    .map(|p| (p.clip, p.frame, p.value))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let meta_positions: Vec<(usize, usize, Vec<f64>)> = meta
-            .map(|m| {
-                m.reference_positions
-                    .iter()
-                    .map(|p| (p.clip, p.frame, p.positions.clone()))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let (reference, positions, source) = if !reference.is_empty() || !positions.is_empty() {
+        let (points, at) = meta.map_or((&[][..], &[][..]), |m| {
+            (&m.reference_points[..], &m.reference_positions[..])
+        });
+        let meta_refs: Vec<_> = points.iter().map(|p| (p.clip, p.frame, p.value)).collect();
+        let meta_positions: Vec<_> = at
+            .iter()
+            .map(|p| (p.clip, p.frame, p.positions.clone()))
+            .collect();
+        let flags = !reference.is_empty() || !positions.is_empty() || times_given;
+        let (reference, positions, source) = if flags {
             (reference.to_vec(), positions.to_vec(), "flags")
         } else if !meta_refs.is_empty() || !meta_positions.is_empty() {
             (meta_refs, meta_positions, "meta.json")
@@ -327,18 +321,24 @@ mod tests {
             }],
             ..Default::default()
         };
-        let c = Calibration::resolve(&[], &[], None, None, Some(&meta));
+        let with_meta = |r: &[(usize, usize, f64)], times, incline, g| {
+            Calibration::resolve(r, &[], times, incline, g, Some(&meta))
+        };
+        let c = with_meta(&[], false, None, None);
         assert_eq!(
             (c.reference.clone(), c.g, c.source.as_str()),
             (vec![(1, 2, 0.5)], 9.7, "meta.json")
         );
         assert_eq!(c.incline_deg, Some(25.0));
-        let c = Calibration::resolve(&[(0, 0, 1.0)], &[], Some(10.0), Some(9.8), Some(&meta));
+        let c = with_meta(&[(0, 0, 1.0)], false, Some(10.0), Some(9.8));
         assert_eq!(
             (c.reference, c.g, c.incline_deg),
             (vec![(0, 0, 1.0)], 9.8, Some(10.0))
         );
-        let c = Calibration::resolve(&[], &[], None, None, None);
+        // `--reference` times alone (placed on frames once a recording is cut) are flags too.
+        let c = with_meta(&[], true, None, None);
+        assert_eq!((c.reference.len(), c.source.as_str()), (0, "flags"));
+        let c = Calibration::resolve(&[], &[], false, None, None, None);
         assert_eq!((c.g, c.source.as_str()), (DEFAULT_G, "none"));
     }
 }

@@ -1,10 +1,10 @@
-//! `run`: loads the data, resolves the configuration, picks the device, trains (the ensemble's
+//! `run`: probes the input, resolves the configuration, loads the data, picks the device, trains (the ensemble's
 //! members too), and hands the report to `output` and the terminal.
 
 use crate::choice;
 use crate::cli::EstimateArgs;
 use crate::config::RunConfig;
-use crate::data::{load_clips, ClipData};
+use crate::data::{load_clips, probe, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
 use crate::output::{clear_earlier, write_outputs};
@@ -153,9 +153,10 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         .num_threads(args.training.thread_count())
         .build_global();
     let (device, device_warning) = select_device(args.training.device)?;
-    let (mut data, settled) = load_clips(&args.load_request(), device)?;
+    let cfg = RunConfig::resolve(args, probe(&args.load_request())?)?;
+    let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;
     data.warnings.extend(device_warning);
-    let cfg = &RunConfig::resolve(args, &data, settled)?;
+    let cfg = &cfg.with_frames(args, &data)?;
     data.warnings.extend(cfg.encoder_note.clone());
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short

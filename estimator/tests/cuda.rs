@@ -7,7 +7,7 @@ mod util;
 use clap::Parser;
 use estimator::cli::DeviceChoice;
 use estimator::config::RunConfig;
-use estimator::data::load_clips;
+use estimator::data::{load_clips, probe};
 use estimator::device::select_device;
 use estimator::train::train;
 use estimator::EstimateArgs;
@@ -38,9 +38,10 @@ fn trains_on_the_gpu_and_recovers_the_parameters() {
     .unwrap()
     .validate()
     .unwrap();
-    let (data, settled) = load_clips(&args.load_request(), device).unwrap();
+    let cfg = RunConfig::resolve(&args, probe(&args.load_request()).unwrap()).unwrap();
+    let data = load_clips(&cfg.request, &cfg.plan, cfg.model, device).unwrap();
     assert!(data.train.device().is_cuda());
-    let cfg = RunConfig::resolve(&args, &data, settled).unwrap();
+    let cfg = cfg.with_frames(&args, &data).unwrap();
     let outcome = train(&cfg, &data, device, &mut |_| {}).unwrap();
     let (g0, g1) = (outcome.parameters[0], outcome.parameters[1]);
     assert!((g0 / 4.0016 - 1.0).abs() < 0.01, "gamma0 {g0}");

@@ -23,7 +23,10 @@ pub mod video;
 
 pub use affine::{AffineFit, SimilarityFit};
 pub use atomic::{check_output_dir, write_atomic};
-pub use dataset::{read_dataset, write_dataset, Dataset, DatasetFiles, DatasetWriter};
+pub use dataset::{
+    read_dataset, read_dataset_header, write_dataset, Dataset, DatasetFiles, DatasetHeader,
+    DatasetWriter,
+};
 pub use dynamics::DampedOscillator;
 pub use error::DatasetError;
 pub use meta::{Calibration, DatasetMeta, ModelSpec, PositionPoint, ReferencePoint, SampleTruth};

@@ -146,6 +146,32 @@ fn parse_header(path: &Path, dict: &str) -> Result<Header, DatasetError> {
 /// Reads a little-endian float32 C-order `.npy` file, validating magic, version, header,
 /// dtype, order and the data length.
 pub fn read_npy(path: &Path) -> Result<NpyArray, DatasetError> {
+    let (mut r, shape, count) = open_npy(path)?;
+    let mut data = vec![0f32; count];
+    r.read_exact(bytemuck::cast_slice_mut(&mut data))
+        .map_err(|source| DatasetError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if cfg!(target_endian = "big") {
+        for v in &mut data {
+            *v = f32::from_le_bytes(v.to_ne_bytes());
+        }
+    }
+    Ok(NpyArray { shape, data })
+}
+
+/// The shape of a `.npy` file, validated as `read_npy` validates it (the data's length
+/// included), without reading its data.
+pub fn read_npy_shape(path: &Path) -> Result<Vec<usize>, DatasetError> {
+    open_npy(path).map(|(_, shape, _)| shape)
+}
+
+/// Opens a `.npy` file and checks everything but its values: a reader at its data, its shape
+/// and its number of values.
+fn open_npy(
+    path: &Path,
+) -> Result<(std::io::BufReader<std::fs::File>, Vec<usize>, usize), DatasetError> {
     let read_err = |source| DatasetError::Read {
         path: path.to_path_buf(),
         source,
@@ -215,18 +241,7 @@ pub fn read_npy(path: &Path) -> Result<NpyArray, DatasetError> {
             ),
         ));
     }
-    let mut data = vec![0f32; count];
-    r.read_exact(bytemuck::cast_slice_mut(&mut data))
-        .map_err(read_err)?;
-    if cfg!(target_endian = "big") {
-        for v in &mut data {
-            *v = f32::from_le_bytes(v.to_ne_bytes());
-        }
-    }
-    Ok(NpyArray {
-        shape: h.shape,
-        data,
-    })
+    Ok((r, h.shape, count))
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! `EstimateArgs`: `estimate`'s command line, in argument groups flattened into one command
 //! (the model, training, recording and output flags; ripgrep's low-level arguments). Nothing
-//! here knows the data: `config::RunConfig::resolve` turns these arguments, the loaded clips
-//! and what their loading settled (the model, dt) into the one resolved configuration. Help
+//! here knows the data: `config::RunConfig::resolve` turns these arguments and a probe of the
+//! input (the model, dt, the load's plan) into the one resolved configuration. Help
 //! for `--model`, `--init` and the per-model defaults is generated from `physics::MODELS`.
 //! `reproduce` builds its runs from the same arguments, so each table row is a command a user
 //! can type.

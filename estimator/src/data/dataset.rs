@@ -1,15 +1,17 @@
-//! A `gen` dataset directory or a bare `.npy` as training input: validated, with dt and the
-//! model resolved against meta.json (flags must agree with it).
+//! A `gen` dataset directory or a bare `.npy` as training input: probed (its header and
+//! meta.json settle dt and the model; flags must agree with meta.json), then read.
 
+use super::probe::{Plan, Probe};
 use super::{LoadRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
-use physvid_shared::read_dataset;
+use physvid_shared::{read_dataset, read_dataset_header, DatasetHeader};
 use std::collections::BTreeMap;
 
-/// A dataset directory or a bare `.npy`.
-pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError> {
+/// A dataset directory or a bare `.npy`, probed by its header and meta.json: the model and dt
+/// (flags must agree with meta.json), the clips' shape checked.
+pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
     if let Some(flag) = req.recording.given.first() {
         return Err(input_error(format!(
             "{flag}: applies to recordings (videos, image folders); {} is a dataset of clips \
@@ -17,9 +19,13 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
             req.input.display()
         )));
     }
-    let ds = read_dataset(&req.input)?;
-    let source = ds.frames_path.display().to_string();
-    let [n, t, c, h, w] = ds.shape;
+    let DatasetHeader {
+        shape,
+        meta,
+        frames_path,
+    } = read_dataset_header(&req.input)?;
+    let source = frames_path.display().to_string();
+    let [n, t, c, h, w] = shape;
     if t < 3 {
         return Err(input_error(format!(
             "{source}: clips have {t} frames; the second-order model needs at least 3 (two to start the rollout, one to predict)"
@@ -32,14 +38,13 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
     }
     if c * h * w == 0 {
         return Err(input_error(format!(
-            "{source}: frames have no pixels (shape {:?})",
-            ds.shape
+            "{source}: frames have no pixels (shape {shape:?})"
         )));
     }
     let model_file = req
         .model
         .filter(|m| m.info().law.file.is_some() || req.trying);
-    let (dt, model) = match (&ds.meta, model_file) {
+    let (dt, model) = match (&meta, model_file) {
         (Some(meta), Some(model)) => {
             // A model file, or a candidate of a choice, may be tried on any data: meta.json's
             // model is not checked against it (its ground truth is compared by name where the
@@ -50,7 +55,7 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
         (Some(meta), None) if meta.model.file.is_some() && req.model.is_none() => {
             // Data made from a model file carry its text: the model is read from it.
             let text = meta.model.file.as_deref().unwrap_or_default();
-            let origin = ds.frames_path.with_file_name("meta.json (model.file)");
+            let origin = frames_path.with_file_name("meta.json (model.file)");
             let model = crate::physics::file::FileModel::from_text(&origin, text)
                 .map_err(|e| input_error(e.to_string()))?;
             dt_flag_agrees(req, meta.dt)?;
@@ -92,12 +97,22 @@ pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError>
             (dt, model)
         }
     };
+    Ok(Probe {
+        model,
+        dt,
+        plan: Plan::Dataset {
+            meta: meta.map(Box::new),
+        },
+    })
+}
+
+/// The frames of a probed dataset directory or bare `.npy`, read in full.
+pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError> {
+    let ds = read_dataset(&req.input)?;
     let start_times = ds.meta.as_ref().and_then(|m| m.clip_start_times.clone());
     Ok(Source {
         frames: ds.frames,
         shape: ds.shape,
-        dt,
-        model,
         meta: ds.meta,
         start_times,
         clip_index: None,

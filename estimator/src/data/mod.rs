@@ -1,6 +1,7 @@
 //! `ClipData`: a dataset (or a recording cut into clips) loaded onto the training device as one
-//! tensor, split 80/20 into training and validation clips, with the ground truth; the model
-//! and dt its loading settled go to the configuration (`Settled`), which alone carries them.
+//! tensor, split 80/20 into training and validation clips, with the ground truth. The input is
+//! probed first (`probe`: the model, dt and the load's plan, which the configuration takes
+//! over), then loaded as the configuration says (`load_clips`).
 
 mod dataset;
 pub mod descent;
@@ -9,6 +10,7 @@ pub mod kept;
 pub mod object;
 pub mod perspective;
 pub mod photometric;
+mod probe;
 pub mod recording;
 mod request;
 mod reuse;
@@ -17,12 +19,12 @@ mod stillness;
 mod timing;
 
 pub use framing::{Framing, DEFAULT_SIZE};
+pub use probe::{probe, Plan, Probe, RecordingPlan};
 pub use request::{LoadRequest, RecordingRequest};
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
-use physvid_shared::video::is_recording;
 use physvid_shared::DatasetMeta;
 use recording::RecordingSummary;
 use std::collections::BTreeMap;
@@ -126,8 +128,6 @@ pub(crate) struct Source {
     pub(crate) clip_index: Option<Vec<i64>>,
     /// Of the clips.
     pub(crate) shape: [usize; 5],
-    pub(crate) dt: f64,
-    pub(crate) model: ModelRef,
     pub(crate) meta: Option<DatasetMeta>,
     pub(crate) start_times: Option<Vec<f64>>,
     pub(crate) recording: Option<RecordingSummary>,
@@ -150,23 +150,16 @@ fn still(frames: &[f32], sequence: usize, per_frame: usize) -> Option<Option<f32
     Some(v.filter(|v| frames.iter().all(|x| x == v)))
 }
 
-/// What loading settled that the configuration takes over (`config::RunConfig::resolve`), and
-/// that everything downstream reads from it, not from the clips: the model (`--model` or
-/// meta.json) and the frame interval (`--dt`, meta.json, or a recording's rate and stride).
-#[derive(Debug, Clone, Copy)]
-pub struct Settled {
-    pub model: ModelRef,
-    pub dt: f64,
-}
-
-/// Reads and validates the input, resolves dt and the model (flags must agree with meta.json),
-/// and moves the frames to `device`.
-pub fn load_clips(req: &LoadRequest, device: Device) -> Result<(ClipData, Settled), EstimateError> {
-    physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
-    let src = if is_recording(&req.input) {
-        recording::recording_source(req)?
-    } else {
-        dataset::dataset_source(req)?
+/// Reads the input as its probe planned (`plan`) for `model`, and moves the frames to `device`.
+pub fn load_clips(
+    req: &LoadRequest,
+    plan: &Plan,
+    model: ModelRef,
+    device: Device,
+) -> Result<ClipData, EstimateError> {
+    let src = match plan {
+        Plan::Recording(p) => recording::recording_source(req, p, model)?,
+        Plan::Dataset { .. } => dataset::dataset_source(req)?,
     };
     let [n, t, c, h, w] = src.shape;
     // A recording's frames are one sequence; a dataset's, one per clip.
@@ -245,11 +238,7 @@ pub fn load_clips(req: &LoadRequest, device: Device) -> Result<(ClipData, Settle
         .recording
         .zip(frames)
         .map(|(summary, f)| (summary, f.unsqueeze(0)));
-    let settled = Settled {
-        model: src.model,
-        dt: src.dt,
-    };
-    let data = ClipData {
+    Ok(ClipData {
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),
         train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),
@@ -263,8 +252,7 @@ pub fn load_clips(req: &LoadRequest, device: Device) -> Result<(ClipData, Settle
         warnings: src.warnings,
         preview_png: src.preview_png,
         photometric,
-    };
-    Ok((data, settled))
+    })
 }
 
 #[cfg(test)]

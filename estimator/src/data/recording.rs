@@ -1,14 +1,15 @@
 //! Recordings as input: `load_recording` decodes a video or a folder of images through
-//! `physvid_shared::video` (ffmpeg), with the recording flags' model-dependent defaults
-//! (appendix Table 5's clip), and cuts the frames into clips.
+//! `physvid_shared::video` (ffmpeg) as its probe planned (the frame rate, Table 5's clip or the
+//! flags': `probe`), frames and trims it, and cuts the frames into clips.
 
-use super::{descent, framing, kept, object, stillness, timing};
+use super::probe::RecordingPlan;
+use super::{descent, framing, kept, object, stillness};
 use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::{approx, num};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
-use physvid_shared::video::{self, Crop, Survey, VideoInfo, VideoOptions};
+use physvid_shared::video::{Crop, Survey, VideoInfo, VideoOptions};
 use serde::Serialize;
 use std::path::Path;
 
@@ -121,42 +122,19 @@ pub struct LoadedRecording {
     pub clip_index: Vec<i64>,
     /// [N, T, 1, H, W] of the clips.
     pub shape: [usize; 5],
-    pub dt: f64,
     /// The first clips as the model sees them (report.html; clips.png with `--preview`).
     pub preview_png: Option<Vec<u8>>,
     pub summary: RecordingSummary,
     pub warnings: Vec<String>,
 }
 
-/// A video or image folder, cut into clips for `--model`.
-pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateError> {
-    if !req.input.exists() {
-        return Err(input_error(format!(
-            "{}: no such file or directory",
-            req.input.display()
-        )));
-    }
-    if req.input.is_dir() && video::image_files(&req.input).is_ok_and(|f| f.is_empty()) {
-        return Err(input_error(format!(
-            "{}: a directory that is neither a gen dataset (no frames.npy or meta.json) nor an \
-             image folder (no .png, .jpg or .jpeg files)",
-            req.input.display()
-        )));
-    }
-    let model = req.model.ok_or_else(|| {
-        input_error(format!(
-            "{}: a recording needs --model (e.g. --model pendulum)",
-            req.input.display()
-        ))
-    })?;
-    if req.dt.is_some() {
-        return Err(input_error(format!(
-            "--dt: {} is read as a recording (a video or an image folder), whose dt is \
-             --stride / fps; set those instead",
-            req.input.display()
-        )));
-    }
-    let rec = load_recording(&req.input, model, &req.recording, req.trying)?;
+/// A video or image folder (probed: `plan`), cut into clips for `model`.
+pub(crate) fn recording_source(
+    req: &LoadRequest,
+    plan: &RecordingPlan,
+    model: ModelRef,
+) -> Result<Source, EstimateError> {
+    let rec = load_recording(&req.input, model, &req.recording, plan, req.trying)?;
     // Systems released from rest: clip start times count from the release (found in the
     // frames, else the first frame kept).
     let start_times = model.released_from_rest().then(|| {
@@ -171,8 +149,6 @@ pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateErro
         frames: rec.frames,
         clip_index: Some(rec.clip_index),
         shape: rec.shape,
-        dt: rec.dt,
-        model,
         meta: None,
         start_times,
         recording: Some(rec.summary),
@@ -180,32 +156,25 @@ pub(crate) fn recording_source(req: &LoadRequest) -> Result<Source, EstimateErro
     })
 }
 
-/// Decodes `input` for `model` and cuts it into clips; with `keep` (a model choice's
-/// candidate) the decoded frames are kept for, or taken from, the other candidates.
+/// Decodes `input` for `model` as its probe planned (`plan`: the frame rate, the clip) and
+/// cuts it into clips; with `keep` (a model choice's candidate) the decoded frames are kept
+/// for, or taken from, the other candidates.
 pub fn load_recording(
     input: &Path,
     model: ModelRef,
     flags: &RecordingRequest,
+    plan: &RecordingPlan,
     keep: bool,
 ) -> Result<LoadedRecording, EstimateError> {
-    let (table_frames, table_dt) = model.table5_clip();
-    let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
-    let mut warnings = Vec::new();
-    // The frame rate first (cheap), for the default stride.
-    let info = if input.is_dir() {
-        None
-    } else {
-        Some(video::probe(input)?)
-    };
-    let (fps, fps_source) = timing::frame_rate(input, info.as_ref(), flags, &mut warnings)?;
-    let stride = timing::stride(
-        flags.stride,
-        info.as_ref(),
-        (flags.start, flags.end),
-        (frames_per_clip, table_dt, fps),
-        model,
-        &mut warnings,
-    );
+    let RecordingPlan {
+        ref info,
+        fps,
+        fps_source,
+        frames_per_clip,
+        stride,
+        ..
+    } = *plan;
+    let mut warnings = plan.warnings.clone();
     framing::check_memory(
         input,
         info.as_ref(),
@@ -234,7 +203,7 @@ pub fn load_recording(
         hop: flags.hop,
         max_clips: MAX_DEFAULT_CLIPS,
     };
-    let mut decoded = super::reuse::decode(input, &opts, info, keep)?;
+    let mut decoded = super::reuse::decode(input, &opts, info.clone(), keep)?;
     // A fall or slide from rest: its release, and the descent alone where no flag trims;
     // anything else: the frames where it moves.
     let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
@@ -299,7 +268,6 @@ pub fn load_recording(
     Ok(LoadedRecording {
         clip_index: decoded.clip_index(frames_per_clip, stride),
         shape,
-        dt: decoded.dt(stride),
         frames: decoded.frames,
         preview_png,
         summary,

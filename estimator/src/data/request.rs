@@ -6,7 +6,7 @@ use crate::physics::ModelRef;
 use std::path::PathBuf;
 
 /// The input and the flags that decide how it becomes clips.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct LoadRequest {
     /// A `gen` data set directory, a `.npy`, a video or an image folder.
     pub input: PathBuf,
@@ -22,7 +22,7 @@ pub struct LoadRequest {
 
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
 /// defaults (Table 5's clip) are resolved in `data::recording` once the model is known.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct RecordingRequest {
     /// `--fps`: frames per second of real time, overriding the container's.
     pub fps: Option<f64>,

@@ -6,7 +6,7 @@ mod writer;
 
 use crate::error::DatasetError;
 use crate::meta::{DatasetMeta, FORMAT_NAME, FORMAT_VERSION};
-use crate::npy::{read_npy, NpyArray};
+use crate::npy::{read_npy, read_npy_shape, NpyArray};
 use std::path::{Path, PathBuf};
 
 pub use writer::{check_output_dir, write_dataset, DatasetFiles, DatasetWriter};
@@ -135,9 +135,19 @@ pub fn read_meta(path: &Path) -> Result<DatasetMeta, DatasetError> {
         .map_err(|e| bad_meta(path, format!("not valid metadata JSON: {e}")))
 }
 
-/// Reads `DIR` (frames.npy + meta.json) or a bare `.npy` file (no metadata), validating the
-/// rank, the values (finite) and the metadata's consistency with the frames.
-pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
+/// A dataset's shape and metadata, validated as `read_dataset` validates them, without its
+/// frames (what `estimate` settles its configuration by before loading).
+#[derive(Debug, Clone)]
+pub struct DatasetHeader {
+    /// [N, T, C, H, W].
+    pub shape: [usize; 5],
+    pub meta: Option<DatasetMeta>,
+    pub frames_path: PathBuf,
+}
+
+/// Reads `DIR`'s (frames.npy + meta.json) or a bare `.npy` file's header and metadata,
+/// validating the rank, the data's length and the metadata's consistency with the shape.
+pub fn read_dataset_header(path: &Path) -> Result<DatasetHeader, DatasetError> {
     let (frames_path, meta_path) = if path.is_dir() {
         (path.join(FRAMES_FILE), Some(path.join(META_FILE)))
     } else {
@@ -152,7 +162,7 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
             ));
         }
     }
-    let NpyArray { shape, data } = read_npy(&frames_path)?;
+    let shape = read_npy_shape(&frames_path)?;
     let shape: [usize; 5] = shape
         .clone()
         .try_into()
@@ -163,6 +173,30 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
             expected: 5,
             layout: "[N, T, C, H, W]; add axes with arr[:, :, None] for one channel",
         })?;
+    let meta = match meta_path {
+        None => None,
+        Some(mp) => {
+            let meta = read_meta(&mp)?;
+            validate_meta(&meta, &mp, &frames_path, shape)?;
+            Some(meta)
+        }
+    };
+    Ok(DatasetHeader {
+        shape,
+        meta,
+        frames_path,
+    })
+}
+
+/// Reads `DIR` (frames.npy + meta.json) or a bare `.npy` file (no metadata), validating the
+/// header and metadata (`read_dataset_header`) and the values (finite).
+pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
+    let DatasetHeader {
+        shape,
+        meta,
+        frames_path,
+    } = read_dataset_header(path)?;
+    let NpyArray { data, .. } = read_npy(&frames_path)?;
     if let Some(i) = data.iter().position(|v| !v.is_finite()) {
         let [_, t, c, h, w] = shape;
         let per_clip = t * c * h * w;
@@ -176,14 +210,6 @@ pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
             ),
         });
     }
-    let meta = match meta_path {
-        None => None,
-        Some(mp) => {
-            let meta = read_meta(&mp)?;
-            validate_meta(&meta, &mp, &frames_path, shape)?;
-            Some(meta)
-        }
-    };
     Ok(Dataset {
         shape,
         frames: data,

@@ -1,11 +1,15 @@
 //! `RunConfig`: the one resolved configuration of an `estimate` run (ripgrep's high-level
-//! arguments), made once from the command line and the loaded clips: the model and dt (flags
-//! or meta.json), every per-model default (encoder, patience, starts), the calibration, and
-//! the checks that need the data. Nothing downstream re-derives a default.
+//! arguments), made once from the command line and a probe of the input, before any frame is
+//! read: the model and dt (flags or meta.json), the load's plan, every per-model default
+//! (encoder, patience, starts) and the calibration. What only the frames can decide (`frames`:
+//! an object's encoder, the frame size's check, references given in seconds) is settled once
+//! they are loaded. Nothing downstream re-derives a default.
+
+mod frames;
 
 use crate::calibration::Calibration;
 use crate::cli::{calibration_flag, EstimateArgs, ModelArgs};
-use crate::data::{ClipData, Settled};
+use crate::data::{LoadRequest, Plan, Probe};
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
@@ -54,16 +58,22 @@ pub struct RunConfig {
     pub threads: usize,
     pub out: PathBuf,
     pub quiet: bool,
+    /// What to load (the input and the recording flags) and how (the probe's plan): the load
+    /// reads these and the model, nothing else.
+    #[serde(skip)]
+    pub request: LoadRequest,
+    #[serde(skip)]
+    pub plan: Plan,
+    /// `--reference` times of a recording, placed on its clip frames once it is cut
+    /// (`with_frames`).
+    #[serde(skip)]
+    pub reference_times: Vec<(f64, f64)>,
 }
 
 impl RunConfig {
-    /// Resolves `args` (validated) against the loaded clips and what their loading settled.
-    pub fn resolve(
-        args: &EstimateArgs,
-        data: &ClipData,
-        settled: Settled,
-    ) -> Result<RunConfig, EstimateError> {
-        let Settled { model, dt } = settled;
+    /// Resolves `args` (validated) against the probe of their input.
+    pub fn resolve(args: &EstimateArgs, probe: Probe) -> Result<RunConfig, EstimateError> {
+        let Probe { model, dt, plan } = probe;
         let (m, t) = (&args.model, &args.training);
         let init = initial_values(model, m.init_pairs())?;
         if t.loss == LossKind::ResidualFloor && !model.supports_residual() {
@@ -78,7 +88,13 @@ impl RunConfig {
                 model.name()
             )));
         }
-        let (encoder, encoder_note) = default_encoder(t.encoder, model, data);
+        let (encoder, encoder_note) = match t.encoder {
+            Some(e) => (e, None),
+            None => (
+                model.encoder(),
+                model.info().training.encoder_note.map(String::from),
+            ),
+        };
         if !encoder.gives(model.latent_dims()) {
             return Err(input_error(format!(
                 "--encoder {}: reads body positions, and {} has a latent of {} number(s) per frame; use --encoder small",
@@ -87,79 +103,26 @@ impl RunConfig {
                 model.latent_dims()
             )));
         }
-        check_dt(model, dt, data)?;
+        check_dt(model, dt, &plan)?;
         check_calibration_flags(model, m)?;
-        let [n, frames, _, height, width] = data.shape;
-        let (min_side, why) = model.info().footage.min_frame;
-        if height.min(width) < min_side {
+        let reference_times = m.reference_times().to_vec();
+        if let (Some(&(t, v)), Plan::Dataset { .. }) = (reference_times.first(), &plan) {
             return Err(input_error(format!(
-                "{}: frames of {width}×{height} px are too small for {} ({why}); need at least {min_side}×{min_side}",
-                args.input().display(),
-                model.name()
+                "--reference {}s={}: times apply to recordings; for a data set give CLIP:FRAME=VALUE",
+                num(t),
+                num(v)
             )));
-        }
-        let mut reference = m.reference_points().to_vec();
-        if let Some(&(t, v)) = m.reference_times().first() {
-            let Some((rec, _)) = &data.recording else {
-                return Err(input_error(format!(
-                    "--reference {}s={}: times apply to recordings; for a data set give CLIP:FRAME=VALUE",
-                    num(t),
-                    num(v)
-                )));
-            };
-            let frames = rec
-                .reference_frames(m.reference_times())
-                .map_err(|e| input_error(format!("--reference {e}")))?;
-            reference.extend(frames);
         }
         let calibration = Calibration::resolve(
-            &reference,
+            m.reference_points(),
             m.reference_positions(),
+            !reference_times.is_empty(),
             m.incline_deg,
             m.g,
-            data.meta.as_ref().map(|meta| &meta.calibration),
+            plan.meta().map(|meta| &meta.calibration),
         );
-        calibration
-            .check_positions(model.latent_dims())
-            .map_err(input_error)?;
-        if model.latent_dims() > 1 && !calibration.reference.is_empty() {
-            return Err(input_error(format!(
-                "{}: {} needs the bodies' positions at reference frames, CLIP:FRAME=X1/Y1/X2/Y2 (pixels), not one value",
-                calibration.origin(),
-                model.name()
-            )));
-        }
-        if model.latent_dims() == 1 && !calibration.positions.is_empty() {
-            return Err(input_error(format!(
-                "{}: {} takes one value per reference frame, CLIP:FRAME=VALUE, not body positions",
-                calibration.origin(),
-                model.name()
-            )));
-        }
-        calibration
-            .check_values(model.info().calibration.nonnegative_reference)
-            .map_err(input_error)?;
-        if let Some((c, f, p)) = calibration.positions.iter().find(|(_, _, p)| {
-            p.chunks(2).any(|xy| {
-                !(0.0..=width as f64).contains(&xy[0]) || !(0.0..=height as f64).contains(&xy[1])
-            })
-        }) {
-            return Err(input_error(format!(
-                "{} {c}:{f}: {p:?} lies outside the {width}×{height} frame (positions are pixels, x right, y down)",
-                calibration.origin()
-            )));
-        }
-        let frames_at = calibration
-            .reference
-            .iter()
-            .map(|&(c, f, _)| (c, f))
-            .chain(calibration.positions.iter().map(|(c, f, _)| (*c, *f)));
-        if let Some((c, f)) = frames_at.into_iter().find(|&(c, f)| c >= n || f >= frames) {
-            return Err(input_error(format!(
-                "{} {c}:{f}: the data has clips 0..{n} and frames 0..{frames}",
-                calibration.origin()
-            )));
-        }
+        // The values are checked once the times are placed on frames, with the others.
+        check_references(&calibration, model, reference_times.is_empty())?;
         Ok(RunConfig {
             input: args.input().to_path_buf(),
             model,
@@ -183,6 +146,9 @@ impl RunConfig {
             threads: t.thread_count(),
             out: args.output.out.clone(),
             quiet: args.output.quiet,
+            request: args.load_request(),
+            plan,
+            reference_times,
         })
     }
 
@@ -193,54 +159,6 @@ impl RunConfig {
             ..self.clone()
         }
     }
-}
-
-/// The encoder: `--encoder`, else the model's, except that on a recording of an object
-/// released from rest across the frame (a descent found), or of one object moving about it
-/// where the built-in model's is the small MLP (`data::object`), it is read by its position
-/// (the centroid encoder); and why, when the choice was made here or by the model.
-fn default_encoder(
-    flag: Option<EncoderKind>,
-    model: ModelRef,
-    data: &ClipData,
-) -> (EncoderKind, Option<String>) {
-    if let Some(e) = flag {
-        return (e, None);
-    }
-    let descent = data.recording.as_ref().and_then(|(r, _)| r.descent);
-    if let (Some(d), 1) = (descent, model.latent_dims()) {
-        return (
-            EncoderKind::Centroid,
-            Some(format!(
-                "the object released from rest crosses {:.0} % of the frame: it is read by its \
-                 position (--encoder centroid: the validation clips, the recording's end, show \
-                 it where no training clip did, and an MLP has no weights there); --encoder \
-                 chooses",
-                100.0 * d.travel
-            )),
-        );
-    }
-    // Built-in models only: a model file's pendulum read this way lost its g/L on the shared
-    // pendulum (+14 %, the built-in +0.5 %), not yet understood.
-    let object = data.recording.as_ref().and_then(|(r, _)| r.object);
-    let built_in = model.info().law.file.is_none();
-    if let (Some(o), 1, EncoderKind::Small, true) =
-        (object, model.latent_dims(), model.encoder(), built_in)
-    {
-        return (
-            EncoderKind::Centroid,
-            Some(format!(
-                "an object moves about {:.0} % of the frame: it is read by its position \
-                 (--encoder centroid: an MLP on pixels compresses large swings more than small \
-                 ones, which lowers a damping); --encoder chooses",
-                100.0 * o.travel
-            )),
-        );
-    }
-    (
-        model.encoder(),
-        model.info().training.encoder_note.map(String::from),
-    )
 }
 
 /// Starting values for `model`, in its parameter order: its defaults, overridden by `--init`;
@@ -296,13 +214,11 @@ fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), Estimat
 }
 
 /// The data's `dt` against [`DT_RANGE`] and the model's longest, naming where it came from.
-fn check_dt(model: ModelRef, dt: f64, data: &ClipData) -> Result<(), EstimateError> {
-    let source = if data.recording.is_some() {
-        "dt = --stride / fps"
-    } else if data.meta.is_some() {
-        "meta.json's dt"
-    } else {
-        "--dt"
+fn check_dt(model: ModelRef, dt: f64, plan: &Plan) -> Result<(), EstimateError> {
+    let source = match plan {
+        Plan::Recording(_) => "dt = --stride / fps",
+        Plan::Dataset { meta: Some(_) } => "meta.json's dt",
+        Plan::Dataset { meta: None } => "--dt",
     };
     let (lo, hi) = DT_RANGE;
     if !(lo..=hi).contains(&dt) {
@@ -322,6 +238,38 @@ fn check_dt(model: ModelRef, dt: f64, data: &ClipData) -> Result<(), EstimateErr
     Ok(())
 }
 
+/// The reference frames and positions against the model's latent: positions of its size, one
+/// kind of reference for its latent, and (with `values`) the values themselves.
+fn check_references(
+    calibration: &Calibration,
+    model: ModelRef,
+    values: bool,
+) -> Result<(), EstimateError> {
+    calibration
+        .check_positions(model.latent_dims())
+        .map_err(input_error)?;
+    if model.latent_dims() > 1 && !calibration.reference.is_empty() {
+        return Err(input_error(format!(
+            "{}: {} needs the bodies' positions at reference frames, CLIP:FRAME=X1/Y1/X2/Y2 (pixels), not one value",
+            calibration.origin(),
+            model.name()
+        )));
+    }
+    if model.latent_dims() == 1 && !calibration.positions.is_empty() {
+        return Err(input_error(format!(
+            "{}: {} takes one value per reference frame, CLIP:FRAME=VALUE, not body positions",
+            calibration.origin(),
+            model.name()
+        )));
+    }
+    if values {
+        calibration
+            .check_values(model.info().calibration.nonnegative_reference)
+            .map_err(input_error)?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -336,5 +284,64 @@ mod tests {
         assert!(e.to_string().contains("gamma7"), "{e}");
         let e = initial_values(m, &[("gamma0".into(), -1.0)]).unwrap_err();
         assert!(e.to_string().contains("must be > 0"), "{e}");
+    }
+
+    /// A probe as `data::probe` makes it for a 30-fps video cut at stride 3 (no file read).
+    fn recording(model: &str) -> Probe {
+        Probe {
+            model: ModelRef::by_name(model).unwrap(),
+            dt: 0.1,
+            plan: Plan::Recording(crate::data::RecordingPlan {
+                info: None,
+                fps: 30.0,
+                fps_source: "--fps",
+                frames_per_clip: 20,
+                stride: 3,
+                warnings: Vec::new(),
+            }),
+        }
+    }
+
+    fn args(flags: &[&str]) -> EstimateArgs {
+        use clap::Parser;
+        let line = ["estimate", "clip.mp4"].iter().chain(flags);
+        EstimateArgs::try_parse_from(line).unwrap()
+    }
+
+    #[test]
+    fn the_configuration_is_resolved_from_the_probe_before_any_frame() {
+        let a = args(&["--model", "torricelli", "--reference", "3s=0.07,12s=0.04"]);
+        let cfg = RunConfig::resolve(&a, recording("torricelli")).unwrap();
+        assert_eq!((cfg.model.name(), cfg.dt), ("torricelli", 0.1));
+        assert_eq!(cfg.request, a.load_request());
+        // The times wait for the cut to be placed on frames; they are the flags' already.
+        assert_eq!(cfg.reference_times, vec![(3.0, 0.07), (12.0, 0.04)]);
+        assert!(cfg.calibration.reference.is_empty());
+        assert_eq!(cfg.calibration.source, "flags");
+    }
+
+    #[test]
+    fn flags_the_probe_refutes_are_refused_without_frames() {
+        let refused = |flags: &[&str], probe: Probe| {
+            RunConfig::resolve(&args(flags), probe)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = refused(&["--init", "gamma7=1"], recording("pendulum"));
+        assert!(e.contains("no parameter 'gamma7'"), "{e}");
+        let e = refused(&["--loss", "residual+floor"], recording("pendulum"));
+        assert!(e.contains("damped-oscillator only"), "{e}");
+        let e = refused(&["--reference", "3s=0.07,12s=0.04"], {
+            let mut p = recording("torricelli");
+            p.plan = Plan::Dataset { meta: None };
+            p
+        });
+        assert!(e.contains("times apply to recordings"), "{e}");
+        let e = refused(&[], {
+            let mut p = recording("pendulum");
+            p.dt = 1e9;
+            p
+        });
+        assert!(e.contains("dt = --stride / fps"), "{e}");
     }
 }
