@@ -7,7 +7,9 @@
 #     algorithm (scripts/reference_estimate.py, the earlier rules: no convergence stop);
 #  3. the default pendulum setting 2 run's whole-process wall time and its answers;
 #  4. the default spring run's (issue 32's goal: 60 s on 2 cores), with its ratio to the
-#     intensity run's as a yardstick of the machine's speed that day.
+#     intensity run's as a yardstick of the machine's speed that day;
+#  5. the pendulum written as a model file (examples/pendulum.toml) on the same set: its epoch
+#     against the built-in block's (issue 32's goal: at most 1.2×).
 # ROUNDS (default 2) runs of each; the best is kept.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,7 +29,7 @@ run() {
   local data=$1 out=$tmp/run
   local start end
   start=$(date +%s.%N)
-  ./target/release/estimate "$data" --threads 2 --out "$out" --quiet > /dev/null
+  ./target/release/estimate "$data" "${@:2}" --threads 2 --out "$out" --quiet > /dev/null
   end=$(date +%s.%N)
   .venv/bin/python - "$out/report.json" "$start" "$end" <<'PY'
 import json, statistics, sys
@@ -42,19 +44,21 @@ PY
 
 best() { .venv/bin/python -c "import json,sys; rs=[json.loads(l) for l in sys.stdin]; print(json.dumps(min(rs, key=lambda r: r[sys.argv[1]])))" "$1"; }
 
-: > "$tmp/osc"; : > "$tmp/pend"; : > "$tmp/ref"; : > "$tmp/spring"
+: > "$tmp/osc"; : > "$tmp/pend"; : > "$tmp/ref"; : > "$tmp/spring"; : > "$tmp/file"
 for _ in $(seq "$ROUNDS"); do
   run data/intensity >> "$tmp/osc"
   run data/pendulum2 >> "$tmp/pend"
+  run data/pendulum2 --model examples/pendulum.toml >> "$tmp/file"
   run data/spring >> "$tmp/spring"
   .venv/bin/python scripts/reference_estimate.py data/intensity 2 >> "$tmp/ref"
 done
 osc=$(best wall_s < "$tmp/osc"); pend=$(best wall_s < "$tmp/pend"); ref=$(best wall_s < "$tmp/ref")
 spring=$(best wall_s < "$tmp/spring")
 osc_epoch=$(best epoch_s < "$tmp/osc"); pend_epoch=$(best epoch_s < "$tmp/pend")
-.venv/bin/python - "$osc" "$pend" "$ref" "$osc_epoch" "$pend_epoch" "$spring" <<'PY'
+file_epoch=$(best epoch_s < "$tmp/file")
+.venv/bin/python - "$osc" "$pend" "$ref" "$osc_epoch" "$pend_epoch" "$spring" "$file_epoch" <<'PY'
 import json, sys
-o, p, r, oe, pe, s = (json.loads(a) for a in sys.argv[1:])
+o, p, r, oe, pe, s, fe = (json.loads(a) for a in sys.argv[1:])
 print("estimate benchmark (2 threads, best of the rounds)")
 print(f"  epoch time, 500 clips of 20 × 50×50: oscillator {oe['epoch_s'] * 1e3:.1f} ms, "
       f"pendulum {pe['epoch_s'] * 1e3:.1f} ms, ratio {pe['epoch_s'] / oe['epoch_s']:.2f}")
@@ -68,5 +72,9 @@ for name, (v, e) in p["values"].items():
 print(f"  default spring run, whole process: {s['wall_s']:.1f} s ({s['epochs']} epochs, "
       f"{s['epoch_s']:.2f} s an epoch; {s['wall_s'] / o['wall_s']:.0f}× the intensity run)")
 for name, (v, e) in s["values"].items():
+    print(f"    {name} {v:.5f} ({e * 100:+.3f} %)")
+print(f"  pendulum setting 2 as a model file (examples/pendulum.toml): epoch {fe['epoch_s'] * 1e3:.1f} ms, "
+      f"{fe['epoch_s'] / pe['epoch_s']:.2f}× the built-in block's ({fe['epochs']} epochs, {fe['wall_s']:.1f} s)")
+for name, (v, e) in fe["values"].items():
     print(f"    {name} {v:.5f} ({e * 100:+.3f} %)")
 PY
