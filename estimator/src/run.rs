@@ -1,5 +1,5 @@
-//! `run`: probes the input, resolves the configuration, loads the data, picks the device, trains (the ensemble's
-//! members too), and hands the report to `output` and the terminal.
+//! `run`: probes the input, resolves the configuration, loads the data, picks the device,
+//! trains (the ensemble's members too), and hands the report to `output` and the terminal.
 
 use crate::choice;
 use crate::cli::EstimateArgs;
