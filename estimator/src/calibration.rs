@@ -63,11 +63,14 @@ impl Calibration {
         g: Option<f64>,
         meta: Option<&physvid_shared::Calibration>,
     ) -> Calibration {
-        let (points, at) = meta.map_or((&[][..], &[][..]), |m| {
+        let (meta_points, meta_bodies) = meta.map_or((&[][..], &[][..]), |m| {
             (&m.reference_points[..], &m.reference_positions[..])
         });
-        let meta_refs: Vec<_> = points.iter().map(|p| (p.clip, p.frame, p.value)).collect();
-        let meta_positions: Vec<_> = at
+        let meta_refs: Vec<_> = meta_points
+            .iter()
+            .map(|p| (p.clip, p.frame, p.value))
+            .collect();
+        let meta_positions: Vec<_> = meta_bodies
             .iter()
             .map(|p| (p.clip, p.frame, p.positions.clone()))
             .collect();

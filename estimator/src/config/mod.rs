@@ -106,7 +106,7 @@ impl RunConfig {
         check_dt(model, dt, &plan)?;
         check_calibration_flags(model, m)?;
         let reference_times = m.reference_times().to_vec();
-        if let (Some(&(t, v)), Plan::Dataset { .. }) = (reference_times.first(), &plan) {
+        if let (Some(&(t, v)), Plan::Dataset(_)) = (reference_times.first(), &plan) {
             return Err(input_error(format!(
                 "--reference {}s={}: times apply to recordings; for a data set give CLIP:FRAME=VALUE",
                 num(t),
@@ -217,8 +217,8 @@ fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), Estimat
 fn check_dt(model: ModelRef, dt: f64, plan: &Plan) -> Result<(), EstimateError> {
     let source = match plan {
         Plan::Recording(_) => "dt = --stride / fps",
-        Plan::Dataset { meta: Some(_) } => "meta.json's dt",
-        Plan::Dataset { meta: None } => "--dt",
+        Plan::Dataset(h) if h.meta.is_some() => "meta.json's dt",
+        Plan::Dataset(_) => "--dt",
     };
     let (lo, hi) = DT_RANGE;
     if !(lo..=hi).contains(&dt) {
@@ -333,7 +333,11 @@ mod tests {
         assert!(e.contains("damped-oscillator only"), "{e}");
         let e = refused(&["--reference", "3s=0.07,12s=0.04"], {
             let mut p = recording("torricelli");
-            p.plan = Plan::Dataset { meta: None };
+            p.plan = Plan::Dataset(Box::new(physvid_shared::DatasetHeader {
+                shape: [2, 20, 1, 32, 32],
+                meta: None,
+                frames_path: "clips.npy".into(),
+            }));
             p
         });
         assert!(e.contains("times apply to recordings"), "{e}");

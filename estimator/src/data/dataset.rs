@@ -6,7 +6,7 @@ use super::{LoadRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
-use physvid_shared::{read_dataset, read_dataset_header, DatasetHeader};
+use physvid_shared::{read_dataset_header, DatasetHeader};
 use std::collections::BTreeMap;
 
 /// A dataset directory or a bare `.npy`, probed by its header and meta.json: the model and dt
@@ -19,11 +19,12 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
             req.input.display()
         )));
     }
+    let header = read_dataset_header(&req.input)?;
     let DatasetHeader {
         shape,
-        meta,
-        frames_path,
-    } = read_dataset_header(&req.input)?;
+        ref meta,
+        ref frames_path,
+    } = header;
     let source = frames_path.display().to_string();
     let [n, t, c, h, w] = shape;
     if t < 3 {
@@ -44,7 +45,7 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
     let model_file = req
         .model
         .filter(|m| m.info().law.file.is_some() || req.trying);
-    let (dt, model) = match (&meta, model_file) {
+    let (dt, model) = match (meta, model_file) {
         (Some(meta), Some(model)) => {
             // A model file, or a candidate of a choice, may be tried on any data: meta.json's
             // model is not checked against it (its ground truth is compared by name where the
@@ -100,15 +101,13 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
     Ok(Probe {
         model,
         dt,
-        plan: Plan::Dataset {
-            meta: meta.map(Box::new),
-        },
+        plan: Plan::Dataset(Box::new(header)),
     })
 }
 
-/// The frames of a probed dataset directory or bare `.npy`, read in full.
-pub(crate) fn dataset_source(req: &LoadRequest) -> Result<Source, EstimateError> {
-    let ds = read_dataset(&req.input)?;
+/// The frames of a probed dataset directory or bare `.npy` (its `header`), read in full.
+pub(crate) fn dataset_source(header: &DatasetHeader) -> Result<Source, EstimateError> {
+    let ds = header.read_frames()?;
     let start_times = ds.meta.as_ref().and_then(|m| m.clip_start_times.clone());
     Ok(Source {
         frames: ds.frames,

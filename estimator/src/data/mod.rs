@@ -159,7 +159,7 @@ pub fn load_clips(
 ) -> Result<ClipData, EstimateError> {
     let src = match plan {
         Plan::Recording(p) => recording::recording_source(req, p, model)?,
-        Plan::Dataset { .. } => dataset::dataset_source(req)?,
+        Plan::Dataset(header) => dataset::dataset_source(header)?,
     };
     let [n, t, c, h, w] = src.shape;
     // A recording's frames are one sequence; a dataset's, one per clip.

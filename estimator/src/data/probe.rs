@@ -7,7 +7,7 @@ use super::{dataset, timing, LoadRequest};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::video::{self, is_recording, VideoInfo};
-use physvid_shared::DatasetMeta;
+use physvid_shared::{DatasetHeader, DatasetMeta};
 
 /// What the probe settled: the model and dt (which the configuration alone carries from here
 /// on), and the plan the load follows.
@@ -22,8 +22,9 @@ pub struct Probe {
 /// What the load reads besides the flags, by kind of input.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Plan {
-    /// A `gen` data set or a bare `.npy` (whose shape the probe has checked): its metadata.
-    Dataset { meta: Option<Box<DatasetMeta>> },
+    /// A `gen` data set or a bare `.npy`: its header and metadata, checked (the frames are
+    /// read from it by the load).
+    Dataset(Box<DatasetHeader>),
     /// A video or an image folder.
     Recording(RecordingPlan),
 }
@@ -32,7 +33,7 @@ impl Plan {
     /// A data set's metadata (its calibration, its ground truth).
     pub fn meta(&self) -> Option<&DatasetMeta> {
         match self {
-            Plan::Dataset { meta } => meta.as_deref(),
+            Plan::Dataset(header) => header.meta.as_ref(),
             Plan::Recording(_) => None,
         }
     }

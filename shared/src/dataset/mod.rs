@@ -137,7 +137,7 @@ pub fn read_meta(path: &Path) -> Result<DatasetMeta, DatasetError> {
 
 /// A dataset's shape and metadata, validated as `read_dataset` validates them, without its
 /// frames (what `estimate` settles its configuration by before loading).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DatasetHeader {
     /// [N, T, C, H, W].
     pub shape: [usize; 5],
@@ -189,33 +189,35 @@ pub fn read_dataset_header(path: &Path) -> Result<DatasetHeader, DatasetError> {
 }
 
 /// Reads `DIR` (frames.npy + meta.json) or a bare `.npy` file (no metadata), validating the
-/// header and metadata (`read_dataset_header`) and the values (finite).
+/// header and metadata (`read_dataset_header`) and the values (`DatasetHeader::read_frames`).
 pub fn read_dataset(path: &Path) -> Result<Dataset, DatasetError> {
-    let DatasetHeader {
-        shape,
-        meta,
-        frames_path,
-    } = read_dataset_header(path)?;
-    let NpyArray { data, .. } = read_npy(&frames_path)?;
-    if let Some(i) = data.iter().position(|v| !v.is_finite()) {
-        let [_, t, c, h, w] = shape;
-        let per_clip = t * c * h * w;
-        return Err(DatasetError::MalformedNpy {
-            path: frames_path,
-            reason: format!(
-                "value {} at clip {}, frame {} is not finite; frames must hold finite numbers",
-                data[i],
-                i / per_clip,
-                (i % per_clip) / (c * h * w)
-            ),
-        });
+    read_dataset_header(path)?.read_frames()
+}
+
+impl DatasetHeader {
+    /// The frames this header describes, each value checked finite.
+    pub fn read_frames(&self) -> Result<Dataset, DatasetError> {
+        let NpyArray { data, .. } = read_npy(&self.frames_path)?;
+        if let Some(i) = data.iter().position(|v| !v.is_finite()) {
+            let [_, t, c, h, w] = self.shape;
+            let per_clip = t * c * h * w;
+            return Err(DatasetError::MalformedNpy {
+                path: self.frames_path.clone(),
+                reason: format!(
+                    "value {} at clip {}, frame {} is not finite; frames must hold finite numbers",
+                    data[i],
+                    i / per_clip,
+                    (i % per_clip) / (c * h * w)
+                ),
+            });
+        }
+        Ok(Dataset {
+            shape: self.shape,
+            frames: data,
+            meta: self.meta.clone(),
+            frames_path: self.frames_path.clone(),
+        })
     }
-    Ok(Dataset {
-        shape,
-        frames: data,
-        meta,
-        frames_path,
-    })
 }
 
 #[cfg(test)]
