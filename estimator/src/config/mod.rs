@@ -1,9 +1,7 @@
 //! `RunConfig`: the one resolved configuration of an `estimate` run (ripgrep's high-level
-//! arguments), made once from the command line and a probe of the input, before any frame is
-//! read: the model and dt (flags or meta.json), the load's plan, every per-model default
-//! (encoder, patience, starts) and the calibration. What only the frames can decide (`frames`:
-//! an object's encoder, the frame size's check, references given in seconds) is settled once
-//! they are loaded. Nothing downstream re-derives a default.
+//! arguments), made from the command line and a probe of the input before any frame is read:
+//! model, dt, the load's plan, every per-model default, the calibration. What only frames tell
+//! is settled once they are loaded (`frames`). Nothing downstream re-derives a default.
 
 mod frames;
 
