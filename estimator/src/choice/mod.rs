@@ -5,6 +5,7 @@
 //! line is the CLI's (`cli::candidate`); the fits are run by `run`, which hands each one's
 //! report here.
 
+pub mod candidate;
 pub mod cut;
 pub mod rank;
 
@@ -117,6 +118,7 @@ pub fn summary(model: ModelRef, fit: Result<&Report, String>) -> Candidate {
                 .iter()
                 .map(|r| r.check.to_string())
                 .collect(),
+            picture: r.evidence.fold.as_ref().map(|f| f.explained_share),
             explains: false,
         },
         Err(why) => Candidate {
@@ -127,6 +129,7 @@ pub fn summary(model: ModelRef, fit: Result<&Report, String>) -> Candidate {
             clip_states: 0,
             answer: why,
             reasons: Vec::new(),
+            picture: None,
             explains: false,
         },
     }

@@ -62,6 +62,30 @@ pub struct LawFit {
     pub latent_range: (f64, f64),
     /// Frames each clip's rollout starts from (the states fitted per clip, besides the law).
     pub start_frames: i64,
+    /// The share of the clips in which a one-number latent turns back (`turns_back`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turning_share: Option<f64>,
+}
+
+/// A clip's latent turns back when a frame inside it lies beyond both of its ends by this share
+/// of the clip's range (a swing's crest or trough; a monotone motion's noise stays far below).
+pub const TURN: f64 = 0.1;
+
+/// Whether the latent of one clip `z` turns back (see [`TURN`]).
+pub fn turns_back(z: &[f64]) -> bool {
+    let (Some(&first), Some(&last)) = (z.first(), z.last()) else {
+        return false;
+    };
+    if z.len() < 3 {
+        return false;
+    }
+    let range = z.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+        - z.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+    let beyond = z[1..z.len() - 1]
+        .iter()
+        .map(|&v| (v - first).min(v - last).max((first - v).min(last - v)))
+        .fold(0.0, f64::max);
+    range > 0.0 && beyond > TURN * range
 }
 
 impl LawFit {
@@ -84,7 +108,14 @@ impl LawFit {
         let lagged = (r.narrow(1, 1, t - 1) * r.narrow(1, 0, t - 1))
             .sum(Kind::Double)
             .double_value(&[]);
+        let turning_share = (z.dim() == 2).then(|| {
+            let n = z.size()[0] as usize;
+            let zs = Vec::<f64>::try_from(&z.contiguous().view([-1])).unwrap_or_default();
+            let turning = zs.chunks(t as usize).filter(|c| turns_back(c)).count();
+            turning as f64 / n.max(1) as f64
+        });
         Some(LawFit {
+            turning_share,
             latent_range: (z.min().double_value(&[]), z.max().double_value(&[])),
             unexplained_within: ssr / within,
             residual_autocorrelation: if ssr > 0.0 { lagged / ssr } else { 0.0 },
@@ -244,4 +275,31 @@ fn frames_fold(
         }
     };
     fold::fold(&frames, &z, timed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_clip_turns_back_at_a_crest_inside_it_not_on_a_noisy_ramp_or_at_its_end() {
+        let wave = |phase: f64, noise: f64| -> Vec<f64> {
+            (0..20)
+                .map(|k| {
+                    let t = k as f64 / 19.0;
+                    (3.0 * t + phase).cos() + noise * if k % 2 == 0 { 1.0 } else { -1.0 }
+                })
+                .collect()
+        };
+        // A crest inside the clip (at a third of it), with a little noise.
+        assert!(turns_back(&wave(-1.0, 0.01)));
+        // A falling half-swing: its crest is the first frame.
+        assert!(!turns_back(&wave(0.0, 0.0)));
+        // A ramp whose noise is 5 % of its range.
+        let ramp: Vec<f64> = (0..20)
+            .map(|k| k as f64 / 19.0 + 0.05 * if k % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
+        assert!(!turns_back(&ramp));
+        assert!(!turns_back(&[1.0; 5]) && !turns_back(&[]));
+    }
 }

@@ -195,7 +195,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
                 context! {
                     model => x.model, answer => x.answer, freedom => x.freedom(),
                     grade => x.grade.map_or("no estimate", |g| g.name()),
-                    unexplained => x.unexplained_text(),
+                    unexplained => x.unexplained_text(), picture => x.picture_text(),
                 }
             })
             .collect();

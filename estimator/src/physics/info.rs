@@ -133,6 +133,10 @@ pub struct Footage {
     /// What makes every pixel an affine function of the modelled quantity, when the model
     /// assumes it (an LED's brightness scales its light): the verdict checks the frames.
     pub affine_picture: Option<&'static str>,
+    /// What the law reads from the motion swinging back, when it is a law of swings (a
+    /// pendulum's length from its period): the verdict checks that the latent turns back
+    /// within clips.
+    pub swings: Option<&'static str>,
 }
 
 /// How the answers reach physical units.
@@ -176,6 +180,7 @@ impl Footage {
             min_frame: (0, ""),
             max_dt: (f64::INFINITY, ""),
             affine_picture: None,
+            swings: None,
         }
     }
 }

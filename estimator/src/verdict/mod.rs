@@ -13,6 +13,7 @@ mod motion;
 mod physics;
 mod premise;
 mod sampling;
+mod swing;
 mod training;
 mod uncertainty;
 
@@ -48,6 +49,7 @@ pub trait Check: Sync {
 pub static CHECKS: &[&dyn Check] = &[
     &training::Training,
     &sampling::Sampling,
+    &swing::Swings,
     &harmonic::Harmonic,
     &motion::FollowsMotion,
     &law::LawFits,

@@ -11,7 +11,7 @@ pub(crate) mod two_step_solve;
 pub use block::{DampedOscillatorBlock, FORECAST_FIT_FRAMES};
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
-use super::info::{ModelInfo, ParamSpec, Training, TruthKey};
+use super::info::{Footage, ModelInfo, ParamSpec, Training, TruthKey};
 use super::model::{Derived, Implausible, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
@@ -25,18 +25,8 @@ use tch::Tensor;
 /// The model of the intensity, position and scale sets.
 pub struct DampedOscillator;
 
-const INFO: ModelInfo = ModelInfo {
-    training: Training {
-        encoder: EncoderKind::Small,
-        patience: 20,
-        // The final solve gives (γ0, γ1) exactly on the kept encoder: the band only shows that
-        // the encoder settled, not Adam's ±1 % jitter of γ1 (clean position: 47 epochs instead
-        // of 83).
-        converged_spread: 1e-2,
-        supports_residual: true,
-        ..Training::DEFAULT
-    },
-    ..ModelInfo::of(
+const INFO: ModelInfo = {
+    let info = ModelInfo::of(
         &systems::DAMPED_OSCILLATOR,
         "z'' + γ1·z' + γ0·z = 0 (gamma0, gamma1)",
         &[
@@ -44,7 +34,24 @@ const INFO: ModelInfo = ModelInfo {
             ParamSpec::new("gamma1", 0.1, false),
         ],
         &[TruthKey::positive("gamma0"), TruthKey::signed("gamma1")],
-    )
+    );
+    ModelInfo {
+        footage: Footage {
+            swings: Some("its frequency gives gamma0, the decay of its swings gamma1"),
+            ..info.footage
+        },
+        training: Training {
+            encoder: EncoderKind::Small,
+            patience: 20,
+            // The final solve gives (γ0, γ1) exactly on the kept encoder: the band only shows that
+            // the encoder settled, not Adam's ±1 % jitter of γ1 (clean position: 47 epochs instead
+            // of 83).
+            converged_spread: 1e-2,
+            supports_residual: true,
+            ..Training::DEFAULT
+        },
+        ..info
+    }
 };
 
 impl Model for DampedOscillator {

@@ -43,6 +43,7 @@ pub(super) const INFO: ModelInfo = {
                 10.0,
                 "a pendulum of 100 m swings once in 20 s: frames further apart than half a swing cannot follow it",
             ),
+            swings: Some("its period gives g/L, the decay of its swings the damping"),
             ..info.footage
         },
         calibration: Calibrates {

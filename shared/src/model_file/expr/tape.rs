@@ -2,6 +2,9 @@
 //! list of operations with common subexpressions shared (hash-consing), evaluated in order into
 //! a buffer. The symbolic derivatives of a law repeat its subexpressions many times over (the
 //! spring's distance appears in every entry); shared, each is computed once per evaluation.
+//!
+//! The buffer holds the variables, then the constants, then each operation's result, so that
+//! reading a variable or a constant is no operation: only arithmetic is dispatched.
 
 use super::{Expr, Func, Op};
 use std::collections::HashMap;
@@ -14,15 +17,21 @@ enum Node {
     Neg(usize),
     Bin(Op, usize, usize),
     Call(Func, usize, Option<usize>),
-    /// sin and cos of one argument at once (`sin_cos`), the sine here and the cosine into the
-    /// slot of the later node, which becomes [`Node::Done`] (made by [`TapeBuilder::finish`]).
+}
+
+/// One operation on buffer slots: its inputs and the slot it writes.
+#[derive(Debug, Clone, Copy)]
+enum Step {
+    Neg(u32, u32),
+    Bin(Op, u32, u32, u32),
+    Call(Func, u32, u32, u32),
+    /// sin and cos of one argument at once (`sin_cos`): a pendulum's law and its derivative
+    /// name both.
     SinCos {
-        arg: usize,
-        sin_here: bool,
-        other: usize,
+        arg: u32,
+        sin: u32,
+        cos: u32,
     },
-    /// Computed by an earlier node.
-    Done,
 }
 
 /// Compiles expressions into a [`Tape`].
@@ -67,7 +76,8 @@ impl TapeBuilder {
         self.outputs.push(out);
     }
 
-    /// Operations so far: evaluating this many computes every output added so far.
+    /// Nodes so far: evaluating this prefix ([`Tape::run`]'s `upto`) computes every output
+    /// added so far.
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
@@ -77,29 +87,81 @@ impl TapeBuilder {
         self.nodes.is_empty()
     }
 
-    /// The tape, with each sin and cos of the same argument computed together (a pendulum's
-    /// law and its derivative name both).
-    pub fn finish(mut self) -> Tape {
-        for i in 0..self.nodes.len() {
-            let Node::Call(f @ (Func::Sin | Func::Cos), arg, None) = self.nodes[i] else {
-                continue;
-            };
-            let partner = if f == Func::Sin { Func::Cos } else { Func::Sin };
-            if let Some(&j) = self.index.get(&Node::Call(partner, arg, None)) {
-                if j > i {
-                    let sin_here = f == Func::Sin;
-                    self.nodes[i] = Node::SinCos {
-                        arg,
-                        sin_here,
-                        other: j,
-                    };
-                    self.nodes[j] = Node::Done;
+    /// The tape: every node given its buffer slot, and each sin and cos of the same argument
+    /// computed together.
+    pub fn finish(self) -> Tape {
+        let vars = self
+            .nodes
+            .iter()
+            .filter_map(|n| match n {
+                Node::Var(v) => Some(v + 1),
+                _ => None,
+            })
+            .max()
+            .unwrap_or(0);
+        // Slots: the variables, a zero (the outputs that are none), the constants, the results.
+        let mut constants = vec![0.0];
+        let mut slot = vec![0u32; self.nodes.len()];
+        for (i, n) in self.nodes.iter().enumerate() {
+            match *n {
+                Node::Var(v) => slot[i] = v as u32,
+                Node::Num(bits) => {
+                    slot[i] = (vars + constants.len()) as u32;
+                    constants.push(f64::from_bits(bits));
                 }
+                _ => {}
             }
         }
+        let mut next = vars + constants.len();
+        for (i, n) in self.nodes.iter().enumerate() {
+            if matches!(n, Node::Neg(_) | Node::Bin(..) | Node::Call(..)) {
+                slot[i] = next as u32;
+                next += 1;
+            }
+        }
+        let mut steps = Vec::new();
+        let mut prefix = Vec::with_capacity(self.nodes.len() + 1);
+        let mut fused = vec![false; self.nodes.len()];
+        for (i, n) in self.nodes.iter().enumerate() {
+            prefix.push(steps.len());
+            let s = |k: usize| slot[k];
+            let step = match *n {
+                Node::Num(_) | Node::Var(_) => None,
+                _ if fused[i] => None,
+                Node::Neg(a) => Some(Step::Neg(s(a), s(i))),
+                Node::Bin(op, a, b) => Some(Step::Bin(op, s(a), s(b), s(i))),
+                Node::Call(f @ (Func::Sin | Func::Cos), a, None) => {
+                    let partner = if f == Func::Sin { Func::Cos } else { Func::Sin };
+                    match self.index.get(&Node::Call(partner, a, None)) {
+                        Some(&j) if j > i => {
+                            fused[j] = true;
+                            let (sin, cos) = if f == Func::Sin { (i, j) } else { (j, i) };
+                            Some(Step::SinCos {
+                                arg: s(a),
+                                sin: s(sin),
+                                cos: s(cos),
+                            })
+                        }
+                        _ => Some(Step::Call(f, s(a), 0, s(i))),
+                    }
+                }
+                Node::Call(f, a, b) => Some(Step::Call(f, s(a), b.map_or(vars as u32, s), s(i))),
+            };
+            steps.extend(step);
+        }
+        prefix.push(steps.len());
+        let zero = vars as u32;
         Tape {
-            nodes: self.nodes,
-            outputs: self.outputs,
+            vars,
+            constants,
+            steps,
+            prefix,
+            outputs: self
+                .outputs
+                .iter()
+                .map(|o| o.map_or(zero, |i| slot[i]))
+                .collect(),
+            len: next,
         }
     }
 }
@@ -107,48 +169,73 @@ impl TapeBuilder {
 /// Expressions compiled together; see the module's text.
 #[derive(Debug, Clone)]
 pub struct Tape {
-    nodes: Vec<Node>,
-    outputs: Vec<Option<usize>>,
+    /// Variables read (the buffer's first slots).
+    vars: usize,
+    /// A zero, then the constants (the next slots).
+    constants: Vec<f64>,
+    steps: Vec<Step>,
+    /// `prefix[k]`: the steps that compute the builder's first k nodes.
+    prefix: Vec<usize>,
+    /// Each output's slot.
+    outputs: Vec<u32>,
+    /// Slots in all.
+    len: usize,
 }
 
 impl Tape {
     /// Operations on the tape.
     pub fn len(&self) -> usize {
-        self.nodes.len()
+        self.steps.len()
     }
 
     /// Whether it has no operations.
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.steps.is_empty()
     }
 
-    /// Evaluates the first `upto` operations at `vars` into `buf` (as long as the tape: a fused
-    /// sin and cos may write past `upto`).
+    /// The operations that compute the builder's first `upto` nodes.
+    pub fn steps(&self, upto: usize) -> usize {
+        self.prefix[upto]
+    }
+
+    /// The buffer [`Tape::run`] needs.
+    pub fn buffer_len(&self) -> usize {
+        self.len
+    }
+
+    /// Evaluates the builder's first `upto` nodes at `vars` into `buf` (at least
+    /// [`Tape::buffer_len`] long).
     pub fn run(&self, vars: &[f64], upto: usize, buf: &mut [f64]) {
-        for (i, n) in self.nodes[..upto].iter().enumerate() {
-            buf[i] = match *n {
-                Node::Num(bits) => f64::from_bits(bits),
-                Node::Var(v) => vars[v],
-                Node::Neg(a) => -buf[a],
-                Node::Bin(op, a, b) => op.apply(buf[a], buf[b]),
-                Node::Call(f, a, b) => f.apply(buf[a], b.map_or(0.0, |b| buf[b])),
-                Node::SinCos {
-                    arg,
-                    sin_here,
-                    other,
-                } => {
-                    let (sin, cos) = buf[arg].sin_cos();
-                    let (here, there) = if sin_here { (sin, cos) } else { (cos, sin) };
-                    buf[other] = there;
-                    here
+        buf[..self.vars].copy_from_slice(&vars[..self.vars]);
+        self.run_loaded(upto, buf);
+    }
+
+    /// [`Tape::run`] with the variables already in `buf`'s first slots.
+    pub fn run_loaded(&self, upto: usize, buf: &mut [f64]) {
+        let v = self.vars;
+        for (slot, c) in buf[v..].iter_mut().zip(&self.constants) {
+            *slot = *c;
+        }
+        for step in &self.steps[..self.prefix[upto]] {
+            match *step {
+                Step::Neg(a, out) => buf[out as usize] = -buf[a as usize],
+                Step::Bin(op, a, b, out) => {
+                    buf[out as usize] = op.apply(buf[a as usize], buf[b as usize])
                 }
-                Node::Done => buf[i],
-            };
+                Step::Call(f, a, b, out) => {
+                    buf[out as usize] = f.apply(buf[a as usize], buf[b as usize])
+                }
+                Step::SinCos { arg, sin, cos } => {
+                    let (s, c) = buf[arg as usize].sin_cos();
+                    buf[sin as usize] = s;
+                    buf[cos as usize] = c;
+                }
+            }
         }
     }
 
     /// Output `k`'s value after [`Tape::run`] covered it.
     pub fn output(&self, k: usize, buf: &[f64]) -> f64 {
-        self.outputs[k].map_or(0.0, |i| buf[i])
+        buf[self.outputs[k] as usize]
     }
 }
