@@ -170,6 +170,18 @@ fn one_laws_data_read_with_another_is_not_ok() {
     );
     let (grade, checks) = verdict(&out);
     assert_ne!(grade, "ok", "{checks:?}");
+    // And the other way: a dimming light read as a draining tank, whose water line no affine
+    // function of the level draws.
+    let led = gen_dataset(&dir.join("led"), "led", &["--samples", "200", "--size", "32"]);
+    let out = dir.join("led-as-tank");
+    run(
+        &format!("{led}/frames.npy"),
+        &["--dt", "0.0166667", "--model", "torricelli"],
+        &out,
+    );
+    let (grade, checks) = verdict(&out);
+    assert_eq!(grade, "unreliable", "{checks:?}");
+    assert!(checks.iter().any(|c| c == "premise"), "{checks:?}");
     let fall = gen_dataset(
         &dir.join("fall"),
         "free-fall",

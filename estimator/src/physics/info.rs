@@ -130,13 +130,23 @@ pub struct Footage {
     pub min_frame: (usize, &'static str),
     /// The longest dt (s) the block can integrate (∞: any within [`DT_RANGE`]), with why.
     pub max_dt: (f64, &'static str),
-    /// What makes every pixel an affine function of the modelled quantity, when the model
-    /// assumes it (an LED's brightness scales its light): the verdict checks the frames.
-    pub affine_picture: Option<&'static str>,
+    /// What the model assumes of the picture as a function of the modelled quantity, and
+    /// why: the verdict checks the frames (`verdict/premise.rs`).
+    pub picture: Option<Picture>,
     /// What the law reads from the motion swinging back, when it is a law of swings (a
     /// pendulum's length from its period): the verdict checks that the latent turns back
     /// within clips.
     pub swings: Option<&'static str>,
+}
+
+/// A model's premise about the picture, with what makes it so.
+#[derive(Debug, Clone, Copy)]
+pub enum Picture {
+    /// Every pixel is an affine function of the quantity (an LED's brightness scales its light).
+    Affine(&'static str),
+    /// The quantity moves an edge across the picture (a tank's water line), which no affine
+    /// function of it draws.
+    MovingEdge(&'static str),
 }
 
 /// How the answers reach physical units.
@@ -179,7 +189,7 @@ impl Footage {
             released_from_rest: false,
             min_frame: (0, ""),
             max_dt: (f64::INFINITY, ""),
-            affine_picture: None,
+            picture: None,
             swings: None,
         }
     }

@@ -1,7 +1,7 @@
 //! The LED I' = −γ·I (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::info::{Footage, ModelInfo, ParamSpec, Training, TruthKey};
+use super::info::{Footage, ModelInfo, ParamSpec, Picture, Training, TruthKey};
 use super::model::{Derived, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
@@ -30,7 +30,9 @@ const INFO: ModelInfo = {
             ..Training::DEFAULT
         },
         footage: Footage {
-            affine_picture: Some("an LED's brightness scales the light of every pixel"),
+            picture: Some(Picture::Affine(
+                "an LED's brightness scales the light of every pixel",
+            )),
             ..info.footage
         },
         ..info

@@ -19,7 +19,7 @@ pub mod torricelli;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use bounds::Bounds;
-pub use info::{ModelInfo, ParamSpec, Settles};
+pub use info::{ModelInfo, ParamSpec, Picture, Settles};
 pub use model::{Derived, Implausible, Model, ModelRef};
 
 /// Every model, in the order `--help` lists them.

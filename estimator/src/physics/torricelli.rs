@@ -1,7 +1,7 @@
 //! Torricelli's tank h' = −k·√h (Delfys75): the model and its exact first-order block.
 
 use super::block::{frame_index, BlockOptions, Clips, Integrator, PhysicsBlock};
-use super::info::{Calibrates, ModelInfo, ParamSpec, Training, TruthKey};
+use super::info::{Calibrates, Footage, ModelInfo, ParamSpec, Picture, Training, TruthKey};
 use super::model::{Derived, Model};
 use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
@@ -14,16 +14,8 @@ pub struct Torricelli;
 
 /// The water's area is affine in the pixels, and any √u = p + q·√h drains by the same law,
 /// which an MLP could learn: a linear encoder pins the latent.
-const INFO: ModelInfo = ModelInfo {
-    training: Training {
-        encoder: EncoderKind::Linear,
-        ..Training::DEFAULT
-    },
-    calibration: Calibrates {
-        nonnegative_reference: Some("a water level (m above the tank's bottom)"),
-        ..Calibrates::by(&[CalibrationInput::Reference])
-    },
-    ..ModelInfo::of(
+const INFO: ModelInfo = {
+    let info = ModelInfo::of(
         &systems::TORRICELLI,
         "h' = −k·√h (k_latent, base)",
         &[
@@ -31,7 +23,22 @@ const INFO: ModelInfo = ModelInfo {
             ParamSpec::offset("base", -3.0),
         ],
         &[TruthKey::positive("k")],
-    )
+    );
+    ModelInfo {
+        footage: Footage {
+            picture: Some(Picture::MovingEdge("the water line moves down the tank")),
+            ..info.footage
+        },
+        training: Training {
+            encoder: EncoderKind::Linear,
+            ..Training::DEFAULT
+        },
+        calibration: Calibrates {
+            nonnegative_reference: Some("a water level (m above the tank's bottom)"),
+            ..Calibrates::by(&[CalibrationInput::Reference])
+        },
+        ..info
+    }
 };
 
 impl Model for Torricelli {
