@@ -172,7 +172,11 @@ fn one_laws_data_read_with_another_is_not_ok() {
     assert_ne!(grade, "ok", "{checks:?}");
     // And the other way: a dimming light read as a draining tank, whose water line no affine
     // function of the level draws.
-    let led = gen_dataset(&dir.join("led"), "led", &["--samples", "200", "--size", "32"]);
+    let led = gen_dataset(
+        &dir.join("led"),
+        "led",
+        &["--samples", "200", "--size", "32"],
+    );
     let out = dir.join("led-as-tank");
     run(
         &format!("{led}/frames.npy"),
