@@ -157,47 +157,30 @@ fn a_scene_that_does_not_move_is_unreliable() {
 #[test]
 fn one_laws_data_read_with_another_is_not_ok() {
     let (_tmp, dir) = tmp_paths();
-    let tank = gen_dataset(
-        &dir.join("tank"),
-        "torricelli",
-        &["--samples", "200", "--size", "32"],
-    );
-    let out = dir.join("tank-as-led");
-    run(
-        &format!("{tank}/frames.npy"),
-        &["--dt", "1", "--model", "led"],
-        &out,
-    );
-    let (grade, checks) = verdict(&out);
+    // `scenario`'s frames (a bare array, at its dt) read with `model`: the verdict's grade and
+    // checks.
+    let misread = |scenario: &str, dt: &str, model: &str| {
+        let data = gen_dataset(
+            &dir.join(scenario),
+            scenario,
+            &["--samples", "200", "--size", "32"],
+        );
+        let out = dir.join(format!("{scenario}-as-{model}"));
+        run(
+            &format!("{data}/frames.npy"),
+            &["--dt", dt, "--model", model],
+            &out,
+        );
+        verdict(&out)
+    };
+    let (grade, checks) = misread("torricelli", "1", "led");
     assert_ne!(grade, "ok", "{checks:?}");
     // And the other way: a dimming light read as a draining tank, whose water line no affine
     // function of the level draws.
-    let led = gen_dataset(
-        &dir.join("led"),
-        "led",
-        &["--samples", "200", "--size", "32"],
-    );
-    let out = dir.join("led-as-tank");
-    run(
-        &format!("{led}/frames.npy"),
-        &["--dt", "0.0166667", "--model", "torricelli"],
-        &out,
-    );
-    let (grade, checks) = verdict(&out);
+    let (grade, checks) = misread("led", "0.0166667", "torricelli");
     assert_eq!(grade, "unreliable", "{checks:?}");
     assert!(checks.iter().any(|c| c == "premise"), "{checks:?}");
-    let fall = gen_dataset(
-        &dir.join("fall"),
-        "free-fall",
-        &["--samples", "200", "--size", "32"],
-    );
-    let out = dir.join("fall-as-oscillator");
-    run(
-        &format!("{fall}/frames.npy"),
-        &["--dt", "0.0333333", "--model", "damped-oscillator"],
-        &out,
-    );
-    let (grade, checks) = verdict(&out);
+    let (grade, checks) = misread("free-fall", "0.0333333", "damped-oscillator");
     assert_ne!(grade, "ok", "{checks:?}");
 }
 

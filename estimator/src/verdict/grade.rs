@@ -24,6 +24,18 @@ impl Grade {
             Grade::Unreliable => "unreliable",
         }
     }
+
+    /// The grade of a measure that must reach `doubtful_below` (unreliable under
+    /// `unreliable_below`); `None` where it does.
+    pub fn below(value: f64, unreliable_below: f64, doubtful_below: f64) -> Option<Grade> {
+        if value < unreliable_below {
+            Some(Grade::Unreliable)
+        } else if value < doubtful_below {
+            Some(Grade::Doubtful)
+        } else {
+            None
+        }
+    }
 }
 
 /// One finding of one check.

@@ -24,11 +24,7 @@ impl Check for FollowsMotion {
             return Vec::new();
         };
         let e = f.explained_share;
-        let grade = if e < UNRELIABLE_BELOW {
-            Grade::Unreliable
-        } else if e < DOUBTFUL_BELOW {
-            Grade::Doubtful
-        } else {
+        let Some(grade) = Grade::below(e, UNRELIABLE_BELOW, DOUBTFUL_BELOW) else {
             return Vec::new();
         };
         vec![Reason::new(

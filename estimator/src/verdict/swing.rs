@@ -10,8 +10,8 @@ use physvid_shared::cli::approx;
 
 pub struct Swings;
 
-/// Shares of clips whose latent must turn back (by [`TURN`](crate::evidence::TURN) of its range within the clip).
-/// Measured on the true latents of `gen`'s sets (200 clips each): the oscillating scenes
+/// Shares of clips whose latent must turn back (by [`TURN`](crate::evidence::TURN) of its
+/// range within the clip). Measured on the true latents of `gen`'s sets (200 clips each): the oscillating scenes
 /// (intensity, position, scale, the pendulum's three settings) 0.88–1.00, every monotone scene
 /// (tank, LED, fall, slide; three settings each) 0.
 pub const UNRELIABLE_BELOW: f64 = 0.1;
@@ -29,11 +29,7 @@ impl Check for Swings {
         ) else {
             return Vec::new();
         };
-        let grade = if share < UNRELIABLE_BELOW {
-            Grade::Unreliable
-        } else if share < DOUBTFUL_BELOW {
-            Grade::Doubtful
-        } else {
+        let Some(grade) = Grade::below(share, UNRELIABLE_BELOW, DOUBTFUL_BELOW) else {
             return Vec::new();
         };
         vec![Reason::new(
