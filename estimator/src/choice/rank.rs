@@ -68,9 +68,10 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
             1.0 - e > PICTURE_FACTOR * (1.0 - best_picture) && best_picture - e > PICTURE_MARGIN
         })
     };
-    let set_aside: Vec<String> = pool
+    let (lost, pool): (Vec<usize>, Vec<usize>) =
+        pool.into_iter().partition(|&i| loses(&candidates[i]));
+    let set_aside: Vec<String> = lost
         .iter()
-        .filter(|&&i| loses(&candidates[i]))
         .map(|&i| {
             let c = &candidates[i];
             format!(
@@ -80,10 +81,6 @@ pub fn rank(mut candidates: Vec<Candidate>) -> Option<ModelChoice> {
                 100.0 * best_picture
             )
         })
-        .collect();
-    let pool: Vec<usize> = pool
-        .into_iter()
-        .filter(|&i| !loses(&candidates[i]))
         .collect();
     let u = |c: &Candidate| {
         c.unexplained

@@ -73,12 +73,10 @@ pub const TURN: f64 = 0.1;
 
 /// Whether the latent of one clip `z` turns back (see [`TURN`]).
 pub fn turns_back(z: &[f64]) -> bool {
-    let (Some(&first), Some(&last)) = (z.first(), z.last()) else {
-        return false;
-    };
     if z.len() < 3 {
         return false;
     }
+    let (first, last) = (z[0], z[z.len() - 1]);
     let range = z.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
         - z.iter().fold(f64::INFINITY, |a, &b| a.min(b));
     let beyond = z[1..z.len() - 1]
@@ -108,12 +106,15 @@ impl LawFit {
         let lagged = (r.narrow(1, 1, t - 1) * r.narrow(1, 0, t - 1))
             .sum(Kind::Double)
             .double_value(&[]);
-        let turning_share = (z.dim() == 2).then(|| {
-            let n = z.size()[0] as usize;
-            let zs = Vec::<f64>::try_from(&z.contiguous().view([-1])).unwrap_or_default();
-            let turning = zs.chunks(t as usize).filter(|c| turns_back(c)).count();
-            turning as f64 / n.max(1) as f64
-        });
+        // One-number latents only; none rather than a share of nothing where the copy fails.
+        let turning_share = (z.dim() == 2)
+            .then(|| Vec::<f64>::try_from(&z.contiguous().view([-1])).ok())
+            .flatten()
+            .map(|zs| {
+                let clips = zs.chunks(t as usize);
+                let n = clips.len().max(1);
+                clips.filter(|c| turns_back(c)).count() as f64 / n as f64
+            });
         Some(LawFit {
             turning_share,
             latent_range: (z.min().double_value(&[]), z.max().double_value(&[])),

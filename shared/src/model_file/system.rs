@@ -16,8 +16,7 @@ pub struct CompiledSystem {
     pub n: usize,
     pub m: usize,
     tape: Tape,
-    /// The tape's nodes, and those that compute f.
-    nodes: usize,
+    /// The tape's nodes that compute f.
     f_len: usize,
 }
 
@@ -48,7 +47,6 @@ impl CompiledSystem {
         CompiledSystem {
             n,
             m,
-            nodes: b.len(),
             tape: b.finish(),
             f_len,
         }
@@ -79,7 +77,7 @@ impl CompiledSystem {
             }
             buf[n + m] = t;
             let upto = if jac.is_some() {
-                self.nodes
+                self.tape.nodes()
             } else {
                 self.f_len
             };

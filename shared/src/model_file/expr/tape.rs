@@ -99,7 +99,9 @@ impl TapeBuilder {
             })
             .max()
             .unwrap_or(0);
-        // Slots: the variables, a zero (the outputs that are none), the constants, the results.
+        // Slots: the variables, a zero (the outputs that are none, the second operand of a
+        // function of one), the constants, the results.
+        let zero = vars as u32;
         let mut constants = vec![0.0];
         let mut slot = vec![0u32; self.nodes.len()];
         for (i, n) in self.nodes.iter().enumerate() {
@@ -142,15 +144,14 @@ impl TapeBuilder {
                                 cos: s(cos),
                             })
                         }
-                        _ => Some(Step::Call(f, s(a), 0, s(i))),
+                        _ => Some(Step::Call(f, s(a), zero, s(i))),
                     }
                 }
-                Node::Call(f, a, b) => Some(Step::Call(f, s(a), b.map_or(vars as u32, s), s(i))),
+                Node::Call(f, a, b) => Some(Step::Call(f, s(a), b.map_or(zero, s), s(i))),
             };
             steps.extend(step);
         }
         prefix.push(steps.len());
-        let zero = vars as u32;
         Tape {
             vars,
             constants,
@@ -191,6 +192,11 @@ impl Tape {
     /// Whether it has no operations.
     pub fn is_empty(&self) -> bool {
         self.steps.is_empty()
+    }
+
+    /// The builder's nodes ([`Tape::run`]'s `upto` for every output).
+    pub fn nodes(&self) -> usize {
+        self.prefix.len() - 1
     }
 
     /// The operations that compute the builder's first `upto` nodes.
