@@ -19,6 +19,13 @@ pub const MIN_TRAVEL: f64 = 0.1;
 /// rollout holds them at rest; a reference taken at rest stays in the part kept).
 const REST_MARGIN: f64 = 0.1;
 
+/// The early part of a descent, as a share of the way: where the release is read.
+const EARLY: f64 = 0.3;
+
+/// How much further than on the rest of the descent what is measured may spread on an early
+/// frame before the frame counts as crowded (see [`Descent::crowded`]).
+const CROWDED: f64 = 1.3;
+
 /// A descent found in the frames.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Descent {
@@ -37,6 +44,11 @@ pub struct Descent {
     /// along it: a (in its units, half the larger side from the centre) as a/(1 + bend·a),
     /// the bend by perspective undone (0 without one).
     pub line: Line,
+    /// The share of the early frames (the first 30 % of the way, where the release is read)
+    /// on which what is measured spreads over 1.3× as far as later: something else moves or
+    /// differs where the object starts (the shared ball: the hand that held it opening beside
+    /// it), which pulls those positions and the release with them.
+    pub crowded: f64,
 }
 
 /// The descent in frames `[F, H·W]` of `size` = (W, H), or `None` when no object crosses
@@ -48,7 +60,7 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         return None;
     }
     let frame = (1, h, w);
-    let (path, peak) = tch::no_grad(|| {
+    let (path, spread, peak) = tch::no_grad(|| {
         let x = Tensor::from_slice(frames).view([n, h * w]);
         // Against the median frame (the background, where the object spends under half its
         // time); found where the frame differs from one `lag` frames earlier (what moves now,
@@ -58,13 +70,19 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         let earlier = Tensor::cat(&[d.narrow(0, 0, lag), d.narrow(0, 0, n - lag)], 0);
         let moved = &d - earlier;
         let peak = (&moved * polarity).amax(1, false);
-        (centroid::located(&moved, &d, frame, polarity, window), peak)
+        let (path, spread) = centroid::located(&moved, &d, frame, polarity, window);
+        (path, spread, peak)
     });
     let half = (w.max(h) as f64) / 2.0;
     let p: Vec<f64> = Vec::<f32>::try_from(path.reshape([-1]))
         .ok()?
         .into_iter()
         .map(|v| f64::from(v) * half)
+        .collect();
+    let spread: Vec<f64> = Vec::<f32>::try_from(spread)
+        .ok()?
+        .into_iter()
+        .map(f64::from)
         .collect();
     let peak: Vec<f64> = Vec::<f32>::try_from(peak)
         .ok()?
@@ -80,7 +98,32 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         .map(|k| (k, [p[2 * k], p[2 * k + 1]]))
         .collect();
     let (path, axis) = project(&seen)?;
-    along(&path, axis, 2.0 * half)
+    let d = along(&path, axis, 2.0 * half)?;
+    Some(Descent {
+        crowded: crowded(&path, &spread, d.last),
+        ..d
+    })
+}
+
+/// The share of a descent's early frames (its first [`EARLY`] of the way, up to frame `last`
+/// of `path`) where what is measured spreads over [`CROWDED`] times as far as on the later
+/// frames (`spread`, per frame): something else differs beside the object where it starts.
+fn crowded(path: &[(usize, f64)], spread: &[f64], last: usize) -> f64 {
+    let out: Vec<(usize, f64)> = path.iter().copied().filter(|q| q.0 <= last).collect();
+    let (Some(&(_, from)), Some(&(_, to))) = (out.first(), out.last()) else {
+        return 0.0;
+    };
+    let (early, later): (Vec<_>, Vec<_>) = out
+        .iter()
+        .map(|&(k, p)| (p - from <= EARLY * (to - from), spread[k]))
+        .partition(|q| q.0);
+    let mut later: Vec<f64> = later.into_iter().map(|q| q.1).collect();
+    if early.is_empty() || later.is_empty() {
+        return 0.0;
+    }
+    later.sort_by(f64::total_cmp);
+    let usual = later[later.len() / 2];
+    early.iter().filter(|q| q.1 > CROWDED * usual).count() as f64 / early.len() as f64
 }
 
 /// A path: (frame, pixels along it).
@@ -130,6 +173,19 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     if hi - lo < MIN_TRAVEL * side {
         return None;
     }
+    // What moves the other way before the descent (a hand pulled back as it lets go, seen
+    // first) is not part of it: the descent starts at the nearest point before the furthest.
+    let furthest = path
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+        .map_or(0, |(i, _)| i);
+    let start = path[..=furthest]
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+        .map_or(0, |(i, _)| i);
+    let path = &path[start..];
     // The end: the furthest point before the object first comes back (by more than 2 % of
     // its travel): an impact, a bounce, a stop.
     let tol = 0.02 * (hi - lo);
@@ -165,7 +221,7 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     // through its first part (the least extrapolated: perspective and drag bend the later).
     let early: Vec<(f64, f64)> = out[..=end]
         .iter()
-        .filter(|q| q.1 - first_p <= 0.3 * reach)
+        .filter(|q| q.1 - first_p <= EARLY * reach)
         .map(|q| (q.0 as f64, q.1))
         .collect();
     let fit = if early.len() >= 4 {
@@ -173,7 +229,7 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     } else {
         out[..=end].iter().map(|q| (q.0 as f64, q.1)).collect()
     };
-    let [_, b, c] = quadratic(&fit)?;
+    let [_, b, c] = physvid_shared::linalg::quadratic(&fit)?;
     if c <= 0.0 {
         return None;
     }
@@ -196,31 +252,8 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
             // κ in the centroid's units: half the larger side per unit.
             bend: bend.map_or(0.0, |b| b.per_pixel * side / 2.0),
         },
+        crowded: 0.0,
     })
-}
-
-/// Least-squares a + b·t + c·t² through `pts` (t, y), t centred for conditioning.
-fn quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
-    let m = pts.len() as f64;
-    let t0 = pts.iter().map(|p| p.0).sum::<f64>() / m;
-    let mut a = [0.0f64; 9];
-    let mut r = [0.0f64; 3];
-    for &(t, y) in pts {
-        let row = [1.0, t - t0, (t - t0).powi(2)];
-        for i in 0..3 {
-            r[i] += row[i] * y;
-            for j in 0..3 {
-                a[3 * i + j] += row[i] * row[j];
-            }
-        }
-    }
-    let s = physvid_shared::linalg::solve(&a, &r, 3)?;
-    // Back to t: a + b(t − t0) + c(t − t0)².
-    Some([
-        s[0] - s[1] * t0 + s[2] * t0 * t0,
-        s[1] - 2.0 * s[2] * t0,
-        s[2],
-    ])
 }
 
 #[cfg(test)]
@@ -243,6 +276,38 @@ mod tests {
         assert_eq!(d.last, 69);
         assert!((d.release - release).abs() < 0.3, "{}", d.release);
         assert!(d.first >= 25 && d.first <= 30, "{}", d.first);
+    }
+
+    #[test]
+    fn what_moves_back_before_the_descent_is_not_part_of_it() {
+        // A hand pulled back 8 px over frames 20–24 as it lets go, then the fall from 25
+        // (seen first: the hand, moving the other way; the descent had been cut there).
+        let release = 25.0;
+        let mut path: Vec<(usize, f64)> = (20..25).map(|k| (k, -2.0 * (k - 20) as f64)).collect();
+        path.extend((26..60).map(|k| (k, -8.0 + (k as f64 - release).powi(2))));
+        let d = along(&path, [0.0, 1.0], 2000.0).expect("a descent");
+        assert_eq!(d.last, 59);
+        // Its release no later than the first frame seen (the hand's last, frame 24).
+        assert!((d.release - release).abs() <= 1.0, "{}", d.release);
+    }
+
+    #[test]
+    fn early_frames_measured_wide_are_crowded() {
+        // 40 frames of a descent; the first 30 % of the way is frames 0–21 (p = k²).
+        let path: Vec<(usize, f64)> = (0..40).map(|k| (k, (k * k) as f64)).collect();
+        let mut spread = vec![2.0; 40];
+        assert_eq!(crowded(&path, &spread, 39), 0.0);
+        // Something beside the object on its first 11 frames: half of the 22 early ones.
+        for s in &mut spread[..11] {
+            *s = 3.0;
+        }
+        assert!((crowded(&path, &spread, 39) - 0.5).abs() < 1e-9);
+        // Only later frames: not where the release is read.
+        let mut late = vec![2.0; 40];
+        for s in &mut late[30..] {
+            *s = 5.0;
+        }
+        assert_eq!(crowded(&path, &late, 39), 0.0);
     }
 
     #[test]

@@ -125,18 +125,20 @@ pub(crate) fn from_background(x: &Tensor, frame: (i64, i64, i64)) -> (Tensor, f6
 /// Gaussian window there says where it is to a fraction of a pixel.
 pub fn positions(x: &Tensor, frame: (i64, i64, i64), polarity: f64, window: f64) -> Tensor {
     let v = signed(x, frame, polarity);
-    measured(&v, &v, window)
+    measured(&v, &v, window).0
 }
 
 /// As [`positions`], the object found where `by` [F, C·H·W] is largest in its direction (a
-/// difference from an earlier frame: what moves) and measured on `x`.
+/// difference from an earlier frame: what moves) and measured on `x`; with how far what was
+/// measured spreads about its centroid [F] (the object's own size, or more where something
+/// else differs beside it).
 pub fn located(
     by: &Tensor,
     x: &Tensor,
     frame: (i64, i64, i64),
     polarity: f64,
     window: f64,
-) -> Tensor {
+) -> (Tensor, Tensor) {
     measured(
         &signed(by, frame, polarity),
         &signed(x, frame, polarity),
@@ -145,8 +147,9 @@ pub fn located(
 }
 
 /// Positions [F, 2] of the object found where the signed differences `by` [F, H, W] peak,
-/// measured on the signed differences `v` [F, H, W].
-fn measured(by: &Tensor, v: &Tensor, window: f64) -> Tensor {
+/// measured on the signed differences `v` [F, H, W], and the rms distance [F] of what was
+/// measured from that position.
+fn measured(by: &Tensor, v: &Tensor, window: f64) -> (Tensor, Tensor) {
     let (f, h, w) = v.size3().expect("signed differences are [F, H, W]");
     let side = h.max(w);
     let cell = 2.0 / side as f64;
@@ -170,7 +173,17 @@ fn measured(by: &Tensor, v: &Tensor, window: f64) -> Tensor {
     let py =
         (mass.sum_dim_intlist(2, false, Kind::Float) * &ys).sum_dim_intlist(1, false, Kind::Float)
             / &total;
-    Tensor::stack(&[px, py], -1)
+    let dx = (xs.unsqueeze(0) - px.unsqueeze(1)).square();
+    let dy = (ys.unsqueeze(0) - py.unsqueeze(1)).square();
+    let spread =
+        ((mass.sum_dim_intlist(1, false, Kind::Float) * dx).sum_dim_intlist(1, false, Kind::Float)
+            + (mass.sum_dim_intlist(2, false, Kind::Float) * dy).sum_dim_intlist(
+                1,
+                false,
+                Kind::Float,
+            ))
+            / &total;
+    (Tensor::stack(&[px, py], -1), spread.sqrt())
 }
 
 #[cfg(test)]

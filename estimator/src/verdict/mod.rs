@@ -12,6 +12,7 @@ mod law;
 mod motion;
 mod physics;
 mod premise;
+mod release;
 mod sampling;
 mod swing;
 mod training;
@@ -54,6 +55,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &motion::FollowsMotion,
     &law::LawFits,
     &premise::Premise,
+    &release::Release,
     &uncertainty::Determined,
     &consistency::Halves,
     &physics::Plausible,

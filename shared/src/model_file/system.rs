@@ -2,12 +2,16 @@
 //! ∂f/∂p on one tape (symbolic derivatives, common subexpressions computed once), and a plain
 //! RK4 trajectory for `gen`.
 
-use super::expr::{Tape, TapeBuilder};
+use super::expr::{Slots, Tape, TapeBuilder};
 use super::ModelFile;
 use std::cell::RefCell;
 
 /// The most variables (states + parameters + t) a file may have.
 pub const MAX_VARIABLES: usize = 64;
+
+/// Tapes of at most this many slots run on an array on the stack, whose accesses are never
+/// checked (`Slots`); a larger array costs more to clear than it saves.
+const SMALL: usize = 32;
 
 /// f and its Jacobians, compiled onto one tape: f's n outputs first (so f alone evaluates a
 /// prefix), then ∂f/∂x row-major, then ∂f/∂p.
@@ -21,7 +25,7 @@ pub struct CompiledSystem {
 }
 
 thread_local! {
-    /// The tape's scratch values, one buffer per thread.
+    /// The scratch values of a tape too large for `SMALL`, one buffer per thread.
     static BUFFER: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
 }
 
@@ -66,34 +70,50 @@ impl CompiledSystem {
         f: &mut [f64],
         jac: Option<(&mut [f64], &mut [f64])>,
     ) {
+        let len = self.tape.buffer_len().max(self.n + self.m + 1);
+        if len <= SMALL {
+            self.eval_in(x, p, t, f, jac, &mut [0.0; SMALL]);
+        } else {
+            BUFFER.with_borrow_mut(|buf| {
+                if buf.len() < len {
+                    buf.resize(len, 0.0);
+                }
+                self.eval_in(x, p, t, f, jac, buf.as_mut_slice());
+            });
+        }
+    }
+
+    /// [`CompiledSystem::eval`] with the tape's buffer `buf`.
+    fn eval_in<S: Slots + ?Sized>(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], &mut [f64])>,
+        buf: &mut S,
+    ) {
         let (n, m) = (self.n, self.m);
-        BUFFER.with_borrow_mut(|buf| {
-            let len = self.tape.buffer_len().max(n + m + 1);
-            if buf.len() < len {
-                buf.resize(len, 0.0);
+        for (k, v) in x[..n].iter().chain(&p[..m]).chain([&t]).enumerate() {
+            buf.set(k as u32, *v);
+        }
+        let upto = if jac.is_some() {
+            self.tape.nodes()
+        } else {
+            self.f_len
+        };
+        self.tape.run_loaded(upto, buf);
+        for (i, fi) in f[..n].iter_mut().enumerate() {
+            *fi = self.tape.output(i, buf);
+        }
+        if let Some((jx, jp)) = jac {
+            for (k, out) in jx[..n * n].iter_mut().enumerate() {
+                *out = self.tape.output(n + k, buf);
             }
-            for (b, v) in buf.iter_mut().zip(x[..n].iter().chain(&p[..m])) {
-                *b = *v;
+            for (k, out) in jp[..n * m].iter_mut().enumerate() {
+                *out = self.tape.output(n + n * n + k, buf);
             }
-            buf[n + m] = t;
-            let upto = if jac.is_some() {
-                self.tape.nodes()
-            } else {
-                self.f_len
-            };
-            self.tape.run_loaded(upto, buf);
-            for (i, fi) in f.iter_mut().enumerate().take(n) {
-                *fi = self.tape.output(i, buf);
-            }
-            if let Some((jx, jp)) = jac {
-                for (k, out) in jx.iter_mut().enumerate().take(n * n) {
-                    *out = self.tape.output(n + k, buf);
-                }
-                for (k, out) in jp.iter_mut().enumerate().take(n * m) {
-                    *out = self.tape.output(n + n * n + k, buf);
-                }
-            }
-        });
+        }
     }
 
     /// The RK4 trajectory from `x0` at time `t0`: `frames` states `dt` apart [frames × n],

@@ -6,6 +6,7 @@
 mod decode;
 mod folder;
 mod probe;
+mod region;
 mod resize;
 mod survey;
 pub mod timescale;

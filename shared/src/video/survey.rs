@@ -9,6 +9,7 @@
 
 use super::decode::read_full;
 use super::probe::tool;
+use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
 use super::{bad, Crop, VideoError, VideoInfo};
 use std::path::Path;
@@ -113,11 +114,13 @@ pub fn survey(
     })
 }
 
-/// Running per-pixel mean and variance of frames with each frame's own mean taken out.
+/// Running per-pixel mean, variance and range of frames with each frame's own mean taken out.
 pub struct MotionStats {
     n: usize,
     mean: Vec<f64>,
     m2: Vec<f64>,
+    lo: Vec<f32>,
+    hi: Vec<f32>,
 }
 
 impl MotionStats {
@@ -126,6 +129,8 @@ impl MotionStats {
             n: 0,
             mean: vec![0.0; pixels],
             m2: vec![0.0; pixels],
+            lo: vec![f32::INFINITY; pixels],
+            hi: vec![f32::NEG_INFINITY; pixels],
         }
     }
 
@@ -138,7 +143,47 @@ impl MotionStats {
             let x = v as f64 - level;
             let d = x - self.mean[i];
             self.mean[i] += d / n;
+            self.lo[i] = self.lo[i].min(x as f32);
+            self.hi[i] = self.hi[i].max(x as f32);
             self.m2[i] += d * (x - self.mean[i]);
+        }
+    }
+
+    /// `region` (the part `best` of the motion map's `labels`) grown along the path of what
+    /// moves there. An object that crosses the frame once (a fall from rest: it rests at the
+    /// ends and crosses in a few frames) varies each pixel of its way for a frame or two, so
+    /// the variance map shows its ends and not the way between; how far each pixel ever departs
+    /// from the rest of its frame shows the whole way. The parts of that range map that touch
+    /// the region join it, unless the region would then take most of the frame (a shaking
+    /// camera lights every edge of the range map).
+    fn along_its_path(
+        &self,
+        region: Bounds,
+        labels: &[Option<usize>],
+        best: usize,
+        (w, h): (usize, usize),
+    ) -> Bounds {
+        let range: Vec<f32> = self.hi.iter().zip(&self.lo).map(|(h, l)| h - l).collect();
+        let range = blur(&range, w, h);
+        let top = range.iter().copied().fold(0.0f32, f32::max);
+        let on: Vec<bool> = range.iter().map(|&v| v >= MOVING * top).collect();
+        let (parts, _) = components(&on, w, h);
+        let mut touching: Vec<usize> = (0..w * h)
+            .filter(|&i| labels[i] == Some(best))
+            .filter_map(|i| parts[i])
+            .collect();
+        touching.sort_unstable();
+        touching.dedup();
+        let Some(path) = Bounds::of(w, w * h, |i| {
+            parts[i].is_some_and(|p| touching.binary_search(&p).is_ok())
+        }) else {
+            return region;
+        };
+        let grown = region.union(path);
+        if grown.with_margin(w, h).share(w, h) <= WHOLE_FRAME {
+            grown
+        } else {
+            region
         }
     }
 
@@ -178,18 +223,10 @@ impl MotionStats {
         let Some(best) = (0..count).max_by(|&a, &b| energy[a].total_cmp(&energy[b])) else {
             return empty;
         };
-        let (mut x0, mut y0, mut x1, mut y1) = (w, h, 0, 0);
-        for (i, &l) in labels.iter().enumerate() {
-            if l == Some(best) {
-                let (x, y) = (i % w, i / w);
-                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            }
-        }
-        // A margin of a fifth of the region's size (at least two survey pixels) each side.
-        let (mx, my) = (((x1 - x0 + 1) / 5).max(2), ((y1 - y0 + 1) / 5).max(2));
-        let (x0, y0) = (x0.saturating_sub(mx), y0.saturating_sub(my));
-        let (x1, y1) = ((x1 + mx).min(w - 1), (y1 + my).min(h - 1));
-        let area_share = ((x1 - x0 + 1) * (y1 - y0 + 1)) as f64 / (w * h) as f64;
+        let region = Bounds::of(w, w * h, |i| labels[i] == Some(best)).expect("a region");
+        let region = self.along_its_path(region, &labels, best, size);
+        let framed = region.with_margin(w, h);
+        let (Bounds { x0, y0, x1, y1 }, area_share) = (framed, framed.share(w, h));
         let (sx, sy) = (full.0 as f64 / w as f64, full.1 as f64 / h as f64);
         let crop = Crop {
             x: (x0 as f64 * sx).floor() as usize,
@@ -207,60 +244,6 @@ impl MotionStats {
             ..empty
         }
     }
-}
-
-/// A 3×3 box blur, twice (spreads a thin moving edge over its neighbours).
-fn blur(map: &[f32], w: usize, h: usize) -> Vec<f32> {
-    let once = |m: &[f32]| -> Vec<f32> {
-        (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as isize, (i / w) as isize);
-                let (mut s, mut n) = (0.0, 0.0);
-                for dy in -1..=1 {
-                    for dx in -1..=1 {
-                        let (a, b) = (x + dx, y + dy);
-                        if a >= 0 && b >= 0 && (a as usize) < w && (b as usize) < h {
-                            s += m[b as usize * w + a as usize];
-                            n += 1.0;
-                        }
-                    }
-                }
-                s / n
-            })
-            .collect()
-    };
-    once(&once(map))
-}
-
-/// Labels of the 8-connected components of `on` (None where off) and their count.
-fn components(on: &[bool], w: usize, h: usize) -> (Vec<Option<usize>>, usize) {
-    let mut labels = vec![None; w * h];
-    let mut count = 0;
-    for start in 0..w * h {
-        if !on[start] || labels[start].is_some() {
-            continue;
-        }
-        let mut stack = vec![start];
-        labels[start] = Some(count);
-        while let Some(i) = stack.pop() {
-            let (x, y) = ((i % w) as isize, (i / w) as isize);
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let (a, b) = (x + dx, y + dy);
-                    if a < 0 || b < 0 || a as usize >= w || b as usize >= h {
-                        continue;
-                    }
-                    let j = b as usize * w + a as usize;
-                    if on[j] && labels[j].is_none() {
-                        labels[j] = Some(count);
-                        stack.push(j);
-                    }
-                }
-            }
-        }
-        count += 1;
-    }
-    (labels, count)
 }
 
 #[cfg(test)]
@@ -294,6 +277,24 @@ mod tests {
         assert!(c.y <= 200 && c.y + c.h >= 240, "{c:?}");
         assert!(r.area_share < 0.3, "{}", r.area_share);
         assert_eq!(r.regions, 1);
+    }
+
+    #[test]
+    fn a_fall_that_rests_at_both_ends_is_framed_along_its_whole_way() {
+        // 40 frames at rest at the top, across the frame in 10, 60 at rest at the bottom: the
+        // variance shows the two ends, the range the way between.
+        let mut s = MotionStats::new(64 * 36);
+        let rows = (0..110).map(|k: usize| match k {
+            0..40 => 1,
+            40..50 => 1 + (k - 39) * (k - 39) * 30 / 100,
+            _ => 31,
+        });
+        for y in rows {
+            s.add(&frame(30, y, 0));
+        }
+        let c = s.survey((64, 36), (64, 36)).crop.expect("a region");
+        assert!(c.y <= 1 && c.y + c.h >= 35, "{c:?}");
+        assert!(c.x <= 30 && c.x + c.w >= 34 && c.w <= 20, "{c:?}");
     }
 
     #[test]

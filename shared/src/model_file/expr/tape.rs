@@ -23,6 +23,12 @@ enum Node {
 #[derive(Debug, Clone, Copy)]
 enum Step {
     Neg(u32, u32),
+    /// The four operations of arithmetic each their own step (one dispatch, not two); `Bin`
+    /// is left for powers.
+    Add(u32, u32, u32),
+    Sub(u32, u32, u32),
+    Mul(u32, u32, u32),
+    Div(u32, u32, u32),
     Bin(Op, u32, u32, u32),
     Call(Func, u32, u32, u32),
     /// sin and cos of one argument at once (`sin_cos`): a pendulum's law and its derivative
@@ -131,7 +137,13 @@ impl TapeBuilder {
                 Node::Num(_) | Node::Var(_) => None,
                 _ if fused[i] => None,
                 Node::Neg(a) => Some(Step::Neg(s(a), s(i))),
-                Node::Bin(op, a, b) => Some(Step::Bin(op, s(a), s(b), s(i))),
+                Node::Bin(op, a, b) => Some(match op {
+                    Op::Add => Step::Add(s(a), s(b), s(i)),
+                    Op::Sub => Step::Sub(s(a), s(b), s(i)),
+                    Op::Mul => Step::Mul(s(a), s(b), s(i)),
+                    Op::Div => Step::Div(s(a), s(b), s(i)),
+                    Op::Pow => Step::Bin(op, s(a), s(b), s(i)),
+                }),
                 Node::Call(f @ (Func::Sin | Func::Cos), a, None) => {
                     let partner = if f == Func::Sin { Func::Cos } else { Func::Sin };
                     match self.index.get(&Node::Call(partner, a, None)) {
@@ -211,37 +223,77 @@ impl Tape {
 
     /// Evaluates the builder's first `upto` nodes at `vars` into `buf` (at least
     /// [`Tape::buffer_len`] long).
-    pub fn run(&self, vars: &[f64], upto: usize, buf: &mut [f64]) {
-        buf[..self.vars].copy_from_slice(&vars[..self.vars]);
+    pub fn run<S: Slots + ?Sized>(&self, vars: &[f64], upto: usize, buf: &mut S) {
+        for (k, v) in vars[..self.vars].iter().enumerate() {
+            buf.set(k as u32, *v);
+        }
         self.run_loaded(upto, buf);
     }
 
     /// [`Tape::run`] with the variables already in `buf`'s first slots.
-    pub fn run_loaded(&self, upto: usize, buf: &mut [f64]) {
-        let v = self.vars;
-        for (slot, c) in buf[v..].iter_mut().zip(&self.constants) {
-            *slot = *c;
+    pub fn run_loaded<S: Slots + ?Sized>(&self, upto: usize, buf: &mut S) {
+        // Once a run: an array's masked accesses would otherwise wrap silently.
+        assert!(buf.slots() >= self.len, "a tape's buffer is too short");
+        for (k, c) in self.constants.iter().enumerate() {
+            buf.set((self.vars + k) as u32, *c);
         }
         for step in &self.steps[..self.prefix[upto]] {
             match *step {
-                Step::Neg(a, out) => buf[out as usize] = -buf[a as usize],
-                Step::Bin(op, a, b, out) => {
-                    buf[out as usize] = op.apply(buf[a as usize], buf[b as usize])
-                }
-                Step::Call(f, a, b, out) => {
-                    buf[out as usize] = f.apply(buf[a as usize], buf[b as usize])
-                }
+                Step::Neg(a, out) => buf.set(out, -buf.get(a)),
+                Step::Add(a, b, out) => buf.set(out, buf.get(a) + buf.get(b)),
+                Step::Sub(a, b, out) => buf.set(out, buf.get(a) - buf.get(b)),
+                Step::Mul(a, b, out) => buf.set(out, buf.get(a) * buf.get(b)),
+                Step::Div(a, b, out) => buf.set(out, buf.get(a) / buf.get(b)),
+                Step::Bin(op, a, b, out) => buf.set(out, op.apply(buf.get(a), buf.get(b))),
+                Step::Call(f, a, b, out) => buf.set(out, f.apply(buf.get(a), buf.get(b))),
                 Step::SinCos { arg, sin, cos } => {
-                    let (s, c) = buf[arg as usize].sin_cos();
-                    buf[sin as usize] = s;
-                    buf[cos as usize] = c;
+                    let (s, c) = buf.get(arg).sin_cos();
+                    buf.set(sin, s);
+                    buf.set(cos, c);
                 }
             }
         }
     }
 
     /// Output `k`'s value after [`Tape::run`] covered it.
-    pub fn output(&self, k: usize, buf: &[f64]) -> f64 {
-        buf[self.outputs[k] as usize]
+    pub fn output<S: Slots + ?Sized>(&self, k: usize, buf: &S) -> f64 {
+        buf.get(self.outputs[k])
+    }
+}
+
+/// A tape's buffer: a slice of any length (each access checked), or an array of a power of
+/// two slots at least [`Tape::buffer_len`] long, whose accesses are masked into range and so
+/// never checked (a small law evaluated millions of times an epoch spends a third of its time
+/// on the checks otherwise).
+pub trait Slots {
+    /// How many slots it holds.
+    fn slots(&self) -> usize;
+    fn get(&self, slot: u32) -> f64;
+    fn set(&mut self, slot: u32, value: f64);
+}
+
+impl Slots for [f64] {
+    fn slots(&self) -> usize {
+        self.len()
+    }
+    fn get(&self, slot: u32) -> f64 {
+        self[slot as usize]
+    }
+    fn set(&mut self, slot: u32, value: f64) {
+        self[slot as usize] = value;
+    }
+}
+
+impl<const N: usize> Slots for [f64; N] {
+    fn slots(&self) -> usize {
+        N
+    }
+    fn get(&self, slot: u32) -> f64 {
+        const { assert!(N.is_power_of_two()) };
+        self[slot as usize & (N - 1)]
+    }
+    fn set(&mut self, slot: u32, value: f64) {
+        const { assert!(N.is_power_of_two()) };
+        self[slot as usize & (N - 1)] = value;
     }
 }
