@@ -22,6 +22,11 @@ pub const SURVEY_SIDE: usize = 160;
 /// strongest (after smoothing).
 const MOVING: f32 = 0.2;
 
+/// The range map's parts grow the region only where that makes it at least this much larger
+/// (measured: a fall whose ends the variance map shows, 2.2× and more; the fringe of a swing's
+/// arc on the rod-and-bob renders, 1.0–1.2×).
+const ALONG_A_PATH: f64 = 1.5;
+
 /// A region covering more of the frame than this is not worth a crop.
 const WHOLE_FRAME: f64 = 0.6;
 
@@ -154,8 +159,9 @@ impl MotionStats {
     /// ends and crosses in a few frames) varies each pixel of its way for a frame or two, so
     /// the variance map shows its ends and not the way between; how far each pixel ever departs
     /// from the rest of its frame shows the whole way. The parts of that range map that touch
-    /// the region join it, unless the region would then take most of the frame (a shaking
-    /// camera lights every edge of the range map).
+    /// the region join it where they reach well beyond it ([`ALONG_A_PATH`]; a swing's range
+    /// adds only the fringe of its arc, which is left as it was), unless the region would then
+    /// take most of the frame (a shaking camera lights every edge of the range map).
     fn along_its_path(
         &self,
         region: Bounds,
@@ -180,7 +186,8 @@ impl MotionStats {
             return region;
         };
         let grown = region.union(path);
-        if grown.with_margin(w, h).share(w, h) <= WHOLE_FRAME {
+        let beyond = grown.share(w, h) >= ALONG_A_PATH * region.share(w, h);
+        if beyond && grown.with_margin(w, h).share(w, h) <= WHOLE_FRAME {
             grown
         } else {
             region
