@@ -24,8 +24,9 @@ pub struct RecordingArgs {
     pub fps: Option<f64>,
     /// What part of the frame the encoder sees: X,Y,W,H in pixels of the displayed (rotated)
     /// frame (W, H ≥ 4); `full` for the whole frame; `auto` (the default for videos) for the
-    /// region where the picture moves, found by a quick low-resolution pass (report.html shows
-    /// it; an image folder keeps its whole frame).
+    /// region where the picture moves, found by a quick low-resolution pass (an object that
+    /// crosses once, as a fall, along its whole way; report.html shows it; an image folder
+    /// keeps its whole frame).
     #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H|auto|full")]
     pub crop: Option<Framing>,
     /// First second to use (of the file's own timeline) [default: where the motion starts:

@@ -158,10 +158,11 @@ impl MotionStats {
     /// moves there. An object that crosses the frame once (a fall from rest: it rests at the
     /// ends and crosses in a few frames) varies each pixel of its way for a frame or two, so
     /// the variance map shows its ends and not the way between; how far each pixel ever departs
-    /// from the rest of its frame shows the whole way. The parts of that range map that touch
-    /// the region join it where they reach well beyond it ([`ALONG_A_PATH`]; a swing's range
-    /// adds only the fringe of its arc, which is left as it was), unless the region would then
-    /// take most of the frame (a shaking camera lights every edge of the range map).
+    /// from the rest of its frame shows the whole way. The parts of that range map (above the
+    /// frame's median range, what noise alone spans) that touch the region join it where they
+    /// reach well beyond it ([`ALONG_A_PATH`]; a swing's range
+    /// adds only the fringe of its arc, which is left as it was); where the way then takes most
+    /// of the frame, the whole frame is kept, as for any region that large.
     fn along_its_path(
         &self,
         region: Bounds,
@@ -171,8 +172,15 @@ impl MotionStats {
     ) -> Bounds {
         let range: Vec<f32> = self.hi.iter().zip(&self.lo).map(|(h, l)| h - l).collect();
         let range = blur(&range, w, h);
-        let top = range.iter().copied().fold(0.0f32, f32::max);
-        let on: Vec<bool> = range.iter().map(|&v| v >= MOVING * top).collect();
+        // Above the frame's typical range (what noise alone spans over the recording).
+        let mut sorted = range.clone();
+        sorted.sort_by(f32::total_cmp);
+        let usual = sorted[sorted.len() / 2];
+        let top = sorted[sorted.len() - 1];
+        let on: Vec<bool> = range
+            .iter()
+            .map(|&v| v - usual >= MOVING * (top - usual))
+            .collect();
         let (parts, _) = components(&on, w, h);
         let mut touching: Vec<usize> = (0..w * h)
             .filter(|&i| labels[i] == Some(best))
@@ -186,8 +194,7 @@ impl MotionStats {
             return region;
         };
         let grown = region.union(path);
-        let beyond = grown.share(w, h) >= ALONG_A_PATH * region.share(w, h);
-        if beyond && grown.with_margin(w, h).share(w, h) <= WHOLE_FRAME {
+        if grown.share(w, h) >= ALONG_A_PATH * region.share(w, h) {
             grown
         } else {
             region
