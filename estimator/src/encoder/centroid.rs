@@ -125,7 +125,7 @@ pub(crate) fn from_background(x: &Tensor, frame: (i64, i64, i64)) -> (Tensor, f6
 /// Gaussian window there says where it is to a fraction of a pixel.
 pub fn positions(x: &Tensor, frame: (i64, i64, i64), polarity: f64, window: f64) -> Tensor {
     let v = signed(x, frame, polarity);
-    measured(&v, &v, window).0
+    Windowed::new(&v, &v, window).centre()
 }
 
 /// As [`positions`], the object found where `by` [F, C·H·W] is largest in its direction (a
@@ -139,51 +139,82 @@ pub fn located(
     polarity: f64,
     window: f64,
 ) -> (Tensor, Tensor) {
-    measured(
+    let m = Windowed::new(
         &signed(by, frame, polarity),
         &signed(x, frame, polarity),
         window,
-    )
+    );
+    let centre = m.centre();
+    let spread = m.spread(&centre);
+    (centre, spread)
 }
 
-/// Positions [F, 2] of the object found where the signed differences `by` [F, H, W] peak,
-/// measured on the signed differences `v` [F, H, W], and the rms distance [F] of what was
-/// measured from that position.
-fn measured(by: &Tensor, v: &Tensor, window: f64) -> (Tensor, Tensor) {
-    let (f, h, w) = v.size3().expect("signed differences are [F, H, W]");
-    let side = h.max(w);
-    let cell = 2.0 / side as f64;
-    let (xs, ys) = (centres(w, cell, v), centres(h, cell, v));
-    let locate = (by.view([f, h * w]) * SHARPNESS)
-        .softmax(1, Kind::Float)
-        .view([f, h, w]);
-    let cx =
-        (locate.sum_dim_intlist(1, false, Kind::Float) * &xs).sum_dim_intlist(1, true, Kind::Float);
-    let cy =
-        (locate.sum_dim_intlist(2, false, Kind::Float) * &ys).sum_dim_intlist(1, true, Kind::Float);
-    let sigma = window * 2.0 / side as f64;
-    let gx = ((xs.unsqueeze(0) - cx) / sigma).square() * -0.5;
-    let gy = ((ys.unsqueeze(0) - cy) / sigma).square() * -0.5;
-    let gauss = gy.exp().unsqueeze(2) * gx.exp().unsqueeze(1);
-    let mass = v.relu() * gauss;
-    let total = mass.sum_dim_intlist([1, 2].as_slice(), false, Kind::Float) + 1e-6;
-    let px =
-        (mass.sum_dim_intlist(1, false, Kind::Float) * &xs).sum_dim_intlist(1, false, Kind::Float)
-            / &total;
-    let py =
-        (mass.sum_dim_intlist(2, false, Kind::Float) * &ys).sum_dim_intlist(1, false, Kind::Float)
-            / &total;
-    let dx = (xs.unsqueeze(0) - px.unsqueeze(1)).square();
-    let dy = (ys.unsqueeze(0) - py.unsqueeze(1)).square();
-    let spread =
-        ((mass.sum_dim_intlist(1, false, Kind::Float) * dx).sum_dim_intlist(1, false, Kind::Float)
-            + (mass.sum_dim_intlist(2, false, Kind::Float) * dy).sum_dim_intlist(
-                1,
-                false,
-                Kind::Float,
-            ))
-            / &total;
-    (Tensor::stack(&[px, py], -1), spread.sqrt())
+/// What is measured of each frame: the positive signed difference within a Gaussian window
+/// around the object, as its column and row sums, with the pixels' centres.
+struct Windowed {
+    /// Column sums [F, W] and row sums [F, H] of the windowed mass, and its total [F].
+    columns: Tensor,
+    rows: Tensor,
+    total: Tensor,
+    xs: Tensor,
+    ys: Tensor,
+}
+
+impl Windowed {
+    /// The object found where the signed differences `by` [F, H, W] peak, measured on the
+    /// signed differences `v` [F, H, W] within a window of `window` pixels.
+    fn new(by: &Tensor, v: &Tensor, window: f64) -> Windowed {
+        let (f, h, w) = v.size3().expect("signed differences are [F, H, W]");
+        let side = h.max(w);
+        let cell = 2.0 / side as f64;
+        let (xs, ys) = (centres(w, cell, v), centres(h, cell, v));
+        let locate = (by.view([f, h * w]) * SHARPNESS)
+            .softmax(1, Kind::Float)
+            .view([f, h, w]);
+        let cx = (locate.sum_dim_intlist(1, false, Kind::Float) * &xs).sum_dim_intlist(
+            1,
+            true,
+            Kind::Float,
+        );
+        let cy = (locate.sum_dim_intlist(2, false, Kind::Float) * &ys).sum_dim_intlist(
+            1,
+            true,
+            Kind::Float,
+        );
+        let sigma = window * 2.0 / side as f64;
+        let gx = ((xs.unsqueeze(0) - cx) / sigma).square() * -0.5;
+        let gy = ((ys.unsqueeze(0) - cy) / sigma).square() * -0.5;
+        let gauss = gy.exp().unsqueeze(2) * gx.exp().unsqueeze(1);
+        let mass = v.relu() * gauss;
+        Windowed {
+            total: mass.sum_dim_intlist([1, 2].as_slice(), false, Kind::Float) + 1e-6,
+            columns: mass.sum_dim_intlist(1, false, Kind::Float),
+            rows: mass.sum_dim_intlist(2, false, Kind::Float),
+            xs,
+            ys,
+        }
+    }
+
+    /// The mass's centroid (x, y) [F, 2].
+    fn centre(&self) -> Tensor {
+        let along = |sums: &Tensor, at: &Tensor| {
+            (sums * at).sum_dim_intlist(1, false, Kind::Float) / &self.total
+        };
+        Tensor::stack(
+            &[along(&self.columns, &self.xs), along(&self.rows, &self.ys)],
+            -1,
+        )
+    }
+
+    /// The rms distance [F] of the mass from `centre` [F, 2].
+    fn spread(&self, centre: &Tensor) -> Tensor {
+        let moment = |sums: &Tensor, at: &Tensor, c: i64| {
+            let d = (at.unsqueeze(0) - centre.select(1, c).unsqueeze(1)).square();
+            (sums * d).sum_dim_intlist(1, false, Kind::Float)
+        };
+        ((moment(&self.columns, &self.xs, 0) + moment(&self.rows, &self.ys, 1)) / &self.total)
+            .sqrt()
+    }
 }
 
 #[cfg(test)]
