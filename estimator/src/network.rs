@@ -72,6 +72,7 @@ impl Network {
             cfg.model.latent_dims() as i64,
             &data.train,
             data.line(),
+            data.object_located_smoothed(),
         );
         let block = cfg.model.build(
             &(phys_vs.root() / "physics"),

@@ -68,6 +68,15 @@ impl ClipData {
             .map(|d| d.line)
     }
 
+    /// Whether a recording's moving object was found only on the frames blurred
+    /// (`data::object`), and the centroid encoder locates it there too.
+    pub fn object_located_smoothed(&self) -> bool {
+        self.recording
+            .as_ref()
+            .and_then(|(s, _)| s.object)
+            .is_some_and(|o| o.smoothed)
+    }
+
     pub fn n_train(&self) -> i64 {
         self.train.size()[0]
     }

@@ -67,8 +67,8 @@ pub struct Encoder {
 impl Encoder {
     /// An encoder of frames of `frame` = (C, H, W) to `dims` latent numbers; `train` holds the
     /// standardised training clips (the keypoint encoder reads which way bodies differ from
-    /// the mean frame off them); the centroid reads a descent's position along its `line`
-    /// (`centroid::Front`).
+    /// the mean frame off them); the centroid reads a descent's position along its `line`, and
+    /// locates an object on the frames blurred where `smooth` (`centroid::Front`).
     pub fn new(
         path: &nn::Path,
         frame: (i64, i64, i64),
@@ -76,10 +76,11 @@ impl Encoder {
         dims: i64,
         train: &Tensor,
         line: Option<centroid::Line>,
+        smooth: bool,
     ) -> Encoder {
         let inputs = frame.0 * frame.1 * frame.2;
-        let front =
-            (kind == EncoderKind::Centroid).then(|| centroid::Front::new(frame, train, line));
+        let front = (kind == EncoderKind::Centroid)
+            .then(|| centroid::Front::new(frame, train, line, smooth));
         let net: Box<dyn Module> = match kind {
             // The small encoder widens with the latent.
             EncoderKind::Small => Box::new(mlp::mlp(path, inputs, &[16 * dims], dims)),
