@@ -1,7 +1,7 @@
 //! Is `--ensemble`'s spread honest? Twenty intensity sets (gen seeds 0–19), each estimated by an
 //! ensemble of five trainings with the exact block: how often the truth lies within mean ± 2 std.
 
-use crate::runner::{DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
@@ -24,12 +24,15 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let ks = k.to_string();
     let (mut hits0, mut hits1) = (0, 0);
     let mut truth = (f64::NAN, f64::NAN);
-    for seed in 0..sets {
-        let mut spec = DataSpec::new("intensity", r.quick());
-        spec.seed = seed;
-        let data = r.dataset(&spec)?;
-        let rep = r.estimate(&data, &["--ensemble", &ks])?;
-        r.discard(&data);
+    let jobs: Vec<Job> = (0..sets)
+        .map(|seed| {
+            let mut spec = DataSpec::new("intensity", r.quick());
+            spec.seed = seed;
+            Job::new(spec, &["--ensemble", &ks])
+        })
+        .collect();
+    let runs = r.estimate_all(&jobs)?;
+    for (seed, rep) in (0..sets).zip(&runs) {
         let e = rep
             .ensemble
             .as_ref()

@@ -4,9 +4,9 @@
 //! took to first get there. Our default (a second start read off the frames) against the
 //! paper's single start.
 
-use crate::runner::{DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
-use estimator::report::Report;
+use crate::worker::Run;
 
 /// Success: γ0 within 1 %, γ1 within 10 % of the truth.
 pub fn success(g0: f64, g1: f64, truth: (f64, f64)) -> bool {
@@ -14,7 +14,7 @@ pub fn success(g0: f64, g1: f64, truth: (f64, f64)) -> bool {
 }
 
 /// The first epoch whose parameters met [`success`].
-fn epochs_to_success(rep: &Report, truth: (f64, f64)) -> Option<usize> {
+fn epochs_to_success(rep: &Run, truth: (f64, f64)) -> Option<usize> {
     rep.history
         .iter()
         .find(|e| success(e.parameters[0], e.parameters[1], truth))
@@ -69,33 +69,44 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         scenes.len() * starts.len() * seeds as usize * modes.len(),
     );
     let mut specs = Vec::new();
+    let mut jobs = Vec::new();
     for &scene in scenes {
         let spec = DataSpec::new(scene, r.quick());
-        let data = r.dataset(&spec)?;
         specs.push(format!("`{}`", spec.command()));
-        for (mode, mode_flags) in modes {
+        for (_, mode_flags) in modes {
             for &g0 in starts {
-                let g1 = g0 / 50.0;
-                let init = format!("gamma0={g0},gamma1={g1}");
-                let (mut ok, mut epochs, mut v0, mut v1, mut wall) =
-                    (0, vec![], vec![], vec![], vec![]);
+                let init = format!("gamma0={g0},gamma1={}", g0 / 50.0);
                 for seed in 0..seeds {
                     let seed = seed.to_string();
                     let mut flags = vec!["--init", &init, "--seed", &seed];
                     flags.extend(mode_flags);
-                    let rep = r.estimate(&data, &flags)?;
+                    jobs.push(Job::new(spec.clone(), &flags));
+                }
+            }
+        }
+    }
+    let runs = r.estimate_all(&jobs)?;
+    let mut runs = runs.iter();
+    for &scene in scenes {
+        for (mode, _) in modes {
+            for &g0 in starts {
+                let g1 = g0 / 50.0;
+                let (mut ok, mut epochs, mut v0, mut v1, mut wall) =
+                    (0, vec![], vec![], vec![], vec![]);
+                for _ in 0..seeds {
+                    let rep = runs.next().expect("a run for every job");
                     let truth = (
-                        crate::runner::value(&rep, "gamma0")
+                        rep.value("gamma0")
                             .and_then(|p| p.truth)
                             .unwrap_or(f64::NAN),
-                        crate::runner::value(&rep, "gamma1")
+                        rep.value("gamma1")
                             .and_then(|p| p.truth)
                             .unwrap_or(f64::NAN),
                     );
                     let (e0, e1) = (rep.final_values[0], rep.final_values[1]);
                     if success(e0, e1, truth) {
                         ok += 1;
-                        if let Some(e) = epochs_to_success(&rep, truth) {
+                        if let Some(e) = epochs_to_success(rep, truth) {
                             epochs.push(e as f64);
                         }
                     }

@@ -2,7 +2,7 @@
 //! difference ODE residual plus a floor on each clip's latent spread (`--loss residual+floor`),
 //! on the three scenes: accuracy and time.
 
-use crate::runner::{value, DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
@@ -25,13 +25,20 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     );
     r.begin("losses", scenes.len() * losses.len());
     let mut specs = Vec::new();
+    let mut jobs = Vec::new();
     for scene in scenes {
         let spec = DataSpec::new(scene, r.quick());
-        let data = r.dataset(&spec)?;
         specs.push(format!("`{}`", spec.command()));
         for loss in losses {
-            let rep = r.estimate(&data, &["--loss", loss])?;
-            let (g0, g1) = (value(&rep, "gamma0"), value(&rep, "gamma1"));
+            jobs.push(Job::new(spec.clone(), &["--loss", loss]));
+        }
+    }
+    let runs = r.estimate_all(&jobs)?;
+    let mut runs = runs.iter();
+    for scene in scenes {
+        for loss in losses {
+            let rep = runs.next().expect("a run for every job");
+            let (g0, g1) = (rep.value("gamma0"), rep.value("gamma1"));
             t.push(vec![
                 Cell::text(scene),
                 Cell::text(loss),

@@ -15,6 +15,7 @@ mod table;
 mod table3;
 mod table6;
 mod verdict;
+mod worker;
 
 use clap::Parser;
 use estimator::cli::DeviceChoice;
@@ -129,9 +130,15 @@ struct Cli {
     /// Where to train.
     #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
     device: DeviceChoice,
-    /// CPU threads for libtorch, 1 to 256 (default: all cores).
+    /// CPU threads for libtorch in each estimation, 1 to 256 (default: all cores; with
+    /// --jobs N, the cores / N for each of the N).
     #[arg(long, value_parser = physvid_shared::cli::thread_count)]
     threads: Option<usize>,
+    /// Estimations run side by side, each in a process of its own, 1 to 256 (default 1: one
+    /// at a time; spring and verdict always one at a time). The numbers are those of a run
+    /// one at a time with the same --threads.
+    #[arg(long, default_value_t = 1, value_parser = physvid_shared::cli::thread_count)]
+    jobs: usize,
     /// Render datasets here and keep them (default: a temporary directory, removed after).
     #[arg(long, value_name = "DIR")]
     scratch: Option<PathBuf>,
@@ -151,6 +158,9 @@ impl Cli {
 }
 
 fn main() -> ExitCode {
+    if let Some(report) = std::env::var_os(worker::WORKER) {
+        return worker::main(std::path::Path::new(&report));
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return physvid_shared::cli::exit_on_clap_error(e),
@@ -195,6 +205,11 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         quick: cfg.quick,
         device: cfg.device,
         threads: cfg.threads,
+        jobs: cfg.jobs,
+        job_threads: cfg.threads.unwrap_or_else(|| {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            (cores / cfg.jobs).max(1)
+        }),
         scratch,
         bar,
         lines: !cfg.quiet && !terminal,

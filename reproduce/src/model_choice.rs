@@ -4,7 +4,7 @@
 //! over seeds; the share chosen right and the confusion matrix. meta.json still gives each set's
 //! calibration (a sliding block's incline, a fall's start times), never its model.
 
-use crate::runner::{DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 use std::collections::BTreeMap;
 
@@ -59,45 +59,52 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("wall s", "wall_s"),
         ],
     );
-    let mut confusion: BTreeMap<(&str, String), usize> = BTreeMap::new();
-    let (mut right, mut total) = (0, 0);
+    let mut cases: Vec<(&str, DataSpec)> = Vec::new();
     for (scene, truth) in SCENES {
         for &setting in settings(scene) {
             for seed in 0..seeds {
                 for &level in levels {
                     let mut spec = DataSpec::new(scene, quick);
                     (spec.setting, spec.seed, spec.extra) = (setting, seed, perturbed(level));
-                    let data = r.dataset(&spec)?;
-                    let rep = r.estimate(&data, &["--model", "auto"])?;
-                    r.discard(&data);
-                    let choice = rep.model_choice.as_ref().expect("--model auto chooses");
-                    let ok = choice.chosen == truth;
-                    (right, total) = (right + ok as usize, total + 1);
-                    *confusion.entry((truth, choice.chosen.clone())).or_default() += 1;
-                    let ranking: Vec<String> = choice
-                        .candidates
-                        .iter()
-                        .map(|c| {
-                            format!(
-                                "{} ({}, {})",
-                                c.model,
-                                c.grade.map_or("no estimate", |g| g.name()),
-                                c.unexplained_text()
-                            )
-                        })
-                        .collect();
-                    t.push(vec![
-                        Cell::text(spec.command().replace("gen ", "")),
-                        Cell::text(truth),
-                        Cell::text(&choice.chosen),
-                        Cell::text(if ok { "yes" } else { "no" }),
-                        Cell::text(rep.verdict.grade.name()),
-                        Cell::text(ranking.join("; ")),
-                        Cell::num(Some(choice.wall_time_s), 1),
-                    ]);
+                    cases.push((truth, spec));
                 }
             }
         }
+    }
+    let jobs: Vec<Job> = cases
+        .iter()
+        .map(|(_, spec)| Job::new(spec.clone(), &["--model", "auto"]))
+        .collect();
+    let runs = r.estimate_all(&jobs)?;
+    let mut confusion: BTreeMap<(&str, String), usize> = BTreeMap::new();
+    let (mut right, mut total) = (0, 0);
+    for ((truth, spec), rep) in cases.iter().zip(&runs) {
+        let truth = *truth;
+        let choice = rep.model_choice.as_ref().expect("--model auto chooses");
+        let ok = choice.chosen == truth;
+        (right, total) = (right + ok as usize, total + 1);
+        *confusion.entry((truth, choice.chosen.clone())).or_default() += 1;
+        let ranking: Vec<String> = choice
+            .candidates
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} ({}, {})",
+                    c.model,
+                    c.grade.map_or("no estimate", |g| g.name()),
+                    c.unexplained_text()
+                )
+            })
+            .collect();
+        t.push(vec![
+            Cell::text(spec.command().replace("gen ", "")),
+            Cell::text(truth),
+            Cell::text(&choice.chosen),
+            Cell::text(if ok { "yes" } else { "no" }),
+            Cell::text(rep.verdict.grade.name()),
+            Cell::text(ranking.join("; ")),
+            Cell::num(Some(choice.wall_time_s), 1),
+        ]);
     }
     t.note(format!(
         "The true model chosen in {right} of {total} runs ({:.1} %).",

@@ -1,7 +1,7 @@
 //! Accuracy as Gaussian pixel noise rises (σ = 0 … 0.4 grey levels, `gen --noise`), per scene,
 //! each estimate an ensemble of independently seeded trainings (`estimate --ensemble K`).
 
-use crate::runner::{DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
@@ -34,13 +34,25 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let starts = ["fit", "frames"];
     r.begin("noise", scenes.len() * sigmas.len() * starts.len());
     let ks = k.to_string();
+    let mut jobs = Vec::new();
     for &scene in scenes {
         for &sigma in sigmas {
             let mut spec = DataSpec::new(scene, r.quick());
             spec.noise = sigma;
-            let data = r.dataset(&spec)?;
             for start in starts {
-                let rep = r.estimate(&data, &["--ensemble", &ks, "--rollout-start", start])?;
+                jobs.push(Job::new(
+                    spec.clone(),
+                    &["--ensemble", &ks, "--rollout-start", start],
+                ));
+            }
+        }
+    }
+    let runs = r.estimate_all(&jobs)?;
+    let mut runs = runs.iter();
+    for &scene in scenes {
+        for &sigma in sigmas {
+            for start in starts {
+                let rep = runs.next().expect("a run for every job");
                 let e = rep.ensemble.as_ref();
                 let get = |name: &str| e.and_then(|e| e.values.iter().find(|v| v.name == name));
                 let (g0, g1) = (get("gamma0"), get("gamma1"));
@@ -61,7 +73,6 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                     Cell::num(Some(rep.wall_time_s), 1),
                 ]);
             }
-            r.discard(&data);
         }
     }
     let spec = DataSpec::new(scenes[0], r.quick());

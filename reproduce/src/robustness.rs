@@ -3,7 +3,7 @@
 //! and whether the verdict flagged the cells outside tolerance (γ0 2 %, γ1 10 %; the
 //! pendulum's L 2 %).
 
-use crate::runner::{value, DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 use estimator::verdict::Grade;
 use generator::perturb::{MAX_LEVEL, PERTURBATIONS};
@@ -41,72 +41,74 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("wall s", "wall_s"),
         ],
     );
-    let (mut cells, mut within, mut outside_flagged, mut outside) = (0, 0, 0, 0);
-    let mut per_condition: Vec<(String, usize, usize)> = Vec::new();
-    for p in PERTURBATIONS {
-        let (mut c_cells, mut c_within) = (0, 0);
+    let mut cases = Vec::new();
+    for (k, p) in PERTURBATIONS.iter().enumerate() {
         for &level in &levels {
             for &(scene, judged) in scenes {
                 let mut spec = DataSpec::new(scene, r.quick());
-                let flag = format!("{}:{level}", p.name());
-                spec.extra = vec!["--perturb".into(), flag];
-                let data = r.dataset(&spec)?;
-                let rep = r.estimate(&data, &[])?;
-                r.discard(&data);
-                let errors: Vec<(String, Option<f64>, f64)> = judged
-                    .iter()
-                    .map(|(name, tol)| {
-                        let e = value(&rep, name).and_then(|v| v.relative_error);
-                        (name.to_string(), e, *tol)
-                    })
-                    .collect();
-                let ok = errors
-                    .iter()
-                    .all(|(_, e, tol)| e.is_some_and(|e| e.abs() <= *tol));
-                let grade = rep.verdict.grade;
-                cells += 1;
-                c_cells += 1;
-                if ok {
-                    within += 1;
-                    c_within += 1;
-                } else {
-                    outside += 1;
-                    outside_flagged += (grade != Grade::Ok) as usize;
-                }
-                let values: Vec<String> = errors
-                    .iter()
-                    .map(|(name, e, _)| {
-                        let v = value(&rep, name).map_or(f64::NAN, |v| v.estimate);
-                        match e {
-                            Some(e) => format!("{name} {v:.4} ({:+.2} %)", e * 100.0),
-                            None => format!("{name} {v:.4}"),
-                        }
-                    })
-                    .collect();
-                let mut checks: Vec<&str> = rep.verdict.reasons.iter().map(|x| x.check).collect();
-                checks.dedup();
-                t.push(vec![
-                    Cell::text(p.name()),
-                    Cell::num(Some(level as f64), 0),
-                    Cell::text(scene),
-                    Cell::text(values.join("; ")),
-                    Cell::text(if ok { "yes" } else { "no" }),
-                    Cell::text(grade.name()),
-                    Cell::text(checks.join(", ")),
-                    Cell::num(Some(rep.wall_time_s), 1),
-                ]);
+                spec.extra = vec!["--perturb".into(), format!("{}:{level}", p.name())];
+                cases.push((k, level, scene, judged, spec));
             }
         }
-        per_condition.push((p.name().to_string(), c_within, c_cells));
+    }
+    let jobs: Vec<Job> = cases.iter().map(|c| Job::new(c.4.clone(), &[])).collect();
+    let runs = r.estimate_all(&jobs)?;
+    let (mut cells, mut within, mut outside_flagged, mut outside) = (0, 0, 0, 0);
+    let mut per_condition: Vec<(usize, usize)> = vec![(0, 0); PERTURBATIONS.len()];
+    for ((k, level, scene, judged, _), rep) in cases.iter().zip(&runs) {
+        let p = PERTURBATIONS[*k];
+        let errors: Vec<(String, Option<f64>, f64)> = judged
+            .iter()
+            .map(|(name, tol)| {
+                let e = rep.value(name).and_then(|v| v.relative_error);
+                (name.to_string(), e, *tol)
+            })
+            .collect();
+        let ok = errors
+            .iter()
+            .all(|(_, e, tol)| e.is_some_and(|e| e.abs() <= *tol));
+        let grade = rep.verdict.grade;
+        cells += 1;
+        per_condition[*k].1 += 1;
+        if ok {
+            within += 1;
+            per_condition[*k].0 += 1;
+        } else {
+            outside += 1;
+            outside_flagged += (grade != Grade::Ok) as usize;
+        }
+        let values: Vec<String> = errors
+            .iter()
+            .map(|(name, e, _)| {
+                let v = rep.value(name).map_or(f64::NAN, |v| v.estimate);
+                match e {
+                    Some(e) => format!("{name} {v:.4} ({:+.2} %)", e * 100.0),
+                    None => format!("{name} {v:.4}"),
+                }
+            })
+            .collect();
+        let mut checks: Vec<&str> = rep.verdict.reasons.iter().map(|x| x.check).collect();
+        checks.dedup();
+        t.push(vec![
+            Cell::text(p.name()),
+            Cell::num(Some(*level as f64), 0),
+            Cell::text(*scene),
+            Cell::text(values.join("; ")),
+            Cell::text(if ok { "yes" } else { "no" }),
+            Cell::text(grade.name()),
+            Cell::text(checks.join(", ")),
+            Cell::num(Some(rep.wall_time_s), 1),
+        ]);
     }
     t.note(format!(
         "Within tolerance: {within} of {cells} cells ({:.0} %); outside: {outside}, of which \
          {outside_flagged} graded doubtful or unreliable by the verdict (every one must be).",
         100.0 * within as f64 / cells.max(1) as f64
     ));
-    let each: Vec<String> = per_condition
+    let each: Vec<String> = PERTURBATIONS
         .iter()
-        .map(|(n, w, c)| format!("{n} {w}/{c}"))
+        .zip(&per_condition)
+        .map(|(p, (w, c))| format!("{} {w}/{c}", p.name()))
         .collect();
     t.note(format!("Per condition: {}.", each.join(", ")));
     let levels_text: Vec<String> = PERTURBATIONS

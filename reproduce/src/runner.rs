@@ -2,14 +2,15 @@
 //! renders datasets into a scratch directory and runs estimations as `estimate` would, with one
 //! progress bar over a table's runs.
 
-use clap::{Parser, ValueEnum};
+use crate::worker::{estimate_apart, estimate_here, Run};
+use clap::ValueEnum;
 use estimator::cli::DeviceChoice;
-use estimator::report::parameters::ParameterResult;
-use estimator::report::Report;
-use estimator::{estimation, EstimateArgs};
 use generator::{generate_to_disk, GenArgs, SceneRef};
 use indicatif::ProgressBar;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 /// A dataset as `gen` would make it.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,7 +82,12 @@ impl DataSpec {
 pub struct Runner {
     pub(crate) quick: bool,
     pub(crate) device: DeviceChoice,
+    /// CPU threads of an estimation in this process (`--threads`; all cores without it).
     pub(crate) threads: Option<usize>,
+    /// Estimations side by side, each in a process of its own (1: one at a time, here).
+    pub(crate) jobs: usize,
+    /// CPU threads of each of those (`--threads`, or the cores shared out by `--jobs`).
+    pub(crate) job_threads: usize,
     pub(crate) scratch: PathBuf,
     pub(crate) bar: ProgressBar,
     /// stderr is not a terminal (a log file, CI): one line per finished run instead of the bar.
@@ -103,14 +109,19 @@ impl Runner {
         self.bar.reset_elapsed();
     }
 
-    /// Renders `spec` into the scratch directory (once; later calls reuse it).
-    pub fn dataset(&self, spec: &DataSpec) -> anyhow::Result<PathBuf> {
-        let dir = self.scratch.join(
+    /// Where `spec` is rendered.
+    fn dataset_dir(&self, spec: &DataSpec) -> PathBuf {
+        self.scratch.join(
             spec.command()
                 .replace("gen ", "")
                 .replace("--", "")
                 .replace([' ', '='], "_"),
-        );
+        )
+    }
+
+    /// Renders `spec` into the scratch directory (once; later calls reuse it).
+    pub fn dataset(&self, spec: &DataSpec) -> anyhow::Result<PathBuf> {
+        let dir = self.dataset_dir(spec);
         if !dir.join("meta.json").exists() {
             self.bar.set_message(spec.command());
             let mut args = spec.args();
@@ -129,27 +140,44 @@ impl Runner {
         }
     }
 
-    /// Trains on `data` as `estimate DATA FLAGS...` would (quietly, outputs discarded; every
-    /// candidate with `--model auto`).
-    pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Report> {
+    /// Trains on `data` as `estimate DATA FLAGS...` would, in this process (quietly, outputs
+    /// discarded; every candidate with `--model auto`).
+    pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
         self.bar
             .set_message(format!("estimate {}", flags.join(" ")));
-        let out = self.scratch.join("run");
-        let mut args: Vec<String> = vec!["estimate".into(), data.display().to_string()];
-        args.extend(flags.iter().map(|f| f.to_string()));
+        let flags: Vec<String> = flags.iter().map(|f| f.to_string()).collect();
+        let mut args = vec!["estimate".to_string()];
+        args.extend(self.arguments(data, &flags, &self.scratch.join("run"), self.threads));
+        let run = Run::of(&estimate_here(&args)?)?;
+        self.finished(&flags, &run);
+        Ok(run)
+    }
+
+    /// `estimate`'s arguments (without the program's name) for `data` and `flags`, into `out`,
+    /// on `threads` CPU threads (all cores: `None`).
+    fn arguments(
+        &self,
+        data: &Path,
+        flags: &[String],
+        out: &Path,
+        threads: Option<usize>,
+    ) -> Vec<String> {
+        let mut args: Vec<String> = vec![data.display().to_string()];
+        args.extend(flags.iter().cloned());
         args.extend(["--quiet".into(), "--out".into(), out.display().to_string()]);
         let device = self
             .device
             .to_possible_value()
             .expect("no skipped variants");
         args.extend(["--device".into(), device.get_name().into()]);
-        if let Some(t) = self.threads {
+        if let Some(t) = threads {
             args.extend(["--threads".into(), t.to_string()]);
         }
-        let args = EstimateArgs::try_parse_from(&args)
-            .map_err(|e| anyhow::anyhow!("internal flags {args:?}: {e}"))?
-            .validate()?;
-        let report = estimation(&args)?.report;
+        args
+    }
+
+    /// Counts a finished run (a line of its own where stderr is not a terminal).
+    fn finished(&self, flags: &[String], run: &Run) {
         self.bar.inc(1);
         if self.lines {
             eprintln!(
@@ -158,14 +186,91 @@ impl Runner {
                 self.bar.position(),
                 self.bar.length().unwrap_or(0),
                 flags.join(" "),
-                report.wall_time_s
+                run.wall_time_s
             );
         }
-        Ok(report)
+    }
+
+    /// Every job's run, in the jobs' order: `--jobs` of them side by side, each in a process
+    /// of its own (one at a time in this process with `--jobs 1`). Each dataset is rendered
+    /// before its first job and deleted after its last.
+    pub fn estimate_all(&self, jobs: &[Job]) -> anyhow::Result<Vec<Run>> {
+        let dirs: Vec<PathBuf> = jobs.iter().map(|j| self.dataset_dir(&j.data)).collect();
+        let uses = Mutex::new(dirs.iter().fold(HashMap::new(), |mut m, d| {
+            *m.entry(d.clone()).or_insert(0usize) += 1;
+            m
+        }));
+        let render = Mutex::new(());
+        let one = |i: usize, out: &Path| -> anyhow::Result<Run> {
+            let data = {
+                let _turn = render.lock().expect("no render panicked");
+                self.dataset(&jobs[i].data)?
+            };
+            let run = if self.jobs > 1 {
+                self.bar
+                    .set_message(format!("estimate {}", jobs[i].flags.join(" ")));
+                let run = estimate_apart(
+                    &self.arguments(&data, &jobs[i].flags, out, Some(self.job_threads)),
+                    &out.with_extension("json"),
+                )?;
+                self.finished(&jobs[i].flags, &run);
+                run
+            } else {
+                let flags: Vec<&str> = jobs[i].flags.iter().map(String::as_str).collect();
+                self.estimate(&data, &flags)?
+            };
+            let mut uses = uses.lock().expect("no job panicked");
+            let left = uses.get_mut(&dirs[i]).expect("every job's dataset counted");
+            *left -= 1;
+            if *left == 0 {
+                self.discard(&data);
+            }
+            Ok(run)
+        };
+        if self.jobs <= 1 {
+            return (0..jobs.len())
+                .map(|i| one(i, &self.scratch.join("run")))
+                .collect();
+        }
+        let next = AtomicUsize::new(0);
+        let failed = AtomicBool::new(false);
+        let runs: Mutex<Vec<Option<anyhow::Result<Run>>>> =
+            Mutex::new((0..jobs.len()).map(|_| None).collect());
+        std::thread::scope(|s| {
+            for w in 0..self.jobs.min(jobs.len()) {
+                let (next, failed, runs, one) = (&next, &failed, &runs, &one);
+                let out = self.scratch.join(format!("run-{w}"));
+                s.spawn(move || loop {
+                    let i = next.fetch_add(1, Ordering::SeqCst);
+                    if i >= jobs.len() || failed.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    let run = one(i, &out);
+                    failed.fetch_or(run.is_err(), Ordering::SeqCst);
+                    runs.lock().expect("no job panicked")[i] = Some(run);
+                });
+            }
+        });
+        runs.into_inner()
+            .expect("no job panicked")
+            .into_iter()
+            .flatten()
+            .collect()
     }
 }
 
-/// Looks a reported value up by name.
-pub fn value<'a>(report: &'a Report, name: &str) -> Option<&'a ParameterResult> {
-    report.parameters.iter().find(|p| p.name == name)
+/// One estimation of a table: `estimate DATA FLAGS...` on the dataset `data` renders.
+#[derive(Debug, Clone)]
+pub struct Job {
+    pub data: DataSpec,
+    pub flags: Vec<String>,
+}
+
+impl Job {
+    pub fn new(data: DataSpec, flags: &[&str]) -> Job {
+        Job {
+            data,
+            flags: flags.iter().map(|f| f.to_string()).collect(),
+        }
+    }
 }

@@ -2,7 +2,7 @@
 //! the backdrop's clutter, in colour, and on a bare `.npy` of 30-frame clips, beside the
 //! official code's and the baselines' figures (read off the official repository's traces).
 
-use crate::runner::{value, DataSpec, Runner};
+use crate::runner::{DataSpec, Runner};
 use crate::table::{Cell, Table};
 
 /// What the others report: (who, k, rest length, in what units).
@@ -101,9 +101,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         let flags: Vec<&str> = case.flags.iter().chain(epochs).copied().collect();
         let rep = r.estimate(&input, &flags)?;
         let (k, l, l_lat) = (
-            value(&rep, "k"),
-            value(&rep, "rest_length"),
-            value(&rep, "rest_length_latent"),
+            rep.value("k"),
+            rep.value("rest_length"),
+            rep.value("rest_length_latent"),
         );
         t.push(vec![
             Cell::text(case.label),

@@ -3,11 +3,14 @@
 //! with the paper's Euler block and ours, beside the paper's values and, for intensity, the
 //! value an exact Euler fit must converge to (paper-notes: its discretisation bias).
 
-use crate::runner::{value, DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
 /// Each dt with the paper's value there.
 type PaperValues = [(f64, Option<f64>); 3];
+
+/// The paper's block (Euler from the first two frames) and ours (the exact integrator).
+const INTEGRATORS: [&str; 2] = ["euler", "exact"];
 
 /// (scene, reported parameter, its symbol, dt and the paper's value at each).
 const ROWS: [(&str, &str, &str, PaperValues); 4] = [
@@ -67,23 +70,22 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     );
     // Intensity's two rows come from the same runs.
     let datasets = ["intensity", "torricelli", "pendulum"];
-    r.begin("table6", datasets.len() * 3 * 2);
+    r.begin("table6", datasets.len() * 3 * INTEGRATORS.len());
     let mut specs = Vec::new();
+    let mut jobs = Vec::new();
     for scenario in datasets {
         let rows: Vec<_> = ROWS.iter().filter(|row| row.0 == scenario).collect();
         for i in 0..3 {
-            let dt = rows[0].3[i].0;
             let mut spec = DataSpec::new(scenario, r.quick());
-            spec.dt = Some(dt);
+            spec.dt = Some(rows[0].3[i].0);
             if scenario == "pendulum" && r.quick() {
                 // The RK4 block is the slow one: the quick set is smaller still (too small for
                 // a meaningful L; the full table uses the 500 clips of 50×50).
                 spec.samples = 60;
                 spec.size = 24;
             }
-            let data = r.dataset(&spec)?;
             specs.push(spec.command());
-            for integrator in ["euler", "exact"] {
+            for integrator in INTEGRATORS {
                 // euler: the paper's block (from the first two frames); exact: ours, defaults.
                 let mut flags = vec!["--integrator", integrator];
                 if integrator == "euler" {
@@ -92,9 +94,20 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 if r.quick() && scenario == "pendulum" {
                     flags.extend(["--epochs", "40"]);
                 }
-                let rep = r.estimate(&data, &flags)?;
+                jobs.push(Job::new(spec.clone(), &flags));
+            }
+        }
+    }
+    let runs = r.estimate_all(&jobs)?;
+    let mut runs = runs.iter();
+    for scenario in datasets {
+        let rows: Vec<_> = ROWS.iter().filter(|row| row.0 == scenario).collect();
+        for i in 0..3 {
+            let dt = rows[0].3[i].0;
+            for integrator in INTEGRATORS {
+                let rep = runs.next().expect("a run for every job");
                 for row in &rows {
-                    let p = value(&rep, row.1);
+                    let p = rep.value(row.1);
                     let fixed = (scenario == "intensity" && integrator == "euler").then(|| {
                         let (g0, g1) = euler_fixed_point(2.0, 0.04, dt);
                         if row.1 == "gamma0" {

@@ -6,7 +6,7 @@
 
 use crate::runner::{DataSpec, Runner};
 use crate::table::{Cell, Table};
-use estimator::report::Report;
+use crate::worker::Run;
 use physvid_testkit::failures::Failure;
 use std::path::{Path, PathBuf};
 
@@ -24,7 +24,7 @@ struct Row {
     case: String,
     constructed: bool,
     command: String,
-    report: Report,
+    report: Run,
 }
 
 impl Row {

@@ -13,6 +13,11 @@ fn reproduce() -> TestCommand {
 
 /// Runs `reproduce TABLE --quick` into `out` on two threads.
 fn reproduce_quick(table: &str, out: &Path) {
+    reproduce_quick_with(table, out, &[]);
+}
+
+/// As [`reproduce_quick`], with `extra` flags.
+fn reproduce_quick_with(table: &str, out: &Path, extra: &[&str]) {
     let o = reproduce()
         .args([
             table,
@@ -23,6 +28,7 @@ fn reproduce_quick(table: &str, out: &Path) {
             "--device",
             "cpu",
         ])
+        .args(extra)
         .out(out)
         .output();
     assert!(o.status.success(), "reproduce {table}: {}", stderr(&o));
@@ -160,8 +166,10 @@ fn the_other_tables_write_their_rows() {
     assert_eq!(coverage[3]["data_seed"], "covered");
 }
 
+/// Twice the same table, the second time with its runs side by side in processes of their
+/// own (`--jobs 2`): the same numbers.
 #[test]
-fn same_command_gives_the_same_table() {
+fn same_command_gives_the_same_table_one_run_at_a_time_or_side_by_side() {
     let tmp = tempfile::tempdir().unwrap();
     let strip = |out: &Path| -> Vec<Vec<String>> {
         read_csv(out, "losses")
@@ -175,7 +183,7 @@ fn same_command_gives_the_same_table() {
             .collect()
     };
     reproduce_quick("losses", &tmp.path().join("a"));
-    reproduce_quick("losses", &tmp.path().join("b"));
+    reproduce_quick_with("losses", &tmp.path().join("b"), &["--jobs", "2"]);
     assert_eq!(strip(&tmp.path().join("a")), strip(&tmp.path().join("b")));
 }
 
@@ -187,14 +195,17 @@ fn reproduce_bad_input_gets_a_one_line_error_and_exit_code_2() {
     reproduce().arg("table9").bad_input("table9");
     reproduce().arg("table3").out(&file).bad_input("is a file");
     for n in ["0", "100000"] {
-        reproduce()
-            .args(["table3", "--threads", n])
-            .bad_input("must be from 1 to 256");
+        for flag in ["--threads", "--jobs"] {
+            reproduce()
+                .args(["table3", flag, n])
+                .bad_input("must be from 1 to 256");
+        }
     }
     let o = reproduce().arg("--help").ok();
     let help = String::from_utf8_lossy(&o.stdout);
     for word in [
         "table3", "table6", "init", "losses", "noise", "coverage", "all", "--quick", "--out",
+        "--jobs",
     ] {
         assert!(help.contains(word), "--help lacks {word}");
     }

@@ -1,10 +1,10 @@
 //! `AffineFit`: the least-squares line y = slope·x + intercept with its R², used for
 //! calibrations (latent against a measured quantity) and for checking a latent against the truth.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Least-squares fit y = slope·x + intercept, with R².
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct AffineFit {
     pub slope: f64,
     pub intercept: f64,
@@ -35,7 +35,7 @@ impl AffineFit {
 
 /// Least-squares similarity map of points in the plane, latent ≈ scale·R·truth + offset, with R
 /// a rotation or a reflection (whichever fits better), and its R².
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SimilarityFit {
     pub scale: f64,
     /// Rotation angle (rad).

@@ -2,10 +2,10 @@
 //! evidence, its freedom) and the choice the ranking makes of them, as printed and reported.
 
 use crate::verdict::grade::Grade;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One candidate as the ranking sees it.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Candidate {
     pub model: String,
     /// Its verdict (`None`: it gave no estimate).
@@ -34,7 +34,7 @@ pub struct Candidate {
 }
 
 /// What the choice found, in report.json's `model_choice`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ModelChoice {
     pub chosen: String,
     /// Every candidate tried, the chosen first.

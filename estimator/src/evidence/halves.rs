@@ -9,11 +9,11 @@ use crate::data::ClipData;
 use crate::network::Network;
 use crate::physics::Clips;
 use crate::windows::Windows;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use tch::{Kind, Tensor};
 
 /// How the training clips were halved for a refit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SplitBy {
     /// The first and the second half in the data's order (a recording's earlier and later

@@ -3,10 +3,10 @@
 //! them: mean, sample standard deviation and range.
 
 use super::parameters::ParameterResult;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One reported value across the ensemble.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct EnsembleValue {
     pub name: String,
     pub units: String,
@@ -24,7 +24,7 @@ pub struct EnsembleValue {
 }
 
 /// The ensemble's summary, in report.json as `ensemble`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Ensemble {
     pub members: usize,
     pub seeds: Vec<u64>,

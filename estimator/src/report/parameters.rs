@@ -3,11 +3,11 @@
 
 use super::uncertainty::SplitValue;
 use crate::calibration::DerivedValue;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// One estimated parameter.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ParameterResult {
     pub name: String,
     pub estimate: f64,
@@ -22,7 +22,7 @@ pub struct ParameterResult {
     /// clips as independent draws); `None` where it could not be computed.
     pub standard_error: Option<f64>,
     /// The value refitted on halves of the training clips (see `evidence::SplitBy`).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub splits: Vec<SplitValue>,
 }
 

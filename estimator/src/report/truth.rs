@@ -4,10 +4,10 @@
 
 use crate::data::ClipData;
 use physvid_shared::{AffineFit, SimilarityFit};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The latent's check against the truth.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum LatentVsTruth {
     Scalar(AffineFit),
@@ -15,7 +15,7 @@ pub enum LatentVsTruth {
 }
 
 /// Similarity fits of planar body positions.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PlanarFit {
     /// Of the relative vector (last body minus first): what the spring's law reads.
     pub relative: SimilarityFit,

@@ -6,7 +6,7 @@
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::evidence::{Split, SplitBy};
 use crate::physics::ModelRef;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Standard errors of the values `derive` gives for `params`, in its order (`None` where the
 /// covariance is unknown or not finite, or where the value does not depend on the block's
@@ -110,7 +110,7 @@ pub fn splits(
 type Derivation = (Vec<DerivedValue>, Vec<Option<f64>>);
 
 /// One reported value refitted on the two halves of a split.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SplitValue {
     pub by: SplitBy,
     pub values: [f64; 2],

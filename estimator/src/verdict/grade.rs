@@ -2,10 +2,10 @@
 //! worst grade and the reasons). Kept apart from the checks, which read the report, so that
 //! the report can hold a verdict without depending on them.
 
-use serde::Serialize;
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// How far an answer can be trusted.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Grade {
     /// Nothing the checks can see speaks against it.
@@ -39,10 +39,11 @@ impl Grade {
 }
 
 /// One finding of one check.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Reason {
-    /// The check's name.
-    pub check: &'static str,
+    /// The check's name (read back as the name in [`super::CHECKS`]).
+    #[serde(deserialize_with = "check_name")]
+    pub check: CheckName,
     pub grade: Grade,
     /// What was found and what to do about it.
     pub detail: String,
@@ -72,8 +73,23 @@ impl Reason {
     }
 }
 
+/// A check's name. Named so that serde's derive reads it with [`check_name`] instead of
+/// borrowing a `&str` from the input, which a `'static` one cannot.
+pub type CheckName = &'static str;
+
+/// A check's name read back from report.json: the `&'static str` of the check in
+/// [`super::CHECKS`] that has it.
+fn check_name<'de, D: Deserializer<'de>>(d: D) -> Result<&'static str, D::Error> {
+    let name = String::deserialize(d)?;
+    super::CHECKS
+        .iter()
+        .map(|c| c.name())
+        .find(|n| *n == name)
+        .ok_or_else(|| serde::de::Error::custom(format!("no check is named {name:?}")))
+}
+
 /// The verdict: the worst grade among the reasons (`ok` without any).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Verdict {
     pub grade: Grade,
     pub reasons: Vec<Reason>,
@@ -90,5 +106,30 @@ impl Verdict {
             s += &format!("\n  - {} [{}]: {}", r.check, r.grade.name(), r.detail);
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_verdict_reads_back_from_its_json_with_every_check_by_name() {
+        let reasons: Vec<Reason> = super::super::CHECKS
+            .iter()
+            .map(|c| Reason::new(c.name(), Grade::Doubtful, "x").measured(0.5, 0.2))
+            .collect();
+        let v = Verdict {
+            grade: Grade::Doubtful,
+            reasons,
+        };
+        let back: Verdict = serde_json::from_str(&serde_json::to_string(&v).unwrap()).unwrap();
+        assert_eq!(back.grade, Grade::Doubtful);
+        let names = |v: &Verdict| v.reasons.iter().map(|r| r.check).collect::<Vec<_>>();
+        assert_eq!(names(&back), names(&v));
+        assert_eq!(back.reasons[0].value, Some(0.5));
+        let unknown = r#"{"grade":"ok","reasons":[{"check":"nonesuch","grade":"ok","detail":""}]}"#;
+        let e = serde_json::from_str::<Verdict>(unknown).unwrap_err();
+        assert!(e.to_string().contains("nonesuch"), "{e}");
     }
 }
