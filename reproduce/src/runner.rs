@@ -211,7 +211,7 @@ impl Runner {
                     .set_message(format!("estimate {}", jobs[i].flags.join(" ")));
                 let run = estimate_apart(
                     &self.arguments(&data, &jobs[i].flags, out, Some(self.job_threads)),
-                    &out.with_extension("json"),
+                    &out.with_extension("cbor"),
                 )?;
                 self.finished(&jobs[i].flags, &run);
                 run

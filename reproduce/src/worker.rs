@@ -2,7 +2,8 @@
 //! `--jobs N`: libtorch's seed is process-wide, so estimations side by side in one process
 //! would draw from one generator and lose their determinism. The parent starts this same
 //! binary with [`WORKER`] set to a file; it parses `estimate`'s arguments, runs them, and
-//! writes the report there as JSON, which the parent reads back.
+//! writes the report there in CBOR (its floats as they are: JSON would write a NaN as null,
+//! and read it back as no number), which the parent reads back.
 
 use clap::Parser;
 use estimator::choice::candidate::ModelChoice;
@@ -36,15 +37,22 @@ pub struct Run {
 }
 
 impl Run {
-    /// `report` as the tables read it (through its JSON, as a worker's comes back).
+    /// `report` as the tables read it (through its CBOR, as a worker's comes back).
     pub fn of(report: &Report) -> anyhow::Result<Run> {
-        Ok(serde_json::from_value(serde_json::to_value(report)?)?)
+        Ok(ciborium::from_reader(encoded(report)?.as_slice())?)
     }
 
     /// A value by name.
     pub fn value(&self, name: &str) -> Option<&ParameterResult> {
         self.parameters.iter().find(|p| p.name == name)
     }
+}
+
+/// `report` in CBOR.
+fn encoded(report: &Report) -> anyhow::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    ciborium::into_writer(report, &mut bytes)?;
+    Ok(bytes)
 }
 
 /// Parses `args` (`estimate`'s, the program's name first) and runs them in this process.
@@ -60,7 +68,7 @@ pub fn main(report: &Path) -> ExitCode {
     // The program's path, then "estimate" as the program's name of `estimate`'s arguments.
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = estimate_here(&args).and_then(|r| {
-        physvid_shared::write_atomic(report, &serde_json::to_vec(&r)?)?;
+        physvid_shared::write_atomic(report, &encoded(&r)?)?;
         Ok(())
     });
     estimator::error::exit_with("reproduce (worker)", result)
@@ -84,8 +92,8 @@ pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
             stderr.trim()
         );
     }
-    let text = std::fs::read(report)?;
-    let run = serde_json::from_slice(&text)
+    let bytes = std::fs::read(report)?;
+    let run = ciborium::from_reader(bytes.as_slice())
         .map_err(|e| anyhow::anyhow!("{}: not a report: {e}", report.display()))?;
     let _ = std::fs::remove_file(report);
     Ok(run)
