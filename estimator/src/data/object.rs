@@ -28,7 +28,7 @@ pub struct MovingObject {
     pub travel: f64,
     /// Its path's second differences over its first ones (rms).
     pub roughness: f64,
-    /// Found only where located on the frames blurred (`centroid::SMOOTH_PX`): on the frames
+    /// Found only where located on the frames blurred (`encoder::blur::SMOOTH_PX`): on the frames
     /// themselves the locator jumped between it and something else (a rod's ghost).
     pub smoothed: bool,
 }

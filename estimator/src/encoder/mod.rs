@@ -2,6 +2,7 @@
 //! latent). The MLPs (`mlp.rs`) read flattened pixels; the keypoint net (`keypoints.rs`) reads
 //! body positions off the image; the centroid (`centroid.rs`) one object's position.
 
+pub mod blur;
 pub mod centroid;
 mod keypoints;
 mod mlp;
