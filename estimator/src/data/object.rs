@@ -38,13 +38,12 @@ pub struct MovingObject {
 /// place, several things moving), located on the frames as they are or, where that path
 /// jumps, on the frames blurred.
 pub fn find(frames: &[f32], size: (usize, usize)) -> Option<MovingObject> {
-    [false, true]
-        .into_iter()
-        .find_map(|smoothed| find_located(frames, size, smoothed))
+    find_located(frames, size, &[false, true])
 }
 
-/// [`find`], the object located on the frames blurred where `smoothed`.
-fn find_located(frames: &[f32], size: (usize, usize), smoothed: bool) -> Option<MovingObject> {
+/// [`find`], the object located in turn on the frames as they are (`false`) and blurred
+/// (`true`), as `ways` lists; the background is taken once for all.
+fn find_located(frames: &[f32], size: (usize, usize), ways: &[bool]) -> Option<MovingObject> {
     let per = size.0 * size.1;
     let n = frames.len() / per.max(1);
     if n < 8 {
@@ -58,15 +57,23 @@ fn find_located(frames: &[f32], size: (usize, usize), smoothed: bool) -> Option<
         .copied()
         .collect();
     let frame = (1, size.1 as i64, size.0 as i64);
-    let path = tch::no_grad(|| {
+    tch::no_grad(|| {
         let x = Tensor::from_slice(&sampled).view([-1, per as i64]);
         let (d, polarity, window) = centroid::from_background(&x, frame);
-        if smoothed {
-            centroid::positions_smoothed(&d, frame)
-        } else {
-            centroid::positions(&d, frame, polarity, window)
-        }
-    });
+        ways.iter().find_map(|&smoothed| {
+            let path = if smoothed {
+                centroid::positions_smoothed(&d, frame)
+            } else {
+                centroid::positions(&d, frame, polarity, window)
+            };
+            judged(&path, smoothed)
+        })
+    })
+}
+
+/// The object whose positions `path` [F, 2] trace, where they travel [`MIN_TRAVEL`] of the
+/// frame smoothly.
+fn judged(path: &Tensor, smoothed: bool) -> Option<MovingObject> {
     let p: Vec<f32> = Vec::try_from(path.reshape([-1])).ok()?;
     let p: Vec<[f64; 2]> = p
         .chunks(2)
@@ -171,7 +178,7 @@ mod tests {
         let frames = rod_and_bob(240, |t| 0.35 * (t as f64 * 0.21).cos());
         // Located pixel by pixel, the rod's ghost in the median frame (where it hangs most of
         // the time) outweighs the faint bob, and the locator jumps between the two.
-        assert_eq!(find_located(&frames, (64, 48), false), None);
+        assert_eq!(find_located(&frames, (64, 48), &[false]), None);
         let o = find(&frames, (64, 48)).expect("an object");
         assert!(o.smoothed && o.roughness < 0.3, "{o:?}");
         // The bob swings ±12.3 px across 64: a travel of 0.38 of the larger side.
