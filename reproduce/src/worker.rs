@@ -78,11 +78,10 @@ pub fn main(report: &Path) -> ExitCode {
 /// run back from `report`.
 pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
     let exe = std::env::current_exe()?;
-    let out = Command::new(exe)
-        .arg("estimate")
-        .args(args)
-        .env(WORKER, report)
-        .output()?;
+    let mut command = Command::new(exe);
+    command.arg("estimate").args(args).env(WORKER, report);
+    physvid_shared::child::die_with_parent(&mut command);
+    let out = command.output()?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         anyhow::bail!(

@@ -5,6 +5,7 @@
 
 pub mod affine;
 pub mod atomic;
+pub mod child;
 pub mod cli;
 pub mod contact_sheet;
 pub mod dataset;

@@ -139,7 +139,10 @@ fn run_row(
         clear_outputs(&dir)?;
     }
     let start = Instant::now();
-    let output = Command::new(exe).args(&argv).output();
+    let mut command = Command::new(exe);
+    command.args(&argv);
+    physvid_shared::child::die_with_parent(&mut command);
+    let output = command.output();
     result.wall_s = Some(start.elapsed().as_secs_f64());
     let output = match output {
         Ok(o) => o,
