@@ -135,7 +135,7 @@ struct Cli {
     #[arg(long, value_parser = physvid_shared::cli::thread_count)]
     threads: Option<usize>,
     /// Estimations run side by side, each in a process of its own, 1 to 256 (default 1: one
-    /// at a time; spring and verdict always one at a time). The numbers are those of a run
+    /// at a time; the verdict table always one at a time). The numbers are those of a run
     /// one at a time with the same --threads.
     #[arg(long, default_value_t = 1, value_parser = physvid_shared::cli::thread_count)]
     jobs: usize,

@@ -202,10 +202,11 @@ impl Runner {
         }));
         let render = Mutex::new(());
         let one = |i: usize, out: &Path| -> anyhow::Result<Run> {
-            let data = {
+            let dir = {
                 let _turn = render.lock().expect("no render panicked");
                 self.dataset(&jobs[i].data)?
             };
+            let data = jobs[i].file.map_or(dir.clone(), |f| dir.join(f));
             let run = if self.jobs > 1 {
                 self.bar
                     .set_message(format!("estimate {}", jobs[i].flags.join(" ")));
@@ -223,7 +224,7 @@ impl Runner {
             let left = uses.get_mut(&dirs[i]).expect("every job's dataset counted");
             *left -= 1;
             if *left == 0 {
-                self.discard(&data);
+                self.discard(&dir);
             }
             Ok(run)
         };
@@ -259,11 +260,14 @@ impl Runner {
     }
 }
 
-/// One estimation of a table: `estimate DATA FLAGS...` on the dataset `data` renders.
+/// One estimation of a table: `estimate DATA FLAGS...` on the dataset `data` renders (or on
+/// one of its files, `file`).
 #[derive(Debug, Clone)]
 pub struct Job {
     pub data: DataSpec,
     pub flags: Vec<String>,
+    /// A file of the dataset's to read instead of its directory (`frames.npy`: a bare array).
+    pub file: Option<&'static str>,
 }
 
 impl Job {
@@ -271,6 +275,15 @@ impl Job {
         Job {
             data,
             flags: flags.iter().map(|f| f.to_string()).collect(),
+            file: None,
+        }
+    }
+
+    /// The job on the dataset's file `file` instead of its directory.
+    pub fn on_file(self, file: &'static str) -> Job {
+        Job {
+            file: Some(file),
+            ..self
         }
     }
 }

@@ -2,7 +2,7 @@
 //! the backdrop's clutter, in colour, and on a bare `.npy` of 30-frame clips, beside the
 //! official code's and the baselines' figures (read off the official repository's traces).
 
-use crate::runner::{DataSpec, Runner};
+use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
 /// What the others report: (who, k, rest length, in what units).
@@ -41,7 +41,6 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         samples,
         ..base.clone()
     };
-    let epochs: &'static [&'static str] = if quick { &["--epochs", "4"] } else { &[] };
     let cases = [
         Case {
             label: "default start (k = 1)",
@@ -90,16 +89,21 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("wall s", "wall_s"),
         ],
     );
-    r.begin("spring", cases.len());
-    for case in &cases {
-        let dir = r.dataset(&case.spec)?;
-        let input = if case.bare {
-            dir.join("frames.npy")
-        } else {
-            dir.clone()
-        };
-        let flags: Vec<&str> = case.flags.iter().chain(epochs).copied().collect();
-        let rep = r.estimate(&input, &flags)?;
+    let epochs: &[&str] = if quick { &["--epochs", "4"] } else { &[] };
+    let jobs: Vec<Job> = cases
+        .iter()
+        .map(|case| {
+            let flags: Vec<&str> = case.flags.iter().chain(epochs).copied().collect();
+            let job = Job::new(case.spec.clone(), &flags);
+            if case.bare {
+                job.on_file("frames.npy")
+            } else {
+                job
+            }
+        })
+        .collect();
+    r.begin("spring", jobs.len());
+    for (case, rep) in cases.iter().zip(r.estimate_all(&jobs)?) {
         let (k, l, l_lat) = (
             rep.value("k"),
             rep.value("rest_length"),
