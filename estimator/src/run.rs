@@ -158,6 +158,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     data.warnings.extend(device_warning);
     let cfg = &cfg.with_frames(args, &data)?;
     data.warnings.extend(cfg.encoder_note.clone());
+    data.warnings.extend(cfg.reference_notes.iter().cloned());
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short
     // probe is trained to the end.

@@ -1,7 +1,7 @@
 //! Falls from rest drawn the way someone else would film them (an image folder: a dark ball
 //! before a light, shaded wall, at rest, then 15 frames of fall, then on the floor), estimated
 //! with no trim: the release and the end of the descent are found in the frames and the ball
-//! is read by its position. A longer fall at 60 fps, filmed level and by a camera tilted to it
+//! is read by its position (a reference at rest before the part kept taken at its first frame). A longer fall at 60 fps, filmed level and by a camera tilted to it
 //! (its bend by perspective undone), is graded ok both ways. A ball dropped from a hand, as a
 //! video: framed along its whole fall, and the hand at its release said.
 
@@ -95,12 +95,17 @@ fn a_fall_of_fifteen_frames_from_rest_gives_g_with_no_trim() {
     let release = 10.4 / FPS;
     let floor = fallen(release + 15.0 / FPS, release);
     draw(&dir, 34, release, floor);
-    // References: at rest just before the release (frame 9) and 12 frames into the fall, as a
+    // References: at rest well before the release (frame 2, before the part kept: taken at
+    // its first frame, where the ball is still at rest) and 12 frames into the fall, as a
     // ruler would give them.
     let t2 = 22.0 / FPS;
-    let refs = format!("{}s=0,{}s={}", 9.0 / FPS, t2, fallen(t2, release));
+    let refs = format!("{}s=0,{}s={}", 2.0 / FPS, t2, fallen(t2, release));
     let (r, err) = fall(&dir, &refs, &[], &tmp.path().join("run"));
     assert!(err.contains("motion from rest"), "{err}");
+    assert!(
+        err.contains("the object at rest before its release"),
+        "{err}"
+    );
     let d = &r["recording"]["descent"];
     let found = d["release"].as_f64().unwrap();
     assert!((found - 10.4).abs() < 1.0, "release at frame {found}");

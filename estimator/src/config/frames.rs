@@ -37,10 +37,11 @@ impl RunConfig {
             let rec = data.recording.as_ref().map(|(rec, _)| rec).ok_or_else(|| {
                 input_error("--reference times apply to recordings; give CLIP:FRAME=VALUE")
             })?;
-            let placed = rec
+            let (placed, notes) = rec
                 .reference_frames(&self.reference_times)
                 .map_err(|e| input_error(format!("--reference {e}")))?;
             self.calibration.reference.extend(placed);
+            self.reference_notes = notes;
             check_references(&self.calibration, model, true)?;
         }
         let calibration = &self.calibration;

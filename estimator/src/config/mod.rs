@@ -66,6 +66,9 @@ pub struct RunConfig {
     /// (`with_frames`).
     #[serde(skip)]
     pub reference_times: Vec<(f64, f64)>,
+    /// What was said of `--reference` times placed at an end of the part kept (warnings).
+    #[serde(skip)]
+    pub reference_notes: Vec<String>,
 }
 
 impl RunConfig {
@@ -147,6 +150,7 @@ impl RunConfig {
             request: args.load_request(),
             plan,
             reference_times,
+            reference_notes: Vec::new(),
         })
     }
 

@@ -14,6 +14,23 @@ pub struct Kept {
     /// The release in frames of the part kept (0: the first frame kept).
     pub release: f64,
     pub descent: Option<Descent>,
+    /// What the frames left out at either end show, where the data (not a flag) trimmed them.
+    pub before: Outside,
+    pub after: Outside,
+}
+
+/// What the frames left out at one end of the part kept show, for a `--reference` time among
+/// them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outside {
+    /// Nothing left out there, or `--start`/`--end` left it out: its frames are not known.
+    Unknown,
+    /// A still picture (`stillness`): the quantity there is what the part kept's end shows.
+    Still,
+    /// The object at rest before its release (`descent`, the law's premise): the quantity
+    /// there is what it is at the release.
+    AtRest,
 }
 
 impl Kept {
@@ -24,6 +41,8 @@ impl Kept {
             end: opts.end,
             release: 0.0,
             descent: None,
+            before: Outside::Unknown,
+            after: Outside::Unknown,
         }
     }
 
@@ -77,6 +96,9 @@ pub fn trim_to_descent(
     } else {
         0
     };
+    if dropped > 0 {
+        kept.before = Outside::AtRest;
+    }
     kept.release = d.release - dropped as f64;
     let vertex = match d.bend {
         Some(b) => format!(

@@ -6,7 +6,7 @@
 //! `--start`/`--end` do not say otherwise. Falls and slides from rest keep their descent
 //! instead (`descent`).
 
-use super::kept::Kept;
+use super::kept::{Kept, Outside};
 use physvid_shared::cli::approx;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
 
@@ -115,6 +115,12 @@ pub fn trim(
             opts.frames_per_clip, opts.stride
         ));
         return kept;
+    }
+    if first > 0 {
+        kept.before = Outside::Still;
+    }
+    if last < n - 1 {
+        kept.after = Outside::Still;
     }
     warnings.push(format!(
         "{held}: kept {}–{} s, where it moves and one clip's span after (--start/--end choose)",
