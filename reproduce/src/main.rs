@@ -224,10 +224,18 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         let start = Instant::now();
         let mut table = kind.make(&runner)?;
         table.wall_s = start.elapsed().as_secs_f64();
+        // The flags its numbers depend on (threads per estimation) and how it ran (jobs).
         table.command = format!(
-            "reproduce {}{}",
+            "reproduce {}{}{}{}",
             kind.name(),
-            if cfg.quick { " --quick" } else { "" }
+            if cfg.quick { " --quick" } else { "" },
+            if cfg.jobs > 1 {
+                format!(" --jobs {}", cfg.jobs)
+            } else {
+                String::new()
+            },
+            cfg.threads
+                .map_or(String::new(), |t| format!(" --threads {t}"))
         );
         let files = table.write(&cfg.out)?;
         runner.bar.suspend(|| {

@@ -89,7 +89,10 @@ fn table3_mse_only_collapses_and_mse_kl_recovers_gamma0() {
     assert!(num(row("mse+kl", "exact"), "gamma0_rel_error").abs() < 0.01);
     let md = markdown(tmp.path(), "table3");
     assert!(md.contains("| γ0 paper |"), "{md}");
-    assert!(md.contains("Made by `reproduce table3 --quick`"), "{md}");
+    assert!(
+        md.contains("Made by `reproduce table3 --quick --threads 2`"),
+        "{md}"
+    );
 }
 
 #[test]
