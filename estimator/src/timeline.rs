@@ -1,7 +1,7 @@
 //! `Timeline`: the encoded latent of every frame of a recording, with the physics rollouts of
 //! clips that tile it back to back (what `timeline.png` draws).
 
-use crate::data::recording::RecordingSummary;
+use crate::data::summary::RecordingSummary;
 use crate::data::ClipData;
 use crate::network::{to_rows, Network};
 use crate::physics::Clips;

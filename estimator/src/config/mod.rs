@@ -62,12 +62,10 @@ pub struct RunConfig {
     pub request: LoadRequest,
     #[serde(skip)]
     pub plan: Plan,
-    /// `--reference` times of a recording, placed on its clip frames once it is cut
-    /// (`with_frames`).
+    /// `--reference` times of a recording, placed on its clip frames once it is cut.
     #[serde(skip)]
     pub reference_times: Vec<(f64, f64)>,
-    /// What was said of `--reference` times placed at an end of the part kept (warnings).
-    #[serde(skip)]
+    /// What was said of those taken at an end of the part kept (`with_frames`; warnings).
     pub reference_notes: Vec<String>,
 }
 
@@ -89,12 +87,10 @@ impl RunConfig {
                 model.name()
             )));
         }
+        let model_note = model.info().training.encoder_note.map(String::from);
         let (encoder, encoder_note) = match t.encoder {
             Some(e) => (e, None),
-            None => (
-                model.encoder(),
-                model.info().training.encoder_note.map(String::from),
-            ),
+            None => (model.encoder(), model_note),
         };
         if !encoder.gives(model.latent_dims()) {
             return Err(input_error(format!(

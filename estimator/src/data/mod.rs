@@ -16,6 +16,7 @@ mod request;
 mod reuse;
 mod scale;
 mod stillness;
+pub mod summary;
 mod timing;
 
 pub use framing::{Framing, DEFAULT_SIZE};
@@ -26,8 +27,8 @@ use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
 use physvid_shared::DatasetMeta;
-use recording::RecordingSummary;
 use std::collections::BTreeMap;
+use summary::RecordingSummary;
 use tch::{Device, Kind, Tensor};
 
 /// Clips ready for training.

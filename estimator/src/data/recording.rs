@@ -2,158 +2,18 @@
 //! `physvid_shared::video` (ffmpeg) as its probe planned (the frame rate, Table 5's clip or the
 //! flags': `probe`), frames and trims it, and cuts the frames into clips.
 
-use super::kept::Outside;
 use super::probe::RecordingPlan;
-use super::{descent, framing, kept, object, stillness};
+use super::summary::RecordingSummary;
+use super::{framing, kept, object, stillness};
 use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
-use physvid_shared::cli::{approx, num};
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
-use physvid_shared::video::{Crop, Survey, VideoInfo, VideoOptions};
-use serde::Serialize;
+use physvid_shared::video::VideoOptions;
 use std::path::Path;
 
 /// At most this many clips by default: the hop between clip starts grows to stay below it.
 pub const MAX_DEFAULT_CLIPS: usize = 1000;
-
-/// A reference placed on a clip frame: (clip, frame in it, value).
-pub type ReferenceFrame = (usize, usize, f64);
-
-/// What was made of a recording, for the report and the plots.
-#[derive(Debug, Clone, Serialize)]
-pub struct RecordingSummary {
-    pub info: VideoInfo,
-    /// The frame rate used and where it came from ("--fps" or "container").
-    pub fps: f64,
-    pub fps_source: &'static str,
-    pub frames_decoded: usize,
-    pub frames_per_clip: usize,
-    pub stride: usize,
-    pub hop: usize,
-    pub clips: usize,
-    pub size: (usize, usize),
-    /// The part of the frame the encoder saw (`None`: all of it), and how it was chosen.
-    pub crop: Option<Crop>,
-    pub framing: &'static str,
-    /// `--crop auto`: where the picture moves (the survey's region and its share of the frame
-    /// and of the motion).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub survey: Option<Survey>,
-    /// `--preview`: clips.png written beside the report.
-    pub preview: bool,
-    /// The part kept, in seconds of the file's timeline (`--start`/`--end`, or the descent's).
-    pub start: Option<f64>,
-    pub end: Option<f64>,
-    /// What the frames left out before and after the part kept show (a `--reference` time
-    /// among them is taken at the part's first or last frame where they are still or at rest).
-    pub before: Outside,
-    pub after: Outside,
-    /// An object that moves about the frames kept (not a descent), read by its position.
-    pub object: Option<object::MovingObject>,
-    /// Motion from rest: the descent found in the frames (frames of the whole decode).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub descent: Option<descent::Descent>,
-    /// The release, in frames of the part kept (clips' start times count from it).
-    pub release: f64,
-    /// Seconds spent decoding (ffmpeg, the pipe, crop and resize, and the survey of where the
-    /// picture moves) and frames per second.
-    pub decode_s: f64,
-    pub survey_s: f64,
-    pub decode_fps: f64,
-    /// First recording frame of each clip (index into the decoded frames).
-    #[serde(skip)]
-    pub clip_starts: Vec<usize>,
-}
-
-impl RecordingSummary {
-    /// The clip frame (clip, frame in it) nearest to `t` seconds of the recording's own
-    /// timeline (as `--start` counts, at the container's frame rate; an image folder's at
-    /// `--fps`), or why there is none. A time among the still frames left out at either end
-    /// (or before a release, at rest) is taken at the part kept's end, and said so.
-    pub fn clip_frame_at(&self, t: f64) -> Result<((usize, usize), Option<String>), String> {
-        let start = self.start.unwrap_or(0.0);
-        let last = self.frames_decoded.saturating_sub(1);
-        let timeline_fps = self.info.container_fps.unwrap_or(self.fps);
-        let at = (t - start) * timeline_fps;
-        let end = start + last as f64 / timeline_fps;
-        let outside = if at <= -0.5 {
-            Some((self.before, 0, start, "before"))
-        } else if at >= last as f64 + 0.5 {
-            Some((self.after, last, end, "after"))
-        } else {
-            None
-        };
-        let (f, note) = match outside {
-            None => (at.round() as usize, None),
-            Some((Outside::Unknown, ..)) => {
-                return Err(format!(
-                    "{}s: outside the part of the recording kept, {}–{} s",
-                    num(t),
-                    approx(start),
-                    approx(end)
-                ))
-            }
-            Some((how, f, at, side)) => {
-                let what = match how {
-                    Outside::AtRest => "the object at rest before its release",
-                    _ => "the picture still",
-                };
-                let note = format!(
-                    "--reference {}s: {side} the part kept ({}–{} s), {what}: taken at its \
-                     {} frame, {} s",
-                    num(t),
-                    approx(start),
-                    approx(end),
-                    if f == 0 { "first" } else { "last" },
-                    approx(at)
-                );
-                (f, Some(note))
-            }
-        };
-        let nearest = |s: usize| {
-            let k = (f.saturating_sub(s) + self.stride / 2) / self.stride;
-            let k = k.min(self.frames_per_clip - 1);
-            ((s + k * self.stride).abs_diff(f), k)
-        };
-        self.clip_starts
-            .iter()
-            .enumerate()
-            .map(|(c, &s)| (nearest(s), c))
-            .min()
-            .map(|((_, k), c)| ((c, k), note))
-            .ok_or_else(|| format!("{}s: the recording has no clips", num(t)))
-    }
-
-    /// `--reference` times as (clip, frame, value) at their nearest clip frames, and what was
-    /// said of those taken at an end of the part kept; two times on one frame with different
-    /// values are refused.
-    pub fn reference_frames(
-        &self,
-        times: &[(f64, f64)],
-    ) -> Result<(Vec<ReferenceFrame>, Vec<String>), String> {
-        let mut out: Vec<(usize, usize, f64, f64)> = Vec::new();
-        let mut notes = Vec::new();
-        for &(t, v) in times {
-            let ((c, f), note) = self.clip_frame_at(t)?;
-            notes.extend(note);
-            if let Some(&(_, _, v2, t2)) = out.iter().find(|o| (o.0, o.1) == (c, f) && o.2 != v) {
-                return Err(format!(
-                    "{}s={} and {}s={} fall on the same frame with different values",
-                    num(t2),
-                    num(v2),
-                    num(t),
-                    num(v)
-                ));
-            }
-            out.push((c, f, v, t));
-        }
-        Ok((
-            out.into_iter().map(|(c, f, v, _)| (c, f, v)).collect(),
-            notes,
-        ))
-    }
-}
 
 /// A decoded recording cut into clips (by index: the frames are held once).
 pub struct LoadedRecording {
@@ -316,73 +176,4 @@ pub fn load_recording(
         summary,
         warnings,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// 100 frames kept from 3 s of a 10-fps recording, clips of 20 frames at stride 1 starting
-    /// at every frame; `before`/`after` what the frames left out show.
-    fn kept_from_3s(before: Outside, after: Outside) -> RecordingSummary {
-        RecordingSummary {
-            info: VideoInfo {
-                width: 20,
-                height: 20,
-                container_fps: Some(10.0),
-                capture_fps: None,
-                rotation: 0,
-                expected_frames: None,
-                frame_times: Vec::new(),
-            },
-            fps: 10.0,
-            fps_source: "container",
-            frames_decoded: 100,
-            frames_per_clip: 20,
-            stride: 1,
-            hop: 1,
-            clips: 81,
-            size: (20, 20),
-            crop: None,
-            framing: "whole frame",
-            survey: None,
-            preview: false,
-            start: Some(3.0),
-            end: Some(12.9),
-            before,
-            after,
-            object: None,
-            descent: None,
-            release: 0.0,
-            decode_s: 0.0,
-            survey_s: 0.0,
-            decode_fps: 0.0,
-            clip_starts: (0..81).collect(),
-        }
-    }
-
-    #[test]
-    fn a_reference_among_still_frames_left_out_is_taken_at_the_end_kept_and_said() {
-        let rec = kept_from_3s(Outside::Still, Outside::Unknown);
-        assert_eq!(rec.clip_frame_at(5.0).unwrap(), ((20, 0), None));
-        let ((c, f), note) = rec.clip_frame_at(1.0).unwrap();
-        assert_eq!((c, f), (0, 0));
-        let note = note.expect("said");
-        assert!(
-            note.contains("before the part kept (3–12.9 s), the picture still"),
-            "{note}"
-        );
-        // After the end the frames left out are not known to be still (a flag cut them).
-        let err = rec.clip_frame_at(20.0).unwrap_err();
-        assert!(
-            err.contains("outside the part of the recording kept"),
-            "{err}"
-        );
-        // At rest before a release, and still after a settling: the last frame kept.
-        let rec = kept_from_3s(Outside::AtRest, Outside::Still);
-        let (_, note) = rec.clip_frame_at(0.5).unwrap();
-        assert!(note.unwrap().contains("at rest before its release"));
-        let ((c, f), _) = rec.clip_frame_at(30.0).unwrap();
-        assert_eq!((c, f), (80, 19));
-    }
 }

@@ -11,7 +11,7 @@ pub mod uncertainty;
 use crate::calibration::Calibration;
 use crate::choice::rank::ModelChoice;
 use crate::config::RunConfig;
-use crate::data::recording::RecordingSummary;
+use crate::data::summary::RecordingSummary;
 use crate::data::ClipData;
 use crate::evidence::Evidence;
 use crate::peaks::PeakDecay;
