@@ -225,18 +225,16 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         let mut table = kind.make(&runner)?;
         table.wall_s = start.elapsed().as_secs_f64();
         // The flags its numbers depend on (threads per estimation) and how it ran (jobs).
-        table.command = format!(
-            "reproduce {}{}{}{}",
-            kind.name(),
-            if cfg.quick { " --quick" } else { "" },
-            if cfg.jobs > 1 {
-                format!(" --jobs {}", cfg.jobs)
-            } else {
-                String::new()
-            },
-            cfg.threads
-                .map_or(String::new(), |t| format!(" --threads {t}"))
-        );
+        table.command = format!("reproduce {}", kind.name());
+        if cfg.quick {
+            table.command += " --quick";
+        }
+        if cfg.jobs > 1 {
+            table.command += &format!(" --jobs {}", cfg.jobs);
+        }
+        if let Some(t) = cfg.threads {
+            table.command += &format!(" --threads {t}");
+        }
         let files = table.write(&cfg.out)?;
         runner.bar.suspend(|| {
             eprintln!(

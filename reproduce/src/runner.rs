@@ -278,12 +278,4 @@ impl Job {
             file: None,
         }
     }
-
-    /// The job on the dataset's file `file` instead of its directory.
-    pub fn on_file(self, file: &'static str) -> Job {
-        Job {
-            file: Some(file),
-            ..self
-        }
-    }
 }

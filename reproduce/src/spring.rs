@@ -20,11 +20,12 @@ const OTHERS: [(&str, &str, &str); 3] = [
     ("PAIG", "≈ 1e-6 (collapsed) or ≈ 2.9", "-"),
 ];
 
-/// One row: its label, the dataset, whether to read the bare `.npy`, the extra flags.
+/// One row: its label, the dataset, the file of it to read instead (the bare `.npy`), the
+/// extra flags.
 struct Case {
     label: &'static str,
     spec: DataSpec,
-    bare: bool,
+    file: Option<&'static str>,
     flags: &'static [&'static str],
 }
 
@@ -45,31 +46,31 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         Case {
             label: "default start (k = 1)",
             spec: base.clone(),
-            bare: false,
+            file: None,
             flags: &[],
         },
         Case {
             label: "start k = 10",
             spec: base.clone(),
-            bare: false,
+            file: None,
             flags: &["--init", "k=10"],
         },
         Case {
             label: "no clutter",
             spec: with(vec!["--set", "clutter=0"], None, base.samples),
-            bare: false,
+            file: None,
             flags: &[],
         },
         Case {
             label: "colour (--color)",
             spec: with(vec!["--color"], None, base.samples),
-            bare: false,
+            file: None,
             flags: &[],
         },
         Case {
             label: "bare .npy, 30-frame clips",
             spec: with(Vec::new(), Some(30), if quick { 30 } else { 200 }),
-            bare: true,
+            file: Some("frames.npy"),
             flags: &["--model", "spring", "--dt", "0.3"],
         },
     ];
@@ -94,11 +95,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         .iter()
         .map(|case| {
             let flags: Vec<&str> = case.flags.iter().chain(epochs).copied().collect();
-            let job = Job::new(case.spec.clone(), &flags);
-            if case.bare {
-                job.on_file("frames.npy")
-            } else {
-                job
+            Job {
+                file: case.file,
+                ..Job::new(case.spec.clone(), &flags)
             }
         })
         .collect();

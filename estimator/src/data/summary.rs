@@ -77,18 +77,18 @@ impl RecordingSummary {
         };
         let (f, note) = match outside {
             None => (at.round() as usize, None),
-            Some((Outside::Unknown, ..)) => {
-                return Err(format!(
-                    "{}s: outside the part of the recording kept, {}–{} s",
-                    num(t),
-                    approx(start),
-                    approx(end)
-                ))
-            }
             Some((how, f, at, side)) => {
                 let what = match how {
+                    Outside::Unknown => {
+                        return Err(format!(
+                            "{}s: outside the part of the recording kept, {}–{} s",
+                            num(t),
+                            approx(start),
+                            approx(end)
+                        ))
+                    }
+                    Outside::Still => "the picture still",
                     Outside::AtRest => "the object at rest before its release",
-                    _ => "the picture still",
                 };
                 let note = format!(
                     "--reference {}s: {side} the part kept ({}–{} s), {what}: taken at its \
