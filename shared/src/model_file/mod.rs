@@ -17,7 +17,7 @@ pub mod system;
 
 pub use read::load;
 pub use symmetry::Symmetries;
-pub use system::CompiledSystem;
+pub use system::{AtParams, CompiledSystem};
 
 use expr::Expr;
 use std::path::PathBuf;

@@ -2,32 +2,29 @@
 //! ∂f/∂p on one tape (symbolic derivatives, common subexpressions computed once), and a plain
 //! RK4 trajectory for `gen`.
 
-use super::expr::{Slots, Tape, TapeBuilder};
+use super::expr::{Split, TapeBuilder};
 use super::ModelFile;
-use std::cell::RefCell;
 
 /// The most variables (states + parameters + t) a file may have.
 pub const MAX_VARIABLES: usize = 64;
 
-/// Tapes of at most this many slots run on an array on the stack, whose accesses are never
-/// checked (`Slots`); a larger array costs more to clear than it saves.
-const SMALL: usize = 32;
-
 /// f and its Jacobians, compiled onto one tape: f's n outputs first (so f alone evaluates a
-/// prefix), then ∂f/∂x row-major, then ∂f/∂p.
+/// prefix), then ∂f/∂x row-major, then ∂f/∂p; split so that what depends on the parameters
+/// alone is computed once for many evaluations at the same parameters ([`CompiledSystem::at`]).
 #[derive(Debug, Clone)]
 pub struct CompiledSystem {
     pub n: usize,
     pub m: usize,
-    tape: Tape,
+    /// The tape split by the states and t, which vary, and may stop after f or after ∂f/∂x.
+    split: Split,
     /// The tape's nodes that compute f.
     f_len: usize,
 }
 
-thread_local! {
-    /// The scratch values of a tape too large for `SMALL`, one buffer per thread.
-    static BUFFER: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
-}
+/// Where [`Split::run`] stops: after f, after ∂f/∂x, after ∂f/∂p.
+const F: usize = 0;
+const F_JX: usize = 1;
+const ALL: usize = 2;
 
 impl CompiledSystem {
     /// Compiles `file`'s equations and their derivatives.
@@ -43,25 +40,44 @@ impl CompiledSystem {
                 b.output(&e.derivative(j));
             }
         }
+        let jx_len = b.len();
         for e in &file.equations {
             for j in 0..m {
                 b.output(&e.derivative(n + j));
             }
         }
+        let all = b.len();
+        // The states and t (the variable after the parameters) vary within an integration.
+        let varying: Vec<usize> = (0..n).chain([n + m]).collect();
         CompiledSystem {
             n,
             m,
-            tape: b.finish(),
+            split: Split::new(b.finish(), &varying, &[f_len, jx_len, all]),
             f_len,
         }
     }
 
-    /// Operations per evaluation of f and of f with its Jacobians.
+    /// Operations per evaluation of f and of f with its Jacobians (the whole tape, before the
+    /// split).
     pub fn cost(&self) -> (usize, usize) {
-        (self.tape.steps(self.f_len), self.tape.len())
+        let tape = self.split.tape();
+        (tape.steps(self.f_len), tape.len())
     }
 
-    /// f(x, p, t) into `f`; with `jac`, ∂f/∂x [n×n] and ∂f/∂p [n×m] too, row-major.
+    /// The law at parameters `p`, for many evaluations: the operations that read only the
+    /// parameters and constants done here, once.
+    pub fn at(&self, p: &[f64]) -> AtParams<'_> {
+        let (n, m) = (self.n, self.m);
+        let mut vars = vec![0.0; n + m + 1];
+        vars[n..n + m].copy_from_slice(&p[..m]);
+        AtParams {
+            sys: self,
+            buf: self.split.prepare(&vars),
+        }
+    }
+
+    /// f(x, p, t) into `f`; with `jac`, ∂f/∂x [n×n] and ∂f/∂p [n×m] too, row-major. For one
+    /// evaluation; many at the same parameters go through [`CompiledSystem::at`].
     pub fn eval(
         &self,
         x: &[f64],
@@ -70,50 +86,7 @@ impl CompiledSystem {
         f: &mut [f64],
         jac: Option<(&mut [f64], &mut [f64])>,
     ) {
-        let len = self.tape.buffer_len().max(self.n + self.m + 1);
-        if len <= SMALL {
-            self.eval_in(x, p, t, f, jac, &mut [0.0; SMALL]);
-        } else {
-            BUFFER.with_borrow_mut(|buf| {
-                if buf.len() < len {
-                    buf.resize(len, 0.0);
-                }
-                self.eval_in(x, p, t, f, jac, buf.as_mut_slice());
-            });
-        }
-    }
-
-    /// [`CompiledSystem::eval`] with the tape's buffer `buf`.
-    fn eval_in<S: Slots + ?Sized>(
-        &self,
-        x: &[f64],
-        p: &[f64],
-        t: f64,
-        f: &mut [f64],
-        jac: Option<(&mut [f64], &mut [f64])>,
-        buf: &mut S,
-    ) {
-        let (n, m) = (self.n, self.m);
-        for (k, v) in x[..n].iter().chain(&p[..m]).chain([&t]).enumerate() {
-            buf.set(k as u32, *v);
-        }
-        let upto = if jac.is_some() {
-            self.tape.nodes()
-        } else {
-            self.f_len
-        };
-        self.tape.run_loaded(upto, buf);
-        for (i, fi) in f[..n].iter_mut().enumerate() {
-            *fi = self.tape.output(i, buf);
-        }
-        if let Some((jx, jp)) = jac {
-            for (k, out) in jx[..n * n].iter_mut().enumerate() {
-                *out = self.tape.output(n + k, buf);
-            }
-            for (k, out) in jp[..n * m].iter_mut().enumerate() {
-                *out = self.tape.output(n + n * n + k, buf);
-            }
-        }
+        self.at(p).eval(x, t, f, jac.map(|(jx, jp)| (jx, Some(jp))));
     }
 
     /// The RK4 trajectory from `x0` at time `t0`: `frames` states `dt` apart [frames × n],
@@ -127,14 +100,51 @@ impl CompiledSystem {
         frames: usize,
         substeps: usize,
     ) -> Vec<f64> {
+        let mut law = self.at(p);
         crate::rk4::trajectory(
-            |t, x, out| self.eval(x, p, t, out, None),
+            |t, x, out| law.eval(x, t, out, None),
             x0,
             t0,
             dt,
             frames,
             substeps,
         )
+    }
+}
+
+/// A [`CompiledSystem`] at fixed parameters (from [`CompiledSystem::at`]).
+pub struct AtParams<'a> {
+    sys: &'a CompiledSystem,
+    /// The tape's buffer, the parameters' part of it computed.
+    buf: Vec<f64>,
+}
+
+impl AtParams<'_> {
+    /// f(x, t) into `f`; with `jac`, ∂f/∂x [n×n] and, where asked, ∂f/∂p [n×m] too, row-major
+    /// (the operations only ∂f/∂p needs are skipped otherwise).
+    #[inline]
+    pub fn eval(
+        &mut self,
+        x: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], Option<&mut [f64]>)>,
+    ) {
+        let (sys, buf) = (self.sys, &mut self.buf);
+        let (n, m) = (sys.n, sys.m);
+        let end = match &jac {
+            None => F,
+            Some((_, None)) => F_JX,
+            Some((_, Some(_))) => ALL,
+        };
+        sys.split.run(end, x[..n].iter().copied().chain([t]), buf);
+        sys.split.outputs(0, buf, &mut f[..n]);
+        if let Some((jx, jp)) = jac {
+            sys.split.outputs(n, buf, &mut jx[..n * n]);
+            if let Some(jp) = jp {
+                sys.split.outputs(n + n * n, buf, &mut jp[..n * m]);
+            }
+        }
     }
 }
 

@@ -1,9 +1,9 @@
 //! A model file's equations as an `OdeSystem` for the shooting machinery, and the frequency of
 //! its motion at given parameters (for the data-driven start and the horizon curriculum).
 
-use crate::physics::ode::OdeSystem;
+use crate::physics::ode::{FixedLaw, OdeSystem};
 use physvid_shared::model_file::expr::Expr;
-use physvid_shared::model_file::{CompiledSystem, ModelFile};
+use physvid_shared::model_file::{AtParams, CompiledSystem, ModelFile};
 use physvid_shared::recurrence::fit_two_step_recurrence;
 
 /// The compiled equations, and for each state the observed coordinate it is the time derivative
@@ -103,6 +103,10 @@ impl OdeSystem for FileSystem {
     ) {
         self.compiled.eval(x, p, t, f, jac);
     }
+    /// The tape's operations on the parameters alone done once an integration.
+    fn at<'a>(&'a self, p: &[f64]) -> Option<Box<dyn FixedLaw + 'a>> {
+        Some(Box::new(self.compiled.at(p)))
+    }
     /// Observed states from the first frame, their derivatives from the first three frames
     /// (second-order one-sided difference), the rest at their typical value.
     fn guess(&self, obs: &[f64], _observed: &[usize], dt: f64) -> Vec<f64> {
@@ -125,5 +129,17 @@ impl OdeSystem for FileSystem {
             }
         }
         x
+    }
+}
+
+impl FixedLaw for AtParams<'_> {
+    fn eval(
+        &mut self,
+        x: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], Option<&mut [f64]>)>,
+    ) {
+        AtParams::eval(self, x, t, f, jac);
     }
 }

@@ -35,4 +35,22 @@ pub trait OdeSystem: Send + Sync {
     /// row-major] of state components `observed`, `dt` apart (for example a velocity from
     /// finite differences).
     fn guess(&self, obs: &[f64], observed: &[usize], dt: f64) -> Vec<f64>;
+    /// The law at fixed parameters `p` for the many evaluations of one integration, where
+    /// computing what depends on `p` alone once pays (a model file's tape); `None`, the
+    /// default, integrates through [`OdeSystem::eval`].
+    fn at<'a>(&'a self, _p: &[f64]) -> Option<Box<dyn FixedLaw + 'a>> {
+        None
+    }
+}
+
+/// An [`OdeSystem`] at fixed parameters (from [`OdeSystem::at`]).
+pub trait FixedLaw {
+    /// f(x, t) into `f`; with `jac`, ∂f/∂x [n×n] and, where given, ∂f/∂p [n×m] too.
+    fn eval(
+        &mut self,
+        x: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jac: Option<(&mut [f64], Option<&mut [f64]>)>,
+    );
 }

@@ -2,7 +2,31 @@
 //! discrete map (forward-mode through every stage) with respect to the initial state and,
 //! optionally, the parameters: what the least-squares fit and the gradients need.
 
-use super::OdeSystem;
+use super::{FixedLaw, OdeSystem};
+
+/// The law integrated: the system's own evaluation, or its evaluator at fixed parameters.
+enum Law<'a> {
+    Plain(&'a dyn OdeSystem, &'a [f64]),
+    Fixed(Box<dyn FixedLaw + 'a>),
+}
+
+impl Law<'_> {
+    /// f into `f`, ∂f/∂x into `jx` and, `with_params`, ∂f/∂p into `jp`, at (x, t).
+    fn eval(
+        &mut self,
+        x: &[f64],
+        t: f64,
+        f: &mut [f64],
+        jx: &mut [f64],
+        jp: &mut [f64],
+        with_params: bool,
+    ) {
+        match self {
+            Law::Plain(sys, p) => sys.eval(x, p, t, f, Some((jx, jp))),
+            Law::Fixed(law) => law.eval(x, t, f, Some((jx, with_params.then_some(jp)))),
+        }
+    }
+}
 
 /// What to integrate.
 #[derive(Debug, Clone, Copy)]
@@ -27,15 +51,23 @@ pub struct Track {
     pub k: usize,
 }
 
-/// Scratch buffers of one integration.
-struct Work {
-    f: Vec<f64>,
-    jx: Vec<f64>,
-    jp: Vec<f64>,
-    xs: Vec<f64>,
-    ss: Vec<f64>,
-    kx: [Vec<f64>; 4],
-    ks: [Vec<f64>; 4],
+/// Scratch of one integration, carved from one allocation.
+struct Work<'a> {
+    jx: &'a mut [f64],
+    jp: &'a mut [f64],
+    /// A stage's point and tangent.
+    xs: &'a mut [f64],
+    ss: &'a mut [f64],
+    /// Each stage's slope, f, and that of the tangent.
+    kx: [&'a mut [f64]; 4],
+    ks: [&'a mut [f64]; 4],
+}
+
+/// The first `len` values of `rest`, which keeps the others.
+fn carve<'a>(rest: &mut &'a mut [f64], len: usize) -> &'a mut [f64] {
+    let (head, tail) = std::mem::take(rest).split_at_mut(len);
+    *rest = tail;
+    head
 }
 
 /// Integrates `sys` from `x0` with parameters `p` over `span`, observing `observed`; the
@@ -51,28 +83,34 @@ pub fn integrate(
     let (n, m) = (sys.states(), sys.params());
     let k = if with_params { n + m } else { n };
     let o = observed.len();
-    let zeros = |len: usize| vec![0.0; len];
-    let mut w = Work {
-        f: zeros(n),
-        jx: zeros(n * n),
-        jp: zeros(n * m),
-        xs: zeros(n),
-        ss: zeros(n * k),
-        kx: [zeros(n), zeros(n), zeros(n), zeros(n)],
-        ks: [zeros(n * k), zeros(n * k), zeros(n * k), zeros(n * k)],
-    };
-    let mut x = x0.to_vec();
+    // x, S, Jx, Jp, the stage's point and tangent, the four stages' slopes.
+    let mut arena = vec![0.0; 2 * n + n * (n + m) + 2 * n * k + 4 * n + 4 * n * k];
+    let mut rest = arena.as_mut_slice();
+    let x = carve(&mut rest, n);
+    x.copy_from_slice(x0);
     // The tangent S = ∂x/∂(x0, p) [n × k], the identity on the x0 block at the start.
-    let mut s = zeros(n * k);
+    let s = carve(&mut rest, n * k);
     for i in 0..n {
         s[i * k + i] = 1.0;
     }
+    let mut w = Work {
+        jx: carve(&mut rest, n * n),
+        jp: carve(&mut rest, n * m),
+        xs: carve(&mut rest, n),
+        ss: carve(&mut rest, n * k),
+        kx: std::array::from_fn(|_| carve(&mut rest, n)),
+        ks: std::array::from_fn(|_| carve(&mut rest, n * k)),
+    };
     let mut track = Track {
         y: Vec::with_capacity(span.frames * o),
         dy: Vec::with_capacity(span.frames * o * k),
         k,
     };
     let h = span.dt / span.substeps as f64;
+    let mut law = match sys.at(p) {
+        Some(fixed) => Law::Fixed(fixed),
+        None => Law::Plain(sys, p),
+    };
     for frame in 0..span.frames {
         for &c in observed {
             track.y.push(x[c]);
@@ -83,51 +121,39 @@ pub fn integrate(
         }
         for sub in 0..span.substeps {
             let t = span.t0 + frame as f64 * span.dt + sub as f64 * h;
-            step(sys, &mut x, &mut s, p, t, h, k, &mut w);
+            step(&mut law, x, s, t, h, k, &mut w);
         }
     }
     track
 }
 
-/// One RK4 step of the state `x` and its tangent `s` [n × k].
-#[allow(clippy::too_many_arguments)]
-fn step(
-    sys: &dyn OdeSystem,
-    x: &mut [f64],
-    s: &mut [f64],
-    p: &[f64],
-    t: f64,
-    h: f64,
-    k: usize,
-    w: &mut Work,
-) {
-    let (n, m) = (x.len(), p.len());
+/// One RK4 step of the state `x` and its tangent `s` [n × k] (k > n: with the parameters').
+fn step(law: &mut Law, x: &mut [f64], s: &mut [f64], t: f64, h: f64, k: usize, w: &mut Work) {
+    let n = x.len();
+    let m = k - n;
     const C: [f64; 4] = [0.0, 0.5, 0.5, 1.0];
     for (stage, &c) in C.iter().enumerate() {
-        // The stage's point: x + C·h·k_prev (and likewise the tangent).
-        if stage == 0 {
-            w.xs.copy_from_slice(x);
-            w.ss.copy_from_slice(s);
+        // The stage's point: x + C·h·k_prev (and likewise the tangent); the first is x itself.
+        let (xs, ss): (&[f64], &[f64]) = if stage == 0 {
+            (x, s)
         } else {
             let a = c * h;
-            let (kx, ks) = (&w.kx[stage - 1], &w.ks[stage - 1]);
-            for i in 0..n {
-                w.xs[i] = x[i] + a * kx[i];
+            for ((o, xi), ki) in w.xs.iter_mut().zip(&*x).zip(&*w.kx[stage - 1]) {
+                *o = xi + a * ki;
             }
-            for i in 0..n * k {
-                w.ss[i] = s[i] + a * ks[i];
+            for ((o, si), ki) in w.ss.iter_mut().zip(&*s).zip(&*w.ks[stage - 1]) {
+                *o = si + a * ki;
             }
-        }
-        sys.eval(&w.xs, p, t + c * h, &mut w.f, Some((&mut w.jx, &mut w.jp)));
-        w.kx[stage].copy_from_slice(&w.f);
+            (w.xs, w.ss)
+        };
+        law.eval(xs, t + c * h, w.kx[stage], w.jx, w.jp, k > n);
         // K = Jx·S + [0 | Jp], row by row, skipping Jx's zeros (a second-order system's
         // Jacobian is mostly zeros: the spring's 44 of 64); each element sums the same terms
         // in the same order as the full product, so the result is the same to the bit.
-        let ks = &mut w.ks[stage];
+        let ks = &mut *w.ks[stage];
         ks.fill(0.0);
         for (i, row) in ks.chunks_exact_mut(k).enumerate() {
-            for (l, srow) in w.ss.chunks_exact(k).enumerate() {
-                let a = w.jx[i * n + l];
+            for (&a, srow) in w.jx[i * n..(i + 1) * n].iter().zip(ss.chunks_exact(k)) {
                 if a != 0.0 {
                     for (r, v) in row.iter_mut().zip(srow) {
                         *r += a * v;
@@ -139,12 +165,15 @@ fn step(
             }
         }
     }
+    // Summed left to right, as `Iterator::sum` did (from −0.0, which changes no term).
     let b = [h / 6.0, h / 3.0, h / 3.0, h / 6.0];
+    let [k1, k2, k3, k4] = &w.kx;
     for (i, v) in x.iter_mut().enumerate() {
-        *v += (0..4).map(|q| b[q] * w.kx[q][i]).sum::<f64>();
+        *v += b[0] * k1[i] + b[1] * k2[i] + b[2] * k3[i] + b[3] * k4[i];
     }
+    let [k1, k2, k3, k4] = &w.ks;
     for (i, v) in s.iter_mut().enumerate() {
-        *v += (0..4).map(|q| b[q] * w.ks[q][i]).sum::<f64>();
+        *v += b[0] * k1[i] + b[1] * k2[i] + b[2] * k3[i] + b[3] * k4[i];
     }
 }
 

@@ -6,8 +6,12 @@
 //! The buffer holds the variables, then the constants, then each operation's result, so that
 //! reading a variable or a constant is no operation: only arithmetic is dispatched.
 
+mod split;
+
 use super::{Expr, Func, Op};
 use std::collections::HashMap;
+
+pub use split::Split;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 enum Node {
@@ -223,77 +227,47 @@ impl Tape {
 
     /// Evaluates the builder's first `upto` nodes at `vars` into `buf` (at least
     /// [`Tape::buffer_len`] long).
-    pub fn run<S: Slots + ?Sized>(&self, vars: &[f64], upto: usize, buf: &mut S) {
-        for (k, v) in vars[..self.vars].iter().enumerate() {
-            buf.set(k as u32, *v);
-        }
-        self.run_loaded(upto, buf);
+    pub fn run(&self, vars: &[f64], upto: usize, buf: &mut [f64]) {
+        buf[..self.vars].copy_from_slice(&vars[..self.vars]);
+        self.load_constants(buf);
+        self.exec(&self.steps[..self.prefix[upto]], buf);
     }
 
-    /// [`Tape::run`] with the variables already in `buf`'s first slots.
-    pub fn run_loaded<S: Slots + ?Sized>(&self, upto: usize, buf: &mut S) {
-        // Once a run: an array's masked accesses would otherwise wrap silently.
-        assert!(buf.slots() >= self.len, "a tape's buffer is too short");
-        for (k, c) in self.constants.iter().enumerate() {
-            buf.set((self.vars + k) as u32, *c);
-        }
-        for step in &self.steps[..self.prefix[upto]] {
+    /// Writes the constants into their slots of `buf`.
+    fn load_constants(&self, buf: &mut [f64]) {
+        buf[self.vars..self.vars + self.constants.len()].copy_from_slice(&self.constants);
+    }
+
+    /// Runs `steps`, this tape's, on `buf`.
+    fn exec(&self, steps: &[Step], buf: &mut [f64]) {
+        // Once a run, so that no access below is checked (a small law evaluated millions of
+        // times an epoch spends a third of its time on the checks otherwise).
+        assert!(buf.len() >= self.len, "a tape's buffer is too short");
+        let at = buf.as_mut_ptr();
+        // SAFETY: every slot a step of this tape names is below `self.len` (`finish` numbers
+        // them so), and `buf` holds at least that many.
+        let get = |slot: u32| unsafe { *at.add(slot as usize) };
+        let set = |slot: u32, value: f64| unsafe { *at.add(slot as usize) = value };
+        for step in steps {
             match *step {
-                Step::Neg(a, out) => buf.set(out, -buf.get(a)),
-                Step::Add(a, b, out) => buf.set(out, buf.get(a) + buf.get(b)),
-                Step::Sub(a, b, out) => buf.set(out, buf.get(a) - buf.get(b)),
-                Step::Mul(a, b, out) => buf.set(out, buf.get(a) * buf.get(b)),
-                Step::Div(a, b, out) => buf.set(out, buf.get(a) / buf.get(b)),
-                Step::Bin(op, a, b, out) => buf.set(out, op.apply(buf.get(a), buf.get(b))),
-                Step::Call(f, a, b, out) => buf.set(out, f.apply(buf.get(a), buf.get(b))),
+                Step::Neg(a, out) => set(out, -get(a)),
+                Step::Add(a, b, out) => set(out, get(a) + get(b)),
+                Step::Sub(a, b, out) => set(out, get(a) - get(b)),
+                Step::Mul(a, b, out) => set(out, get(a) * get(b)),
+                Step::Div(a, b, out) => set(out, get(a) / get(b)),
+                Step::Bin(op, a, b, out) => set(out, op.apply(get(a), get(b))),
+                Step::Call(f, a, b, out) => set(out, f.apply(get(a), get(b))),
                 Step::SinCos { arg, sin, cos } => {
-                    let (s, c) = buf.get(arg).sin_cos();
-                    buf.set(sin, s);
-                    buf.set(cos, c);
+                    let (s, c) = get(arg).sin_cos();
+                    set(sin, s);
+                    set(cos, c);
                 }
             }
         }
     }
 
     /// Output `k`'s value after [`Tape::run`] covered it.
-    pub fn output<S: Slots + ?Sized>(&self, k: usize, buf: &S) -> f64 {
-        buf.get(self.outputs[k])
-    }
-}
-
-/// A tape's buffer: a slice of any length (each access checked), or an array of a power of
-/// two slots at least [`Tape::buffer_len`] long, whose accesses are masked into range and so
-/// never checked (a small law evaluated millions of times an epoch spends a third of its time
-/// on the checks otherwise).
-pub trait Slots {
-    /// How many slots it holds.
-    fn slots(&self) -> usize;
-    fn get(&self, slot: u32) -> f64;
-    fn set(&mut self, slot: u32, value: f64);
-}
-
-impl Slots for [f64] {
-    fn slots(&self) -> usize {
-        self.len()
-    }
-    fn get(&self, slot: u32) -> f64 {
-        self[slot as usize]
-    }
-    fn set(&mut self, slot: u32, value: f64) {
-        self[slot as usize] = value;
-    }
-}
-
-impl<const N: usize> Slots for [f64; N] {
-    fn slots(&self) -> usize {
-        N
-    }
-    fn get(&self, slot: u32) -> f64 {
-        const { assert!(N.is_power_of_two()) };
-        self[slot as usize & (N - 1)]
-    }
-    fn set(&mut self, slot: u32, value: f64) {
-        const { assert!(N.is_power_of_two()) };
-        self[slot as usize & (N - 1)] = value;
+    pub fn output(&self, k: usize, buf: &[f64]) -> f64 {
+        buf[self.outputs[k] as usize]
     }
 }
