@@ -5,6 +5,7 @@
 
 mod coverage;
 mod init;
+mod interrupt;
 mod losses;
 mod model_choice;
 mod noise;
@@ -139,7 +140,8 @@ struct Cli {
     /// one at a time with the same --threads.
     #[arg(long, default_value_t = 1, value_parser = physvid_shared::cli::thread_count)]
     jobs: usize,
-    /// Render datasets here and keep them (default: a temporary directory, removed after).
+    /// Render datasets here and keep them (default: a temporary directory, removed after the
+    /// run, or when Ctrl-C, SIGTERM or SIGHUP stops it).
     #[arg(long, value_name = "DIR")]
     scratch: Option<PathBuf>,
     /// No progress bar.
@@ -183,6 +185,7 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         Some(dir) => dir.clone(),
         None => {
             temp = tempfile::Builder::new().prefix("reproduce-").tempdir()?;
+            interrupt::remove_on_signal(temp.path().to_path_buf())?;
             temp.path().to_path_buf()
         }
     };

@@ -16,7 +16,7 @@ use estimator::verdict::Verdict;
 use estimator::{estimation, EstimateArgs};
 use serde::Deserialize;
 use std::path::Path;
-use std::process::{Command, ExitCode};
+use std::process::{Command, ExitCode, Stdio};
 
 /// Set to the report's path in a worker's environment; its arguments are `estimate`'s.
 pub const WORKER: &str = "PHYSVID_REPRODUCE_WORKER";
@@ -81,7 +81,16 @@ pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
     let mut command = Command::new(exe);
     command.arg("estimate").args(args).env(WORKER, report);
     physvid_shared::child::die_with_parent(&mut command);
-    let out = command.output()?;
+    let child = command
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let pid = child.id();
+    crate::interrupt::started(pid);
+    let out = child.wait_with_output();
+    crate::interrupt::ended(pid);
+    let out = out?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         anyhow::bail!(

@@ -221,3 +221,61 @@ fn reproduce_bad_input_gets_a_one_line_error_and_exit_code_2() {
         assert!(help.contains(word), "--help lacks {word}");
     }
 }
+
+/// A run stopped by SIGTERM midway (its workers running) exits with 143 and leaves no scratch
+/// directory in the temporary directory.
+#[test]
+fn a_run_stopped_by_a_signal_removes_its_scratch_directory() {
+    let tmp = tempfile::tempdir().unwrap();
+    let temp_root = tmp.path().join("tmp");
+    std::fs::create_dir(&temp_root).unwrap();
+    let scratch = || -> Vec<std::path::PathBuf> {
+        std::fs::read_dir(&temp_root)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                p.file_name()
+                    .unwrap()
+                    .to_string_lossy()
+                    .starts_with("reproduce-")
+            })
+            .collect()
+    };
+    let mut child = reproduce()
+        .args([
+            "spring",
+            "--quick",
+            "--quiet",
+            "--jobs",
+            "2",
+            "--threads",
+            "1",
+        ])
+        .args(["--device", "cpu"])
+        .out(&tmp.path().join("out"))
+        .env("TMPDIR", &temp_root)
+        .spawn();
+    // Wait until a worker writes its run (a `run-N` directory in the scratch directory).
+    let start = std::time::Instant::now();
+    let running = loop {
+        let busy = scratch().iter().any(|d| {
+            std::fs::read_dir(d).is_ok_and(|mut es| {
+                es.any(|e| e.unwrap().file_name().to_string_lossy().starts_with("run-"))
+            })
+        });
+        if busy || start.elapsed().as_secs() > 120 || child.try_wait().unwrap().is_some() {
+            break busy;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    assert!(running, "no worker ran within 120 s");
+    let status = std::process::Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(143), "{}", stderr(&out));
+    assert!(stderr(&out).contains("removed the scratch directory"));
+    assert_eq!(scratch(), Vec::<std::path::PathBuf>::new());
+}

@@ -8,7 +8,7 @@ pub mod failures;
 
 use std::ffi::{OsStr, OsString};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Child, Command, Output, Stdio};
 
 /// An invocation of a binary being built.
 #[derive(Debug, Clone)]
@@ -62,6 +62,18 @@ impl TestCommand {
             .args(&self.args)
             .envs(self.env.iter().map(|(k, v)| (k, v)))
             .output()
+            .unwrap_or_else(|e| panic!("{} does not run: {e}", self.bin.display()))
+    }
+
+    /// Starts the command without waiting for it (its output captured), for a test that stops
+    /// it midway.
+    pub fn spawn(&self) -> Child {
+        Command::new(&self.bin)
+            .args(&self.args)
+            .envs(self.env.iter().map(|(k, v)| (k, v)))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
             .unwrap_or_else(|e| panic!("{} does not run: {e}", self.bin.display()))
     }
 
