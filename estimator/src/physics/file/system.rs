@@ -1,7 +1,7 @@
 //! A model file's equations as an `OdeSystem` for the shooting machinery, and the frequency of
 //! its motion at given parameters (for the data-driven start and the horizon curriculum).
 
-use crate::physics::ode::{FixedLaw, OdeSystem};
+use crate::physics::ode::{FixedLaw, Jacobians, OdeSystem};
 use physvid_shared::model_file::expr::Expr;
 use physvid_shared::model_file::{AtParams, CompiledSystem, ModelFile};
 use physvid_shared::recurrence::fit_two_step_recurrence;
@@ -133,13 +133,7 @@ impl OdeSystem for FileSystem {
 }
 
 impl FixedLaw for AtParams<'_> {
-    fn eval(
-        &mut self,
-        x: &[f64],
-        t: f64,
-        f: &mut [f64],
-        jac: Option<(&mut [f64], Option<&mut [f64]>)>,
-    ) {
+    fn eval(&mut self, x: &[f64], t: f64, f: &mut [f64], jac: Jacobians) {
         AtParams::eval(self, x, t, f, jac);
     }
 }

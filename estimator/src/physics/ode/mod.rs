@@ -43,14 +43,11 @@ pub trait OdeSystem: Send + Sync {
     }
 }
 
+/// Where a [`FixedLaw`] writes ∂f/∂x [n×n] and, where given, ∂f/∂p [n×m], row-major.
+pub type Jacobians<'a> = Option<(&'a mut [f64], Option<&'a mut [f64]>)>;
+
 /// An [`OdeSystem`] at fixed parameters (from [`OdeSystem::at`]).
 pub trait FixedLaw {
-    /// f(x, t) into `f`; with `jac`, ∂f/∂x [n×n] and, where given, ∂f/∂p [n×m] too.
-    fn eval(
-        &mut self,
-        x: &[f64],
-        t: f64,
-        f: &mut [f64],
-        jac: Option<(&mut [f64], Option<&mut [f64]>)>,
-    );
+    /// f(x, t) into `f`, and the Jacobians asked for.
+    fn eval(&mut self, x: &[f64], t: f64, f: &mut [f64], jac: Jacobians);
 }
