@@ -1,8 +1,9 @@
 //! Falls from rest drawn the way someone else would film them (an image folder: a dark ball
 //! before a light, shaded wall, at rest, then 15 frames of fall, then on the floor), estimated
 //! with no trim: the release and the end of the descent are found in the frames and the ball
-//! is read by its position (a reference at rest before the part kept taken at its first frame). A longer fall at 60 fps, filmed level and by a camera tilted to it
-//! (its bend by perspective undone), is graded ok both ways. A ball dropped from a hand, as a
+//! is read by its position (a reference at rest before the part kept taken at its first
+//! frame). A longer fall at 60 fps, filmed level and by a camera tilted to it (its bend by
+//! perspective undone), is graded ok both ways. A ball dropped from a hand, as a
 //! video: framed along its whole fall, and the hand at its release said.
 
 mod util;

@@ -232,7 +232,8 @@ fn a_run_stopped_by_a_signal_removes_its_scratch_directory() {
     let scratch = || -> Vec<std::path::PathBuf> {
         std::fs::read_dir(&temp_root)
             .unwrap()
-            .map(|e| e.unwrap().path())
+            .flatten()
+            .map(|e| e.path())
             .filter(|p| {
                 p.file_name()
                     .unwrap()
@@ -259,8 +260,9 @@ fn a_run_stopped_by_a_signal_removes_its_scratch_directory() {
     let start = std::time::Instant::now();
     let running = loop {
         let busy = scratch().iter().any(|d| {
-            std::fs::read_dir(d).is_ok_and(|mut es| {
-                es.any(|e| e.unwrap().file_name().to_string_lossy().starts_with("run-"))
+            std::fs::read_dir(d).is_ok_and(|es| {
+                es.flatten()
+                    .any(|e| e.file_name().to_string_lossy().starts_with("run-"))
             })
         });
         if busy || start.elapsed().as_secs() > 120 || child.try_wait().unwrap().is_some() {

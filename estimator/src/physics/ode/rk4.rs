@@ -165,7 +165,7 @@ fn step(law: &mut Law, x: &mut [f64], s: &mut [f64], t: f64, h: f64, k: usize, w
             }
         }
     }
-    // Summed left to right, as `Iterator::sum` did (from −0.0, which changes no term).
+    // Summed left to right in stage order (the answers depend on the order to the last bit).
     let b = [h / 6.0, h / 3.0, h / 3.0, h / 6.0];
     let [k1, k2, k3, k4] = &w.kx;
     for (i, v) in x.iter_mut().enumerate() {

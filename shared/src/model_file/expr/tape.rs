@@ -210,11 +210,6 @@ impl Tape {
         self.steps.is_empty()
     }
 
-    /// The builder's nodes ([`Tape::run`]'s `upto` for every output).
-    pub fn nodes(&self) -> usize {
-        self.prefix.len() - 1
-    }
-
     /// The operations that compute the builder's first `upto` nodes.
     pub fn steps(&self, upto: usize) -> usize {
         self.prefix[upto]
