@@ -21,7 +21,7 @@ pub struct CompiledSystem {
     f_len: usize,
 }
 
-/// Where [`Split::run`] stops: after f, after ∂f/∂x, after ∂f/∂p.
+/// Where [`Split::eval`] stops: after f, after ∂f/∂x, after ∂f/∂p.
 const F: usize = 0;
 const F_JX: usize = 1;
 const ALL: usize = 2;
@@ -52,7 +52,11 @@ impl CompiledSystem {
         CompiledSystem {
             n,
             m,
-            split: Split::new(b.finish(), &varying, &[f_len, jx_len, all]),
+            split: Split::new(
+                b.finish(),
+                &varying,
+                &[(f_len, n), (jx_len, n + n * n), (all, n + n * n + n * m)],
+            ),
             f_len,
         }
     }
@@ -130,20 +134,11 @@ impl AtParams<'_> {
         f: &mut [f64],
         jac: Option<(&mut [f64], Option<&mut [f64]>)>,
     ) {
-        let (sys, buf) = (self.sys, &mut self.buf);
-        let (n, m) = (sys.n, sys.m);
-        let end = match &jac {
-            None => F,
-            Some((_, None)) => F_JX,
-            Some((_, Some(_))) => ALL,
-        };
-        sys.split.run(end, x[..n].iter().copied().chain([t]), buf);
-        sys.split.outputs(0, buf, &mut f[..n]);
-        if let Some((jx, jp)) = jac {
-            sys.split.outputs(n, buf, &mut jx[..n * n]);
-            if let Some(jp) = jp {
-                sys.split.outputs(n + n * n, buf, &mut jp[..n * m]);
-            }
+        let (split, buf, x) = (&self.sys.split, &mut self.buf, &x[..self.sys.n]);
+        match jac {
+            None => split.eval(F, x, t, buf, &mut [f]),
+            Some((jx, None)) => split.eval(F_JX, x, t, buf, &mut [f, jx]),
+            Some((jx, Some(jp))) => split.eval(ALL, x, t, buf, &mut [f, jx, jp]),
         }
     }
 }

@@ -6,6 +6,7 @@
 //! The buffer holds the variables, then the constants, then each operation's result, so that
 //! reading a variable or a constant is no operation: only arithmetic is dispatched.
 
+mod native;
 mod split;
 
 use super::{Expr, Func, Op};
