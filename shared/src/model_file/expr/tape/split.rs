@@ -155,7 +155,7 @@ impl Split {
         let groups = &self.groups[..=end];
         assert!(outs.len() >= groups.len(), "an output group is missing");
         let Some(native) = &self.native else {
-            return self.interpret(end, head, last, buf, outs);
+            return self.interpret(end, (head, last), buf, outs);
         };
         assert!(
             buf.len() > self.tape.len && head.len() + 1 >= self.slots.len(),
@@ -176,15 +176,13 @@ impl Split {
     /// [`Split::eval`] on a host the code could not be compiled for (kept out of line, so that
     /// the compiled path inlines into its callers).
     #[inline(never)]
-    fn interpret(
-        &self,
-        end: usize,
-        head: &[f64],
-        last: f64,
-        buf: &mut [f64],
-        outs: &mut [&mut [f64]],
-    ) {
-        self.run(end, head, last, buf);
+    fn interpret(&self, end: usize, at: (&[f64], f64), buf: &mut [f64], outs: &mut [&mut [f64]]) {
+        let (&last_slot, heads) = self.slots.split_last().expect("a varying variable");
+        for (&s, &v) in heads.iter().zip(at.0) {
+            buf[s] = v;
+        }
+        buf[last_slot] = at.1;
+        self.tape.exec(&self.varying[..self.ends[end]], buf);
         let mut from = 0;
         for (out, &to) in outs.iter_mut().zip(&self.groups[..=end]) {
             self.outputs(from, buf, &mut out[..to - from]);
@@ -192,18 +190,7 @@ impl Split {
         }
     }
 
-    /// Sets the varying variables to `head` then `last` (in `new`'s order) in a buffer from
-    /// [`Split::prepare`] and interprets the builder's first `bounds[end]` nodes.
-    fn run(&self, end: usize, head: &[f64], last: f64, buf: &mut [f64]) {
-        let (&last_slot, heads) = self.slots.split_last().expect("a varying variable");
-        for (&s, &v) in heads.iter().zip(head) {
-            buf[s] = v;
-        }
-        buf[last_slot] = last;
-        self.tape.exec(&self.varying[..self.ends[end]], buf);
-    }
-
-    /// Outputs `from`, `from` + 1, … into `out`, after [`Split::run`] covered them.
+    /// Outputs `from`, `from` + 1, … into `out`, after [`Split::interpret`] computed them.
     fn outputs(&self, from: usize, buf: &[f64], out: &mut [f64]) {
         for (o, &s) in out.iter_mut().zip(&self.tape.outputs[from..]) {
             *o = buf[s as usize];
