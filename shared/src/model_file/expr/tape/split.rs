@@ -2,7 +2,7 @@
 //! law's parameters through one integration): the operations that read only those and the
 //! constants run once (`Split::prepare`), the rest on every evaluation (`Split::eval`), which
 //! may stop early (f alone, f with ∂f/∂x) where the later outputs are not needed. The rest is
-//! compiled to machine code where the host allows (`native.rs`), interpreted otherwise.
+//! compiled to machine code where the host allows (`native/`), interpreted otherwise.
 
 use super::native::{self, Native, Plan};
 use super::{Step, Tape};
