@@ -48,6 +48,8 @@ pub(super) struct Body<'a, 'b> {
     outs: Value,
 }
 
+/// Every load and store: of the buffer, the varying variables and the output slices, aligned
+/// and in bounds (their lengths checked by `Split::eval` before a call), so never trapping.
 const FLAGS: MemFlags = MemFlags::trusted();
 
 impl<'a, 'b> Body<'a, 'b> {
