@@ -100,8 +100,8 @@ pub(super) fn compile(plan: &Plan) -> Option<Native> {
     let mut ids = Vec::new();
     let mut ctx = module.make_context();
     let mut fctx = FunctionBuilderContext::new();
+    let ptr = module.target_config().pointer_type();
     for end in 0..plan.ends.len() {
-        let ptr = module.target_config().pointer_type();
         ctx.func.signature = module.make_signature();
         let params = [ptr, ptr, types::F64, ptr];
         (ctx.func.signature.params).extend(params.map(AbiParam::new));
