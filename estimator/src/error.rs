@@ -8,6 +8,9 @@ pub enum EstimateError {
     /// The input dataset or file is unusable.
     #[error(transparent)]
     Dataset(#[from] DatasetError),
+    /// An output folder refused (not this tool's, busy, a link out of it) or unwritable.
+    #[error(transparent)]
+    Output(#[from] physvid_shared::outdir::OutputError),
     /// A recording that cannot be decoded or cut into clips, or ffmpeg missing.
     #[error(transparent)]
     Video(#[from] physvid_shared::video::VideoError),
@@ -48,6 +51,8 @@ impl EstimateError {
     pub fn is_bad_input(&self) -> bool {
         match self {
             EstimateError::Dataset(DatasetError::Write { .. }) => false,
+            EstimateError::Output(e) => e.is_bad_input(),
+            EstimateError::Video(physvid_shared::video::VideoError::Scratch { .. }) => false,
             EstimateError::Dataset(_)
             | EstimateError::Video(_)
             | EstimateError::Input(_)
@@ -68,11 +73,16 @@ pub fn exit_with(program: &str, result: anyhow::Result<()>) -> std::process::Exi
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("{program}: error: {e:#}");
+            // One line, whatever a file name or a model file put in the message.
+            physvid_shared::term::eprint_line(&format!("{program}: error: {e:#}"));
+            let refused = e
+                .downcast_ref::<physvid_shared::outdir::OutputError>()
+                .is_some_and(|e| e.is_bad_input());
             let code = match e.downcast_ref::<EstimateError>() {
                 Some(e) if e.is_bad_input() => 2,
                 Some(EstimateError::NoEstimate(_)) => 3,
                 Some(EstimateError::Unreliable(_)) => 4,
+                _ if refused => 2,
                 _ => 1,
             };
             std::process::ExitCode::from(code)

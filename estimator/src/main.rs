@@ -8,6 +8,8 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     estimator::memory::keep_freed_memory();
+    // Ctrl-C or SIGTERM: temporary files and a folder this run made and left unfilled go.
+    physvid_shared::interrupt::install("estimate");
     let parsed = EstimateArgs::command()
         .try_get_matches()
         .and_then(|m| Ok((EstimateArgs::from_arg_matches(&m)?, m)));
@@ -24,7 +26,7 @@ fn main() -> ExitCode {
                 let base = estimator::batch::command_line_flags(&matches);
                 estimator::batch::run(&args, &base, &exe)
             } else if !args.batch.merge.is_empty() {
-                estimator::batch::merge(&args.batch.merge, &args.output.out)
+                estimator::batch::merge(&args.batch.merge, &args.output.out, args.output.force)
             } else {
                 estimator::run(&args)
             }

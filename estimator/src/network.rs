@@ -103,6 +103,11 @@ impl Network {
         self.block.prepare();
     }
 
+    /// Where the block's law gave no finite value for most clips of a batch, if it did.
+    pub fn law_failure(&self) -> Option<String> {
+        self.block.law_failure()
+    }
+
     /// The encoder's and the block's variable stores (for their optimisers).
     /// Frames each clip's rollout starts from: the states fitted per clip.
     pub fn start_frames(&self) -> i64 {

@@ -7,13 +7,14 @@ use crate::config::RunConfig;
 use crate::data::{load_clips, probe, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
-use crate::output::{clear_earlier, write_outputs};
+use crate::output::{check_out, clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::ensemble::summarise;
 use crate::report::{Report, RunInfo};
 use crate::train::{fit, fit_best, StopReason};
 use crate::verdict::{self, Grade};
+use physvid_shared::term;
 use std::time::Instant;
 
 /// An estimation's report with the clips it was trained on.
@@ -25,6 +26,7 @@ pub struct Estimation {
 /// Runs one estimation as the (validated) arguments say, writes its outputs and prints the
 /// table.
 pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
+    check_out(&args.output.out, args.input.as_deref(), args.output.force)?;
     let Estimation { mut report, data } = match estimation(args) {
         Ok(e) => e,
         Err(e) => {
@@ -34,7 +36,7 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
                 e.downcast_ref::<EstimateError>(),
                 Some(EstimateError::NoEstimate(_))
             ) {
-                clear_earlier(&args.output.out)?;
+                clear_earlier(&args.output.out, args.output.force)?;
             }
             return Err(e);
         }
@@ -43,23 +45,23 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
         std::env::args_os().map(|a| a.to_string_lossy().into_owned()),
     ));
     let cfg = &report.config;
-    write_outputs(&cfg.out, &data, &report)?;
+    write_outputs(&cfg.out, cfg.force, &data, &report)?;
     if let Some(c) = &report.model_choice {
-        println!("{}", c.text());
+        term::print(&c.text())?;
     }
-    println!("{}", report.table());
+    term::print(&report.table())?;
     if let Some(e) = &report.ensemble {
-        println!("{}", e.table());
+        term::print(&e.table())?;
     }
     for w in &report.warnings {
-        eprintln!("warning: {w}");
+        term::eprint_line(&format!("warning: {w}"));
     }
-    println!("{}", report.verdict.text());
+    term::print(&report.verdict.text())?;
     if !cfg.quiet {
-        eprintln!(
+        term::eprint_line(&format!(
             "report: {}  (report.json, metrics.csv and the plots beside it)",
             cfg.out.join("report.html").display()
-        );
+        ));
     }
     if report.verdict.grade == Grade::Unreliable {
         return Err(EstimateError::Unreliable(cfg.out.join("report.json")).into());
@@ -100,13 +102,13 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         // A candidate that fails says so in the ranking: a refusal every candidate shares
         // (the input's) stays one line.
         if !quiet && fit.is_ok() {
-            eprintln!(
+            term::eprint_line(&format!(
                 "model choice {}/{}: {} ({:.1} s)",
                 i + 1,
                 tries.len(),
                 summary.line(),
                 start.elapsed().as_secs_f64()
-            );
+            ));
         }
         summaries.push(summary);
         fits.push(fit.map_err(|e| errors.push(e)).ok());
@@ -195,7 +197,7 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         &mut |rec| progress.epoch(rec, &names),
         &mut |msg| {
             if !quiet {
-                eprintln!("{msg}");
+                term::eprint(msg);
             }
         },
     )?;
@@ -268,9 +270,16 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 fn failure(report: &Report) -> Option<String> {
     let outcome = &report.outcome;
     if outcome.best_epoch == 0 {
-        let when = match outcome.stop {
+        let when = match &outcome.stop {
             StopReason::NonFiniteLoss { epoch } => {
                 format!("the loss was not finite at epoch {epoch}")
+            }
+            StopReason::LawNotFinite { detail, .. } => {
+                return Some(format!(
+                    "the law gives no finite value: {detail}; check the model's expressions \
+                     (a division by zero, a root or logarithm of a negative number, an \
+                     overflowing exponential) against the latent's range"
+                ))
             }
             _ => "no epoch had a finite validation error".to_string(),
         };

@@ -4,6 +4,7 @@
 
 mod util;
 
+use physvid_shared::outdir::{OutputDir, Wait};
 use std::path::Path;
 use util::{f32_bytes, gen_dataset, stderr, write_npy, Estimate, TestCommand};
 
@@ -116,12 +117,16 @@ fn out_is_checked_before_training_and_an_old_run_is_replaced_wholly() {
         std::os::unix::fs::symlink(tmp.path().join("nowhere"), &link).unwrap();
         run(&link).bad_input("symbolic link to nothing");
     }
-    // An earlier recording's run left a timeline: a dataset run over it leaves none of it.
+    // An earlier recording's run (its files written as the tool writes them) left a
+    // timeline: a dataset run over it leaves none of it.
     let out = tmp.path().join("run");
-    std::fs::create_dir_all(&out).unwrap();
-    for old in ["timeline.csv", "clips.png", "report.json"] {
-        std::fs::write(out.join(old), b"old").unwrap();
+    let olds = ["timeline.csv", "clips.png", "report.json"];
+    let mut earlier =
+        OutputDir::open("--out", &out, "estimate", &olds, false, Wait::Turns).unwrap();
+    for old in olds {
+        earlier.write(old, b"old").unwrap();
     }
+    earlier.finish();
     run(&out).estimated();
     assert!(!out.join("timeline.csv").exists() && !out.join("clips.png").exists());
     let report = std::fs::read_to_string(out.join("report.json")).unwrap();

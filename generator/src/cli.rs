@@ -238,7 +238,7 @@ impl GenArgs {
                     let names: Vec<&str> = cfg.params.keys().map(String::as_str).collect();
                     return Err(invalid(
                         "--set",
-                        format!("{k}={v}"),
+                        format!("{k}={}", physvid_shared::cli::num(v)),
                         format!(
                             "{} has no parameter '{k}'; its parameters are {}",
                             scene.model_name(),

@@ -57,7 +57,7 @@ impl GenConfig {
 
     /// Checks every field; the first problem found is returned.
     pub fn validate(self) -> Result<GenConfig, ConfigError> {
-        if let Err(e) = physvid_shared::check_output_dir("--out", &self.out) {
+        if let Err(e) = physvid_shared::atomic::check_writable_dir("--out", &self.out) {
             let reason = e
                 .strip_prefix(&format!("--out {}: ", self.out.display()))
                 .unwrap_or(&e)

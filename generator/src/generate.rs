@@ -18,6 +18,9 @@ pub struct Generated {
     /// The first clip (its index in the data set) whose rendered frames show no motion within
     /// the frame, with the most any pixel changed in it.
     pub still: Option<(usize, f32)>,
+    /// The first clip whose motion or truth is not finite (an overflow at extreme `--set`
+    /// values): nothing of it is drawn, and the data set is refused.
+    pub overflow: Option<usize>,
 }
 
 /// A clip whose frames differ from its first by less than this anywhere (a 512th of the grey
@@ -46,6 +49,13 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
                 let mut rng = sample_rng(cfg.seed, range.start + i);
                 let (truth, latents) =
                     scene.sample(&cfg.params, &mut rng, cfg.frames, cfg.dt, cfg.size);
+                let finite = latents
+                    .iter()
+                    .chain(truth.0.values())
+                    .all(|v| v.is_finite());
+                if !finite {
+                    return (truth, latents, f32::NAN);
+                }
                 for (z, frame) in latents
                     .chunks_exact(dims)
                     .zip(clip.chunks_exact_mut(pixels))
@@ -85,11 +95,16 @@ pub fn generate_samples(cfg: &GenConfig, range: std::ops::Range<usize>) -> Gener
         .enumerate()
         .find(|(_, t)| t.2 < MIN_CHANGE)
         .map(|(i, t)| (range.start + i, t.2));
+    let overflow = truths
+        .iter()
+        .position(|t| t.2.is_nan())
+        .map(|i| range.start + i);
     let (samples, latents) = truths.into_iter().map(|(s, l, _)| (s, l)).unzip();
     Generated {
         frames,
         samples,
         latents,
         still,
+        overflow,
     }
 }

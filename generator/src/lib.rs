@@ -33,8 +33,11 @@ pub fn run(cfg: &GenConfig) -> anyhow::Result<()> {
         cfg.seed,
         start.elapsed().as_secs_f64()
     );
-    println!("frames:  {}", files.frames.display());
-    println!("meta:    {}", files.meta.display());
-    println!("preview: {}", files.preview.display());
+    physvid_shared::term::print(&format!(
+        "frames:  {}\nmeta:    {}\npreview: {}",
+        files.frames.display(),
+        files.meta.display(),
+        files.preview.display()
+    ))?;
     Ok(())
 }

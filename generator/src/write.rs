@@ -58,7 +58,9 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
 
 /// The refusal of a data set whose clip `clip` shows no motion within the frame, naming the
 /// flags that set the motion.
-fn still_clip(cfg: &GenConfig, clip: usize, change: f32) -> ConfigError {
+/// A refusal of the data set `cfg` describes for `why`, naming the flag behind its values
+/// (`--set` for the scenes that take it, else `--dt`).
+fn refusal(cfg: &GenConfig, why: String) -> ConfigError {
     let (flag, what) = if cfg.scene.accepts_set() {
         let values: Vec<String> = cfg
             .params
@@ -69,16 +71,7 @@ fn still_clip(cfg: &GenConfig, clip: usize, change: f32) -> ConfigError {
     } else {
         ("--dt", format!("{}", cfg.dt))
     };
-    invalid(
-        flag,
-        what,
-        format!(
-            "clip {clip} shows no motion within the frame (no pixel changes by more than {} of \
-             the grey range, largest change {:.1e}): the object is outside the frame, too small, \
-             or does not move within a clip at these values",
-            "1/512", change
-        ),
-    )
+    invalid(flag, what, why)
 }
 
 /// The preview PNG: up to four clips × all frames, magnified 2×, from the frames of the first
@@ -99,8 +92,9 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         samples: Vec::with_capacity(cfg.samples),
         latents: Vec::with_capacity(cfg.samples),
         still: None,
+        overflow: None,
     };
-    let mut still = None;
+    let (mut still, mut overflow) = (None, None);
     let mut preview_frames = Vec::new();
     let preview_samples = cfg.samples.min(4);
     let written: Result<DatasetWriter, DatasetError> = std::thread::scope(|s| {
@@ -114,9 +108,9 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         for start in (0..cfg.samples).step_by(SAMPLES_PER_PIECE) {
             let end = (start + SAMPLES_PER_PIECE).min(cfg.samples);
             let g = generate_samples(cfg, start..end);
-            if g.still.is_some() {
+            if g.still.is_some() || g.overflow.is_some() {
                 // Nothing is renamed into place: the writer's partial files go with it.
-                still = g.still;
+                (still, overflow) = (g.still, g.overflow);
                 break;
             }
             if start == 0 {
@@ -134,9 +128,28 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         handle.join().expect("writer thread does not panic")
     });
     let writer = written?;
+    if let Some(clip) = overflow {
+        drop(writer);
+        return Err(refusal(
+            cfg,
+            format!(
+                "clip {clip}'s motion is not finite at these values (it overflows): the data \
+                 set would hold no number for it; choose values nearer the physical range"
+            ),
+        )
+        .into());
+    }
     if let Some((clip, change)) = still {
         drop(writer);
-        return Err(still_clip(cfg, clip, change).into());
+        return Err(refusal(
+            cfg,
+            format!(
+                "clip {clip} shows no motion within the frame (no pixel changes by more than \
+                 1/512 of the grey range, largest change {change:.1e}): the object is outside \
+                 the frame, too small, or does not move within a clip at these values"
+            ),
+        )
+        .into());
     }
     let meta = dataset_meta(cfg, &truth);
     let png = preview_png(cfg, &preview_frames);

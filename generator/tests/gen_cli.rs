@@ -3,6 +3,7 @@
 
 mod util;
 
+use physvid_shared::outdir::MANIFEST;
 use std::path::Path;
 use std::process::Command;
 use util::{bin, files, fixtures, gen, gen_scene, stderr};
@@ -24,7 +25,7 @@ fn same_arguments_give_byte_identical_files_on_1_and_4_threads() {
         }
         assert_eq!(
             files(&outputs[0]),
-            ["frames.npy", "meta.json", "preview.png"]
+            [MANIFEST, "frames.npy", "meta.json", "preview.png"]
         );
         for name in ["frames.npy", "meta.json", "preview.png"] {
             let a = std::fs::read(outputs[0].join(name)).unwrap();
@@ -116,7 +117,17 @@ fn existing_non_empty_directory_needs_force() {
     cmd.arg("--force").ok();
     assert_eq!(
         files(tmp.path()),
-        ["frames.npy", "meta.json", "notes.txt", "preview.png"]
+        [
+            MANIFEST,
+            "frames.npy",
+            "meta.json",
+            "notes.txt",
+            "preview.png"
+        ]
+    );
+    assert_eq!(
+        std::fs::read(tmp.path().join("notes.txt")).unwrap(),
+        b"keep"
     );
 }
 

@@ -5,7 +5,6 @@
 
 mod coverage;
 mod init;
-mod interrupt;
 mod losses;
 mod model_choice;
 mod noise;
@@ -23,6 +22,7 @@ use estimator::cli::DeviceChoice;
 use estimator::error::{exit_with, input_error};
 use estimator::EstimateError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use physvid_shared::interrupt::{Kind, Registered};
 use physvid_shared::write_atomic;
 use runner::Runner;
 use std::io::IsTerminal;
@@ -151,9 +151,10 @@ struct Cli {
 
 impl Cli {
     fn validate(self) -> Result<Cli, EstimateError> {
-        physvid_shared::check_output_dir("--out", &self.out).map_err(input_error)?;
+        physvid_shared::atomic::check_writable_dir("--out", &self.out).map_err(input_error)?;
         if let Some(scratch) = &self.scratch {
-            physvid_shared::check_output_dir("--scratch", scratch).map_err(input_error)?;
+            physvid_shared::atomic::check_writable_dir("--scratch", scratch)
+                .map_err(input_error)?;
         }
         Ok(self)
     }
@@ -163,6 +164,7 @@ fn main() -> ExitCode {
     if let Some(report) = std::env::var_os(worker::WORKER) {
         return worker::main(std::path::Path::new(&report));
     }
+    physvid_shared::interrupt::install("reproduce");
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return physvid_shared::cli::exit_on_clap_error(e),
@@ -180,12 +182,14 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         path: cfg.out.clone(),
         source,
     })?;
-    let temp;
+    let (temp, _registered);
     let scratch = match &cfg.scratch {
         Some(dir) => dir.clone(),
         None => {
+            // A signal removes the scratch directory this run made (gigabytes for `all`); a
+            // --scratch the user named is kept, as after a run that ends.
             temp = tempfile::Builder::new().prefix("reproduce-").tempdir()?;
-            interrupt::remove_on_signal(temp.path().to_path_buf())?;
+            _registered = Registered::new(Kind::Scratch, temp.path());
             temp.path().to_path_buf()
         }
     };
@@ -265,7 +269,7 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         write_atomic(&cfg.out.join("RESULTS.md"), s.as_bytes())?;
     }
     for t in &tables {
-        println!("{}", t.markdown());
+        physvid_shared::term::print(&t.markdown())?;
     }
     Ok(())
 }

@@ -87,9 +87,9 @@ pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
         .stderr(Stdio::piped())
         .spawn()?;
     let pid = child.id();
-    crate::interrupt::started(pid);
+    physvid_shared::interrupt::child_started(pid);
     let out = child.wait_with_output();
-    crate::interrupt::ended(pid);
+    physvid_shared::interrupt::child_ended(pid);
     let out = out?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);

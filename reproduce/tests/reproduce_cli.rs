@@ -281,3 +281,33 @@ fn a_run_stopped_by_a_signal_removes_its_scratch_directory() {
     assert!(stderr(&out).contains("removed the scratch directory"));
     assert_eq!(scratch(), Vec::<std::path::PathBuf>::new());
 }
+
+/// Ctrl-C while an estimation trains in this very process (no workers), with a --scratch the
+/// user named: the run ends with 130 at once (it was killed by the signal, or crashed in
+/// libtorch's teardown, before) and the named folder stays.
+#[test]
+fn ctrl_c_while_training_in_process_ends_cleanly() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scratch = tmp.path().join("scratch");
+    let child = reproduce()
+        .args(["losses", "--quick", "--quiet", "--threads", "2"])
+        .args(["--device", "cpu", "--scratch"])
+        .arg(&scratch)
+        .out(&tmp.path().join("out"))
+        .spawn();
+    let start = std::time::Instant::now();
+    while std::fs::read_dir(&scratch).map_or(0, |d| d.count()) == 0
+        && start.elapsed().as_secs() < 120
+    {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    // SAFETY: kill has no memory effects.
+    assert_eq!(
+        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
+        0
+    );
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    assert!(scratch.is_dir(), "a --scratch the user named is kept");
+}

@@ -90,12 +90,15 @@ pub fn thread_count(text: &str) -> Result<usize, String> {
 pub fn exit_on_clap_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     match e.kind() {
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
-            let _ = e.print();
-            ExitCode::SUCCESS
-        }
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => match e.print() {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(io) => {
+                crate::term::eprint_line(&format!("error: cannot write to standard output ({io})"));
+                ExitCode::FAILURE
+            }
+        },
         _ => {
-            eprintln!("{}", one_line(&e.render().to_string()));
+            crate::term::eprint_line(&one_line(&e.render().to_string()));
             ExitCode::from(2)
         }
     }

@@ -37,6 +37,30 @@ pub enum DatasetError {
         other: PathBuf,
         reason: String,
     },
-    #[error("{path} is not empty; pass --force to overwrite it")]
+    #[error(
+        "--out {path}: the folder is not empty; choose a new folder, or pass --force to write \
+         the data set there (frames.npy, meta.json and preview.png are replaced; nothing of \
+         another name is touched)"
+    )]
     NotEmpty { path: PathBuf },
+    /// An array larger than the memory this machine can give (its header read, nothing
+    /// allocated).
+    #[error(
+        "{path}: its {} of values need about {} to train on (the array, its tensor and their \
+         standardised copy), more than the {} this machine has free; use fewer clips or \
+         smaller frames",
+        gb(*bytes), gb(bytes.saturating_mul(3)), gb(*available)
+    )]
+    TooLarge {
+        path: PathBuf,
+        bytes: u64,
+        available: u64,
+    },
+    /// The output folder was refused (not this tool's, busy, a link out of it): bad input.
+    #[error("{0}")]
+    Refused(String),
+}
+
+fn gb(bytes: u64) -> String {
+    format!("{:.1} GB", bytes as f64 / 1e9)
 }

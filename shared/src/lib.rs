@@ -11,19 +11,24 @@ pub mod contact_sheet;
 pub mod dataset;
 pub mod dynamics;
 pub mod error;
+pub mod escape;
 pub mod input;
+pub mod interrupt;
 pub mod linalg;
+pub mod memory;
 pub mod meta;
 pub mod model_file;
 pub mod npy;
+pub mod outdir;
 pub mod recurrence;
 pub mod rk4;
 pub mod stats;
 pub mod systems;
+pub mod term;
 pub mod video;
 
 pub use affine::{AffineFit, SimilarityFit};
-pub use atomic::{check_output_dir, write_atomic};
+pub use atomic::{write_atomic, PendingFile};
 pub use dataset::{
     read_dataset, read_dataset_header, write_dataset, Dataset, DatasetFiles, DatasetHeader,
     DatasetWriter,

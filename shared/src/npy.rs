@@ -230,8 +230,16 @@ fn open_npy(
         .iter()
         .try_fold(1usize, |acc, &d| acc.checked_mul(d))
         .ok_or_else(|| malformed(path, "shape overflows"))?;
-    let expected_bytes = count as u64 * 4;
+    let expected_bytes = (count as u64).saturating_mul(4);
     let data_bytes = file_len - (prefix + header_len) as u64;
+    // Checked before anything is allocated: a sparse file can back a header of any size.
+    if data_bytes == expected_bytes && !crate::memory::fits(expected_bytes, 3) {
+        return Err(DatasetError::TooLarge {
+            path: path.to_path_buf(),
+            bytes: expected_bytes,
+            available: crate::memory::available().unwrap_or(0),
+        });
+    }
     if data_bytes != expected_bytes {
         return Err(malformed(
             path,

@@ -16,6 +16,8 @@ pub struct TestCommand {
     bin: PathBuf,
     args: Vec<OsString>,
     env: Vec<(OsString, OsString)>,
+    dir: Option<PathBuf>,
+    stdout: Option<PathBuf>,
 }
 
 impl TestCommand {
@@ -25,6 +27,8 @@ impl TestCommand {
             bin: bin.into(),
             args: Vec::new(),
             env: Vec::new(),
+            dir: None,
+            stdout: None,
         }
     }
 
@@ -56,11 +60,39 @@ impl TestCommand {
         self
     }
 
+    /// Runs in `dir` instead of the test's working directory.
+    pub fn current_dir(mut self, dir: &Path) -> TestCommand {
+        self.dir = Some(dir.to_path_buf());
+        self
+    }
+
+    /// Sends standard output to the file `path` (`/dev/full`: a full disk) instead of
+    /// capturing it.
+    pub fn stdout_to(mut self, path: &Path) -> TestCommand {
+        self.stdout = Some(path.to_path_buf());
+        self
+    }
+
+    fn command(&self) -> Command {
+        let mut c = Command::new(&self.bin);
+        c.args(&self.args)
+            .envs(self.env.iter().map(|(k, v)| (k, v)));
+        if let Some(dir) = &self.dir {
+            c.current_dir(dir);
+        }
+        if let Some(path) = &self.stdout {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            c.stdout(file);
+        }
+        c
+    }
+
     /// Runs the command and returns its output.
     pub fn output(&self) -> Output {
-        Command::new(&self.bin)
-            .args(&self.args)
-            .envs(self.env.iter().map(|(k, v)| (k, v)))
+        self.command()
             .output()
             .unwrap_or_else(|e| panic!("{} does not run: {e}", self.bin.display()))
     }
@@ -68,9 +100,7 @@ impl TestCommand {
     /// Starts the command without waiting for it (its output captured), for a test that stops
     /// it midway.
     pub fn spawn(&self) -> Child {
-        Command::new(&self.bin)
-            .args(&self.args)
-            .envs(self.env.iter().map(|(k, v)| (k, v)))
+        self.command()
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()

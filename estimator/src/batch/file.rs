@@ -302,4 +302,26 @@ mod tests {
         let rows = read("input,preview,truth\nx,maybe,g=x\n").unwrap();
         assert!(rows[0].problem.is_some());
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, rng_seed: proptest::test_runner::RngSeed::Fixed(50), ..Default::default() })]
+
+        /// Any batch file is rows or one message, never a panic; a row's folder is one plain
+        /// name inside --out.
+        #[test]
+        fn any_batch_file_is_rows_or_one_message(
+            header in proptest::sample::select(vec!["input", "input,name", "input,name,model", "input,seed,truth", "name"]),
+            cells in proptest::collection::vec("[ -~\\n\"=@+|<>/.]{0,24}", 0..12),
+        ) {
+            let text = format!("{header}\n{}", cells.join("\n"));
+            match read(&text) {
+                Ok(rows) => {
+                    for r in rows {
+                        proptest::prop_assert!(!r.dir.contains('/') && r.dir != ".." && !r.dir.is_empty());
+                    }
+                }
+                Err(e) => proptest::prop_assert!(!e.to_string().is_empty()),
+            }
+        }
+    }
 }

@@ -2,13 +2,13 @@
 //! each row taken from the directory that ran it, its report linked relative to OUT.
 
 use super::summary::{RowStatus, Summary};
-use super::{write_summary, SUMMARY_FORMAT};
-use crate::error::{input_error, EstimateError};
+use super::{open_out, write_summary, SUMMARY_FORMAT};
+use crate::error::input_error;
 use std::path::{Path, PathBuf};
 
 /// Joins the summaries in `dirs` into `out`. Err when a summary is missing or from another
 /// batch file (exit 2), or when some row was run by none of them or failed (exit 1).
-pub fn merge(dirs: &[PathBuf], out: &Path) -> anyhow::Result<()> {
+pub fn merge(dirs: &[PathBuf], out: &Path, force: bool) -> anyhow::Result<()> {
     let mut merged: Option<Summary> = None;
     let out_abs = absolute(out);
     for dir in dirs {
@@ -64,12 +64,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> anyhow::Result<()> {
         }
     }
     let merged = merged.ok_or_else(|| input_error("--merge: no directories given"))?;
-    std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
-        path: out.to_path_buf(),
-        source,
-    })?;
-    write_summary(out, &merged)?;
-    print!("{}", merged.markdown());
+    let mut dir = open_out(out, force)?;
+    write_summary(&mut dir, &merged)?;
+    dir.finish();
+    physvid_shared::term::print(merged.markdown().trim_end())?;
     Ok(merged.outcome(out.join("summary.md"))?)
 }
 

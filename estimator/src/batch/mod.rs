@@ -14,8 +14,10 @@ pub use file::{command_line_flags, read_batch_file, BatchRow, BATCH_ONLY};
 pub use merge::merge;
 
 use crate::error::EstimateError;
-use crate::output::{clear_outputs, write_file};
+use crate::output::OUTPUTS;
 use crate::EstimateArgs;
+use physvid_shared::outdir::{OutputDir, Wait};
+use physvid_shared::{interrupt, term};
 use std::ffi::OsString;
 use std::path::Path;
 use std::process::Command;
@@ -25,6 +27,22 @@ use summary::{Estimate, RowResult, RowStatus, Summary};
 /// summary.json's `format`.
 pub const SUMMARY_FORMAT: &str = "physvid-batch-summary";
 
+/// The files a batch (or a merge) writes into its --out, besides a folder per row.
+pub const SUMMARY_FILES: [&str; 4] = ["summary.json", "summary.csv", "summary.md", "index.html"];
+
+/// `out` opened for a batch's or a merge's summaries: refused while another batch writes
+/// there (two would interleave their rows and summaries).
+pub fn open_out(out: &Path, force: bool) -> Result<OutputDir, EstimateError> {
+    Ok(OutputDir::open(
+        "--out",
+        out,
+        "estimate",
+        &SUMMARY_FILES,
+        force,
+        Wait::Refuse,
+    )?)
+}
+
 /// Runs the batch `args.batch.batch` with `exe` (this program) for every row of its shard;
 /// `base` are the command line's flags that apply to every row. Err when the file is bad
 /// (exit 2) or any row failed (exit 1).
@@ -33,10 +51,7 @@ pub fn run(args: &EstimateArgs, base: &[OsString], exe: &Path) -> anyhow::Result
     let shard = args.batch.shard;
     let rows = read_batch_file(file)?;
     let out = &args.output.out;
-    std::fs::create_dir_all(out).map_err(|source| EstimateError::Write {
-        path: out.clone(),
-        source,
-    })?;
+    let mut dir = open_out(out, args.output.force)?;
     let mut summary = Summary {
         format: SUMMARY_FORMAT.into(),
         batch_file: file.display().to_string(),
@@ -47,38 +62,63 @@ pub fn run(args: &EstimateArgs, base: &[OsString], exe: &Path) -> anyhow::Result
         .iter()
         .filter(|r| shard.is_none_or(|s| s.holds(r.number)))
         .collect();
-    write_summary(out, &summary)?;
-    for (k, row) in mine.iter().enumerate() {
-        if !args.output.quiet {
-            eprintln!(
-                "batch: row {} ({} of {}): {}",
-                row.number,
-                k + 1,
-                mine.len(),
-                row.input_text
-            );
-        }
-        let result = run_row(row, base, exe, out)?;
-        if !args.output.quiet {
-            match &result.error {
-                None => eprintln!("  ok in {:.1} s", result.wall_s.unwrap_or(0.0)),
-                Some(e) => eprintln!("  failed: {e}"),
+    let ran = (|| {
+        write_summary(&mut dir, &summary)?;
+        for (k, row) in mine.iter().enumerate() {
+            if !args.output.quiet {
+                term::eprint_line(&format!(
+                    "batch: row {} ({} of {}): {}",
+                    row.number,
+                    k + 1,
+                    mine.len(),
+                    row.input_text
+                ));
             }
+            let result = run_row(row, base, exe, &mut dir, args.output.force)?;
+            if !args.output.quiet {
+                term::eprint_line(&match &result.error {
+                    None => format!("  ok in {:.1} s", result.wall_s.unwrap_or(0.0)),
+                    Some(e) => format!("  failed: {e}"),
+                });
+            }
+            summary.rows[row.number - 1] = result;
+            write_summary(&mut dir, &summary)?;
         }
-        summary.rows[row.number - 1] = result;
-        write_summary(out, &summary)?;
+        Ok::<(), EstimateError>(())
+    })();
+    if let Err(e) = ran {
+        // The batch stops (a full disk, an unwritable folder): its summary must not say the
+        // rest are still to come.
+        stopped(&mut dir, &mut summary, &e);
+        return Err(e.into());
     }
-    print!("{}", summary.markdown());
+    dir.finish();
+    term::print(summary.markdown().trim_end())?;
     Ok(summary.outcome(out.join("summary.md"))?)
 }
 
-/// Writes summary.json, summary.csv, summary.md and index.html into `out`.
-pub fn write_summary(out: &Path, summary: &Summary) -> Result<(), EstimateError> {
+/// The summary of a batch that stopped on `why`: its pending rows marked so, written if the
+/// folder still takes it, else the stale summaries removed.
+fn stopped(dir: &mut OutputDir, summary: &mut Summary, why: &EstimateError) {
+    for r in &mut summary.rows {
+        if r.status == RowStatus::Pending {
+            r.status = RowStatus::Stopped;
+            r.error = Some(format!("the batch stopped before this row: {why:#}"));
+        }
+    }
+    if write_summary(dir, summary).is_err() {
+        let _ = dir.remove_own(&SUMMARY_FILES);
+    }
+}
+
+/// Writes summary.json, summary.csv, summary.md and index.html into `dir`.
+pub fn write_summary(dir: &mut OutputDir, summary: &Summary) -> Result<(), EstimateError> {
     let json = serde_json::to_vec_pretty(summary).expect("summary serialises");
-    write_file(out, "summary.json", &json)?;
-    write_file(out, "summary.csv", summary.csv().as_bytes())?;
-    write_file(out, "summary.md", summary.markdown().as_bytes())?;
-    write_file(out, "index.html", index::index_page(summary).as_bytes())
+    dir.write("summary.json", &json)?;
+    dir.write("summary.csv", summary.csv().as_bytes())?;
+    dir.write("summary.md", summary.markdown().as_bytes())?;
+    dir.write("index.html", index::index_page(summary).as_bytes())?;
+    Ok(())
 }
 
 /// A row before it runs.
@@ -117,10 +157,11 @@ fn run_row(
     row: &BatchRow,
     base: &[OsString],
     exe: &Path,
-    out: &Path,
+    out: &mut OutputDir,
+    force: bool,
 ) -> Result<RowResult, EstimateError> {
     let mut result = pending(row, None);
-    let dir = out.join(&row.dir);
+    let dir = out.path().join(&row.dir);
     let mut argv: Vec<OsString> = vec![row.input.clone().into()];
     argv.extend(file::merged_flags(base, &row.flags));
     argv.extend(["--out".into(), dir.clone().into(), "--quiet".into()]);
@@ -134,15 +175,41 @@ fn run_row(
         result.error = Some(problem.clone());
         return Ok(result);
     }
-    // A stale report from an earlier batch must not pass for this row's.
-    if dir.is_dir() {
-        clear_outputs(&dir)?;
+    // The row's folder, inside --out (a link planted there is refused), without a stale
+    // report from an earlier batch that could pass for this row's.
+    let cleared = out
+        .subfolder(&row.dir)
+        .map_err(EstimateError::from)
+        .and_then(|d| {
+            let mut own = OutputDir::open("--out", &d, "estimate", &OUTPUTS, force, Wait::Turns)?;
+            own.remove_own(&OUTPUTS)?;
+            own.finish();
+            Ok(())
+        });
+    if let Err(e) = cleared {
+        if !e.is_bad_input() {
+            return Err(e);
+        }
+        result.status = RowStatus::Failed;
+        result.error = Some(term::one_line(&format!("{e:#}")).into_owned());
+        return Ok(result);
     }
     let start = Instant::now();
     let mut command = Command::new(exe);
     command.args(&argv);
     physvid_shared::child::die_with_parent(&mut command);
-    let output = command.output();
+    let output = command
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .and_then(|child| {
+            interrupt::child_started(child.id());
+            let id = child.id();
+            let out = child.wait_with_output();
+            interrupt::child_ended(id);
+            out
+        });
     result.wall_s = Some(start.elapsed().as_secs_f64());
     let output = match output {
         Ok(o) => o,

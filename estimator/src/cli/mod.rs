@@ -70,10 +70,17 @@ pub struct EstimateArgs {
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Output")]
 pub struct OutputArgs {
-    /// Directory for report.json, report.html, metrics.csv and the plots (created; files are
-    /// replaced); for --batch and --merge, the summaries and one directory per row.
+    /// Directory for report.json, report.html, metrics.csv and the plots; for --batch and
+    /// --merge, the summaries and one directory per row. Created if missing and marked as this
+    /// tool's (.physvid-outputs.json); an existing folder it did not make is refused unless it
+    /// is empty or --force is given, and only files this tool wrote there are ever removed or
+    /// replaced
     #[arg(long, default_value = "runs/estimate", value_name = "DIR")]
     pub out: PathBuf,
+    /// Write into an existing --out that this tool did not make, replacing files under its
+    /// output names (report.json, …); nothing of another name is removed or changed
+    #[arg(long)]
+    pub force: bool,
     /// Print only the final table.
     #[arg(long)]
     pub quiet: bool,
@@ -103,7 +110,8 @@ impl EstimateArgs {
         self.training.validate()?;
         self.recording.validate()?;
         self.batch.validate()?;
-        physvid_shared::check_output_dir("--out", &self.output.out).map_err(input_error)?;
+        physvid_shared::atomic::check_writable_dir("--out", &self.output.out)
+            .map_err(input_error)?;
         Ok(self)
     }
 }

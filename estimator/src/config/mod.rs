@@ -3,17 +3,19 @@
 //! model, dt, the load's plan, every per-model default, the calibration. What only frames tell
 //! is settled once they are loaded (`frames`). Nothing downstream re-derives a default.
 
+mod checks;
 mod frames;
 
+use checks::{check_calibration_flags, check_dt, check_references};
+
 use crate::calibration::Calibration;
-use crate::cli::{calibration_flag, EstimateArgs, ModelArgs};
+use crate::cli::EstimateArgs;
 use crate::data::{LoadRequest, Plan, Probe};
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::loss::LossKind;
-use crate::physics::info::DT_RANGE;
-use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
+use crate::physics::{Integrator, ModelRef, RolloutStart};
 use physvid_shared::cli::num;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -55,6 +57,9 @@ pub struct RunConfig {
     /// CPU threads for libtorch.
     pub threads: usize,
     pub out: PathBuf,
+    /// `--force`: write into a folder this tool did not make.
+    #[serde(skip)]
+    pub force: bool,
     pub quiet: bool,
     /// What to load (the input and the recording flags) and how (the probe's plan): the load
     /// reads these and the model, nothing else.
@@ -142,6 +147,7 @@ impl RunConfig {
             device: t.device,
             threads: t.thread_count(),
             out: args.output.out.clone(),
+            force: args.output.force,
             quiet: args.output.quiet,
             request: args.load_request(),
             plan,
@@ -186,86 +192,6 @@ pub fn initial_values(model: ModelRef, init: &[(String, f64)]) -> Result<Vec<f64
         values[i] = *v;
     }
     Ok(values)
-}
-
-/// Refuses a calibration flag the model's answers do not read, naming the models that do.
-fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), EstimateError> {
-    let Some(c) = m
-        .calibration_given()
-        .into_iter()
-        .find(|c| !model.info().calibration.inputs.contains(c))
-    else {
-        return Ok(());
-    };
-    let readers: Vec<&str> = MODELS
-        .iter()
-        .filter(|r| r.info().calibration.inputs.contains(&c))
-        .map(|r| r.name())
-        .collect();
-    Err(input_error(format!(
-        "{}: {} does not use it (its answers need no calibration of that kind); it applies \
-         to {}; drop it",
-        calibration_flag(c),
-        model.name(),
-        readers.join(", ")
-    )))
-}
-
-/// The data's `dt` against [`DT_RANGE`] and the model's longest, naming where it came from.
-fn check_dt(model: ModelRef, dt: f64, plan: &Plan) -> Result<(), EstimateError> {
-    let source = match plan {
-        Plan::Recording(_) => "dt = --stride / fps",
-        Plan::Dataset(h) if h.meta.is_some() => "meta.json's dt",
-        Plan::Dataset(_) => "--dt",
-    };
-    let (lo, hi) = DT_RANGE;
-    if !(lo..=hi).contains(&dt) {
-        return Err(input_error(format!(
-            "{source} {} s: outside {lo:e}–{hi} s (a million frames per second to one a day); give dt in seconds",
-            num(dt)
-        )));
-    }
-    let (max, why) = model.info().footage.max_dt;
-    if dt > max {
-        return Err(input_error(format!(
-            "{source} {} s: {} takes dt ≤ {max} s ({why})",
-            num(dt),
-            model.name()
-        )));
-    }
-    Ok(())
-}
-
-/// The reference frames and positions against the model's latent: positions of its size, one
-/// kind of reference for its latent, and (with `values`) the values themselves.
-fn check_references(
-    calibration: &Calibration,
-    model: ModelRef,
-    values: bool,
-) -> Result<(), EstimateError> {
-    calibration
-        .check_positions(model.latent_dims())
-        .map_err(input_error)?;
-    if model.latent_dims() > 1 && !calibration.reference.is_empty() {
-        return Err(input_error(format!(
-            "{}: {} needs the bodies' positions at reference frames, CLIP:FRAME=X1/Y1/X2/Y2 (pixels), not one value",
-            calibration.origin(),
-            model.name()
-        )));
-    }
-    if model.latent_dims() == 1 && !calibration.positions.is_empty() {
-        return Err(input_error(format!(
-            "{}: {} takes one value per reference frame, CLIP:FRAME=VALUE, not body positions",
-            calibration.origin(),
-            model.name()
-        )));
-    }
-    if values {
-        calibration
-            .check_values(model.info().calibration.nonnegative_reference)
-            .map_err(input_error)?;
-    }
-    Ok(())
 }
 
 #[cfg(test)]

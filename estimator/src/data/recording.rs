@@ -105,9 +105,10 @@ pub fn load_recording(
         max_clips: MAX_DEFAULT_CLIPS,
     };
     let mut decoded = super::reuse::decode(input, &opts, info.clone(), keep)?;
+    warnings.extend(decoded.clock_note.clone());
     // A fall or slide from rest: its release, and the descent alone where no flag trims;
     // anything else: the frames where it moves.
-    let timeline_fps = decoded.info.container_fps.unwrap_or(fps);
+    let timeline_fps = decoded.timeline_fps.unwrap_or(fps);
     let kept = if model.released_from_rest() {
         kept::trim_to_descent(&mut decoded, &opts, timeline_fps, &mut warnings)
     } else {
@@ -137,6 +138,7 @@ pub fn load_recording(
         info: decoded.info.clone(),
         fps,
         fps_source,
+        timeline_fps,
         frames_decoded: decoded.frame_count(),
         frames_per_clip,
         stride,

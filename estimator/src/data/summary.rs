@@ -18,6 +18,11 @@ pub struct RecordingSummary {
     /// The frame rate used and where it came from ("--fps" or "container").
     pub fps: f64,
     pub fps_source: &'static str,
+    /// Frames a second of the file's own timeline (the container's rate, or the frames'
+    /// clock where it differs; an image folder's `--fps`): frame k of the decode is at
+    /// `start + k / timeline_fps`.
+    #[serde(skip)]
+    pub timeline_fps: f64,
     pub frames_decoded: usize,
     pub frames_per_clip: usize,
     pub stride: usize,
@@ -65,7 +70,7 @@ impl RecordingSummary {
     pub fn clip_frame_at(&self, t: f64) -> Result<((usize, usize), Option<String>), String> {
         let start = self.start.unwrap_or(0.0);
         let last = self.frames_decoded.saturating_sub(1);
-        let timeline_fps = self.info.container_fps.unwrap_or(self.fps);
+        let timeline_fps = self.timeline_fps;
         let at = (t - start) * timeline_fps;
         let end = start + last as f64 / timeline_fps;
         let outside = if at <= -0.5 {
@@ -165,6 +170,7 @@ mod tests {
             },
             fps: 10.0,
             fps_source: "container",
+            timeline_fps: 10.0,
             frames_decoded: 100,
             frames_per_clip: 20,
             stride: 1,

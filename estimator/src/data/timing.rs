@@ -58,21 +58,21 @@ pub(super) fn frame_rate(
     flags: &RecordingRequest,
     warnings: &mut Vec<String>,
 ) -> Result<(f64, &'static str), EstimateError> {
-    // The frames' own timestamps: evenly spaced within the part kept, or refused; their rate
-    // where the container gives none or another.
-    let stamped = info
-        .and_then(|i| i.median_interval(flags.start, flags.end))
-        .map(|m| 1.0 / m);
-    if let Some((at, gap)) = info.and_then(|i| i.first_gap(flags.start, flags.end)) {
-        return Err(input_error(format!(
-            "{}: the frames are not evenly spaced: a gap of {} s after {} s of the file's \
-             timeline (dropped frames or a variable frame rate), which clips would read as \
-             continuous motion; keep an evenly spaced part with --start/--end",
-            input.display(),
-            approx(gap),
-            approx(at)
-        )));
-    }
+    // The frames' own timestamps: the even clock they sit on within the part kept (doubled
+    // and dropped frames placed on it, a GIF's rounded delays resampled onto it), or refused
+    // with the numbers; its rate where the container gives none or another.
+    let clock = match info.and_then(|i| i.clock(flags.start, flags.end)) {
+        Some(Err(uneven)) => {
+            return Err(input_error(format!(
+                "{}: {}",
+                input.display(),
+                uneven.reason()
+            )))
+        }
+        Some(Ok(c)) => Some(c),
+        None => None,
+    };
+    let stamped = clock.map(|c| 1.0 / c.interval);
     let container = info.and_then(|i| i.container_fps);
     // A slow-motion capture: the file plays its frames slower than they were taken.
     let capture = info
@@ -91,14 +91,17 @@ pub(super) fn frame_rate(
             ));
             (capture, "capture tag")
         }
-        (None, None, Some(c), Some(t)) if (c / t - 1.0).abs() > 0.01 => {
-            warnings.push(format!(
-                "the container says {} fps but the frames' timestamps are {} s apart ({} fps): \
-                 the timestamps' rate is used",
-                approx(c),
-                approx(1.0 / t),
-                approx(t)
-            ));
+        // The container's rate is a nominal or average figure; the timestamps are the clock.
+        (None, None, Some(c), Some(t)) if (c / t - 1.0).abs() > 0.001 => {
+            if (c / t - 1.0).abs() > 0.01 {
+                warnings.push(format!(
+                    "the container says {} fps but the frames' timestamps are {} s apart ({} \
+                     fps): the timestamps' rate is used",
+                    approx(c),
+                    approx(1.0 / t),
+                    approx(t)
+                ));
+            }
             (t, "timestamps")
         }
         (None, None, Some(c), _) => (c, "container"),

@@ -236,6 +236,7 @@ fn stop_text(stop: &crate::train::StopReason) -> String {
         ),
         MaxEpochs => "at --epochs".into(),
         NonFiniteLoss { epoch } => format!("non-finite loss at epoch {epoch}"),
+        LawNotFinite { epoch, .. } => format!("the law not finite at epoch {epoch}"),
     }
 }
 

@@ -92,6 +92,12 @@ pub trait PhysicsBlock {
     fn residual(&self, _z: &Tensor) -> Option<Tensor> {
         None
     }
+    /// Where the law itself gave no finite value for most clips of the last batch (a model
+    /// file's x/0, √−1, exp(1000), ln of a negative latent), said with the expression and the
+    /// state: training cannot move such a law's parameters.
+    fn law_failure(&self) -> Option<String> {
+        None
+    }
 }
 
 /// Frame index k = 0..steps as a float row vector [1, steps].

@@ -48,6 +48,11 @@ pub enum StopReason {
     NonFiniteLoss {
         epoch: usize,
     },
+    /// The law itself gave no finite value (a model file's expression): where, in its words.
+    LawNotFinite {
+        epoch: usize,
+        detail: String,
+    },
 }
 
 /// The result of a training run (parameters from the best-validation epoch).

@@ -156,6 +156,10 @@ impl<'a> Trainer<'a> {
             total += l.detach().to_kind(Kind::Double);
             batches += 1;
         }
+        if let Some(detail) = network.law_failure() {
+            self.stop = Some(StopReason::LawNotFinite { epoch, detail });
+            return;
+        }
         let total = total.double_value(&[]);
         let finite = total.is_finite();
         let val_ids: Vec<usize> = (n_train as usize..data.shape[0]).collect();

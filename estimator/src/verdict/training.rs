@@ -76,6 +76,13 @@ impl Check for Training {
                      (the best earlier epoch is kept); lower --lr or --lr-phys"
                 ),
             )),
+            StopReason::LawNotFinite { epoch, ref detail } => out.push(Reason::new(
+                name,
+                Grade::Unreliable,
+                format!(
+                    "the law gave no finite value in epoch {epoch} and training stopped: {detail}"
+                ),
+            )),
             StopReason::EarlyStop { .. } | StopReason::Converged { .. } => {}
         }
         out

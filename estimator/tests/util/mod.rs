@@ -23,6 +23,28 @@ impl Estimate {
     }
 }
 
+/// `estimate --batch FILE --out OUT --epochs EPOCHS --quiet`.
+pub fn batch(file: &Path, out: &Path, epochs: &str) -> TestCommand {
+    Estimate::bare()
+        .arg("--batch")
+        .arg(file)
+        .out(out)
+        .args(["--epochs", epochs, "--quiet"])
+}
+
+/// `estimate FOLDER --fps 10 --model damped-oscillator --epochs 2`: a folder of
+/// [`write_frames`]' images, read briefly.
+pub fn folder_run(frames: &Path) -> TestCommand {
+    Estimate::new(frames).args([
+        "--fps",
+        "10",
+        "--model",
+        "damped-oscillator",
+        "--epochs",
+        "2",
+    ])
+}
+
 /// The `estimate` binary built for these tests.
 pub fn bin() -> PathBuf {
     PathBuf::from(env!("CARGO_BIN_EXE_estimate"))

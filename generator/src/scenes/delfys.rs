@@ -94,6 +94,12 @@ pub fn fits_in_motion(
     duration: f64,
     span: f64,
 ) -> Result<(), ConfigError> {
+    if !duration.is_finite() {
+        return Err(set_error(
+            value,
+            format!("{what} in a time that overflows; choose values nearer the physical range"),
+        ));
+    }
     if span > duration {
         return Err(set_error(
             value,

@@ -9,7 +9,7 @@ use crate::meta::{DatasetMeta, FORMAT_NAME, FORMAT_VERSION};
 use crate::npy::{read_npy, read_npy_shape, NpyArray};
 use std::path::{Path, PathBuf};
 
-pub use writer::{check_output_dir, write_dataset, DatasetFiles, DatasetWriter};
+pub use writer::{check_output_dir, write_dataset, DatasetFiles, DatasetWriter, DATASET_FILES};
 
 pub const FRAMES_FILE: &str = "frames.npy";
 pub const META_FILE: &str = "meta.json";
@@ -270,11 +270,21 @@ mod tests {
         let e = write_dataset(&out, &frames, &meta(shape), b"png", false).unwrap_err();
         assert!(e.to_string().contains("--force"));
         write_dataset(&out, &frames, &meta(shape), b"png", true).unwrap();
-        let names: Vec<_> = std::fs::read_dir(&out)
+        let mut names: Vec<_> = std::fs::read_dir(&out)
             .unwrap()
-            .map(|e| e.unwrap().file_name())
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
             .collect();
-        assert_eq!(names.len(), 3, "no partial files left: {names:?}");
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                crate::outdir::MANIFEST,
+                FRAMES_FILE,
+                META_FILE,
+                PREVIEW_FILE
+            ],
+            "no partial files left"
+        );
     }
 
     #[test]

@@ -1,13 +1,13 @@
-//! Writing a dataset: `DatasetWriter` streams `frames.npy` under a temporary name and renames
-//! everything into place at the end, `meta.json` last, so an interrupted write never leaves a
-//! directory that looks like a complete dataset.
+//! Writing a dataset: `DatasetWriter` streams `frames.npy` under a temporary name into a folder
+//! this tool owns (`outdir`) and renames everything into place at the end, `meta.json` last, so
+//! an interrupted write never leaves a directory that looks like a complete dataset.
 
 use super::{FRAMES_FILE, META_FILE, PREVIEW_FILE};
-use crate::atomic::partial_path as partial;
+use crate::atomic::PendingFile;
 use crate::error::DatasetError;
 use crate::meta::DatasetMeta;
 use crate::npy::{header_bytes, write_f32_le};
-use std::fs::File;
+use crate::outdir::{OutputDir, OutputError, Wait, MANIFEST};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -19,12 +19,18 @@ pub struct DatasetFiles {
     pub preview: PathBuf,
 }
 
-/// Refuses an existing non-empty directory unless `force`; a path that exists but is not a
-/// directory is always refused.
+/// The files a data set is made of.
+pub const DATASET_FILES: [&str; 3] = [FRAMES_FILE, META_FILE, PREVIEW_FILE];
+
+/// Refuses an existing folder that holds anything (this tool's own data set too: one takes
+/// time to make) unless `force`; a path that exists but is not a directory is always refused.
 pub fn check_output_dir(dir: &Path, force: bool) -> Result<(), DatasetError> {
     match std::fs::read_dir(dir) {
-        Ok(mut entries) => {
-            if entries.next().is_some() && !force {
+        Ok(entries) => {
+            let filled = entries
+                .filter_map(|e| e.ok())
+                .any(|e| e.file_name() != MANIFEST);
+            if filled && !force {
                 return Err(DatasetError::NotEmpty {
                     path: dir.to_path_buf(),
                 });
@@ -47,28 +53,28 @@ fn write_err(path: &Path) -> impl Fn(std::io::Error) -> DatasetError {
     }
 }
 
-fn write_partial(path: &Path, bytes: &[u8]) -> Result<PathBuf, DatasetError> {
-    let tmp = partial(path);
-    let err = write_err(&tmp);
-    let file = File::create(&tmp).map_err(&err)?;
-    (&file).write_all(bytes).map_err(&err)?;
-    file.sync_all().map_err(&err)?;
-    Ok(tmp)
+impl From<OutputError> for DatasetError {
+    fn from(e: OutputError) -> DatasetError {
+        match e {
+            OutputError::Io { path, source } => DatasetError::Write { path, source },
+            refusal => DatasetError::Refused(refusal.to_string()),
+        }
+    }
 }
 
 /// Streams a dataset to disk: `frames.npy` is written under a temporary name as frames arrive
 /// (each piece flushed to the device as it goes, so the final sync is short), and
-/// [`DatasetWriter::finish`] renames everything into place, `meta.json` last. Any stale
+/// [`DatasetWriter::finish`] renames everything into place, `meta.json` last. A stale
 /// `meta.json` is removed first, so a crash part-way through an overwrite leaves a directory
 /// without `meta.json`, which the reader refuses; dropping an unfinished writer removes its
-/// temporary files.
+/// temporary files, and the folder if it made it.
 pub struct DatasetWriter {
-    files: DatasetFiles,
-    frames_tmp: PathBuf,
-    out: BufWriter<File>,
+    // Dropped before the folder (fields drop in order): an unfinished write's temporary file
+    // goes first, so that a folder this run made is found empty and removed.
+    frames: BufWriter<PendingFile>,
+    dir: OutputDir,
     expected: usize,
     written: usize,
-    finished: bool,
 }
 
 impl DatasetWriter {
@@ -79,33 +85,20 @@ impl DatasetWriter {
         force: bool,
     ) -> Result<DatasetWriter, DatasetError> {
         check_output_dir(dir, force)?;
-        std::fs::create_dir_all(dir).map_err(write_err(dir))?;
-        let files = DatasetFiles {
-            frames: dir.join(FRAMES_FILE),
-            meta: dir.join(META_FILE),
-            preview: dir.join(PREVIEW_FILE),
-        };
-        match std::fs::remove_file(&files.meta) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                return Err(write_err(&files.meta)(e))
-            }
-            _ => {}
-        }
-        let frames_tmp = partial(&files.frames);
-        let file = File::create(&frames_tmp).map_err(write_err(&frames_tmp))?;
+        let mut out = OutputDir::open("--out", dir, "gen", &DATASET_FILES, force, Wait::Refuse)?;
+        out.remove_to_replace(META_FILE)?;
+        let pending = out.pending(FRAMES_FILE)?;
+        let tmp = pending.path().to_path_buf();
         let mut writer = DatasetWriter {
-            files,
-            out: BufWriter::with_capacity(1 << 20, file),
+            frames: BufWriter::with_capacity(1 << 20, pending),
+            dir: out,
             expected: shape.iter().product(),
             written: 0,
-            finished: false,
-            frames_tmp,
         };
-        let header = header_bytes(&shape);
         writer
-            .out
-            .write_all(&header)
-            .map_err(write_err(&writer.frames_tmp))?;
+            .frames
+            .write_all(&header_bytes(&shape))
+            .map_err(write_err(&tmp))?;
         Ok(writer)
     }
 
@@ -115,51 +108,45 @@ impl DatasetWriter {
             self.written + frames.len() <= self.expected,
             "more frames than the shape holds"
         );
-        let err = write_err(&self.frames_tmp);
-        write_f32_le(&mut self.out, frames).map_err(&err)?;
-        self.out.flush().map_err(&err)?;
-        self.out.get_ref().sync_data().map_err(&err)?;
+        let err = write_err(self.frames.get_ref().path());
+        write_f32_le(&mut self.frames, frames).map_err(&err)?;
+        self.frames.flush().map_err(&err)?;
+        self.frames.get_mut().file().sync_data().map_err(&err)?;
         self.written += frames.len();
         Ok(())
     }
 
     /// Writes the preview and the metadata and renames all three files into place.
     pub fn finish(
-        mut self,
+        self,
         meta: &DatasetMeta,
         preview_png: &[u8],
     ) -> Result<DatasetFiles, DatasetError> {
         assert_eq!(self.written, self.expected, "frames.npy is incomplete");
-        let err = write_err(&self.frames_tmp);
-        self.out.flush().map_err(&err)?;
-        self.out.get_ref().sync_all().map_err(&err)?;
-        let preview_tmp = write_partial(&self.files.preview, preview_png)?;
+        let DatasetWriter {
+            mut dir, frames, ..
+        } = self;
+        let mut frames = frames
+            .into_inner()
+            .map_err(|e| write_err(&dir.path().join(FRAMES_FILE))(e.into_error()))?;
+        frames
+            .file()
+            .sync_all()
+            .map_err(write_err(&dir.path().join(FRAMES_FILE)))?;
+        dir.commit(FRAMES_FILE, frames)?;
+        dir.write(PREVIEW_FILE, preview_png)?;
         let meta_json = serde_json::to_vec_pretty(meta).expect("metadata serialises");
-        let meta_tmp = write_partial(&self.files.meta, &meta_json)?;
-        for (tmp, fin) in [
-            (&self.frames_tmp, &self.files.frames),
-            (&preview_tmp, &self.files.preview),
-            (&meta_tmp, &self.files.meta),
-        ] {
-            std::fs::rename(tmp, fin).map_err(write_err(fin))?;
+        dir.write(META_FILE, &meta_json)?;
+        if let Ok(d) = std::fs::File::open(dir.path()) {
+            let _ = d.sync_all();
         }
-        if let Some(dir) = self.files.meta.parent() {
-            if let Ok(d) = File::open(dir) {
-                let _ = d.sync_all();
-            }
-        }
-        self.finished = true;
-        Ok(self.files.clone())
-    }
-}
-
-impl Drop for DatasetWriter {
-    fn drop(&mut self) {
-        if !self.finished {
-            for f in [&self.files.frames, &self.files.preview, &self.files.meta] {
-                let _ = std::fs::remove_file(partial(f));
-            }
-        }
+        let files = DatasetFiles {
+            frames: dir.path().join(FRAMES_FILE),
+            meta: dir.path().join(META_FILE),
+            preview: dir.path().join(PREVIEW_FILE),
+        };
+        dir.finish();
+        Ok(files)
     }
 }
 

@@ -67,6 +67,8 @@ pub struct ModelFile {
     /// State variables in the file's order, with d/dt of each.
     pub states: Vec<String>,
     pub equations: Vec<Expr>,
+    /// Each equation as the file writes it (for messages).
+    pub equation_texts: Vec<String>,
     /// The state variables the latent's coordinates observe, in order.
     pub observed: Vec<usize>,
     /// Ranges `gen` draws each state's initial value from (`None`: not given).

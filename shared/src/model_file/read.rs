@@ -156,6 +156,7 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
         parameters,
         states,
         equations: Vec::new(),
+        equation_texts: Vec::new(),
         observed: Vec::new(),
         initial: Vec::new(),
         derived: Vec::new(),
@@ -212,6 +213,8 @@ pub(super) fn parse_file(path: &Path, text: &str) -> Result<ModelFile, ModelFile
     for (s, v) in &state_table {
         let e = expression(&file, &format!("state.{s}"), v, &|n| file.variable(n))?;
         file.equations.push(e);
+        file.equation_texts
+            .push(v.as_str().map_or_else(|| v.to_string(), String::from));
     }
     let (n, m) = (file.states.len(), file.parameters.len());
     if n + m + 1 > MAX_VARIABLES {

@@ -1,8 +1,11 @@
 //! `decode`: ffmpeg → grey frames through a pipe, one at a time, each resized as it arrives;
 //! image folders go through ffmpeg's concat demuxer so both inputs take the same path. Checks
-//! the crop, truncated or damaged files (any ffmpeg error), empty trims and clips that do not fit.
+//! the crop, truncated or damaged files (any ffmpeg error), empty trims and clips that do not
+//! fit, and puts the frames on their own clock (`clock`).
 
-use super::folder::{concat_list, damaged_folder};
+use super::clock::Clock;
+use super::decoded::{cut, DecodedVideo};
+use super::folder::{check_alike, concat_list, damaged_folder, numbered};
 use super::probe::tool;
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
 use std::io::{BufRead, Read};
@@ -10,70 +13,6 @@ use std::path::Path;
 use std::process::Stdio;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
-
-/// A decoded recording: every kept frame, resized, and the clips cut from it.
-#[derive(Debug, Clone)]
-pub struct DecodedVideo {
-    pub info: VideoInfo,
-    /// The frame rate used (the --fps override or the container's).
-    pub fps: f64,
-    /// All frames after trimming, [F, H·W] row-major, values in [0, 1].
-    pub frames: Vec<f32>,
-    /// First recording frame (index into `frames`) of each clip.
-    pub clip_starts: Vec<usize>,
-    /// Frames between clip starts.
-    pub hop: usize,
-    pub size: (usize, usize),
-}
-
-impl DecodedVideo {
-    /// Frames decoded (after trimming).
-    pub fn frame_count(&self) -> usize {
-        self.frames.len() / (self.size.0 * self.size.1)
-    }
-
-    /// Keeps frames `first..=last` only and cuts the clips of `opts` again from them.
-    pub fn keep(&mut self, first: usize, last: usize, opts: &VideoOptions) {
-        let per = self.size.0 * self.size.1;
-        let last = last.min(self.frame_count().saturating_sub(1));
-        self.frames.truncate((last + 1) * per);
-        self.frames.drain(..first.min(last) * per);
-        let span = (opts.frames_per_clip - 1).saturating_mul(opts.stride);
-        (self.clip_starts, self.hop) = cut(self.frame_count(), span, opts);
-    }
-
-    /// Seconds between clip frames.
-    pub fn dt(&self, stride: usize) -> f64 {
-        stride as f64 / self.fps
-    }
-
-    /// Recording frame index of every clip frame, [N·T] (clip-major): the clips are
-    /// `frames[index]`, so they need not be copied out.
-    pub fn clip_index(&self, frames_per_clip: usize, stride: usize) -> Vec<i64> {
-        self.clip_starts
-            .iter()
-            .flat_map(|&s| (0..frames_per_clip).map(move |k| (s + k * stride) as i64))
-            .collect()
-    }
-
-    /// The clips `which` (indices into `clip_starts`) as one [n, T, 1, H, W] array.
-    pub fn clips(
-        &self,
-        which: &[usize],
-        frames_per_clip: usize,
-        stride: usize,
-    ) -> (Vec<f32>, [usize; 5]) {
-        let (w, h) = self.size;
-        let mut out = Vec::with_capacity(which.len() * frames_per_clip * w * h);
-        for &c in which {
-            for k in 0..frames_per_clip {
-                let f = self.clip_starts[c] + k * stride;
-                out.extend_from_slice(&self.frames[f * w * h..(f + 1) * w * h]);
-            }
-        }
-        (out, [which.len(), frames_per_clip, 1, h, w])
-    }
-}
 
 /// Decodes `input` (a video file, or a folder of images with `opts.fps`) into frames and clips.
 /// Frames stream through a pipe one at a time; only the resized ones are kept. `probed`: the
@@ -93,6 +32,7 @@ pub fn decode(
         let first = files
             .first()
             .ok_or_else(|| bad(input, "holds no .png, .jpg or .jpeg images"))?;
+        check_alike(&files)?;
         if opts.fps.is_none() {
             return Err(bad(
                 input,
@@ -110,7 +50,8 @@ pub fn decode(
         info.frame_times = Vec::new();
         info.expected_frames = Some(files.len());
         let list = concat_list(&files)?;
-        cmd.args(["-f", "concat", "-safe", "0", "-i"]).arg(&list.0);
+        cmd.args(["-f", "concat", "-safe", "0", "-i"])
+            .arg(list.path());
         list_file = Some(list);
         folder_files = files;
         info
@@ -150,11 +91,16 @@ pub fn decode(
             ),
         ));
     }
+    // Every frame as it is, stamped on the input's own time base: at the default 1/fps a
+    // variable-rate file's frames collide in the output and ffmpeg complains about its own
+    // muxer.
     cmd.args([
         "-map",
         "0:v:0",
         "-fps_mode",
         "passthrough",
+        "-enc_time_base",
+        "-1",
         "-f",
         "rawvideo",
         "-pix_fmt",
@@ -184,6 +130,9 @@ pub fn decode(
                 )
             })
             .filter(|(_, l)| !l.is_empty() && !l.starts_with("Last message repeated"))
+            // Two frames with one timestamp (a doubled frame) trouble only the raw output's
+            // muxer; the clock leaves one of them out.
+            .filter(|(_, l)| !l.contains("non monotonically increasing dts to muxer"))
             .collect::<Vec<_>>()
     });
     let frame_bytes = info.width * info.height;
@@ -265,6 +214,37 @@ pub fn decode(
             },
         ));
     }
+    // The frames on their own clock: the container's timestamps, or the images' numbers.
+    let times = if folder {
+        numbered(&folder_files)
+    } else {
+        Some(info.times_within(opts.start, opts.end))
+    };
+    let per = opts.size.0 * opts.size.1;
+    let (mut clock_note, mut timeline_fps) = (None, info.container_fps);
+    if let Some(times) = times.filter(|t| t.len() == count && count >= 2) {
+        let clock = Clock::fit(&times).map_err(|u| match folder {
+            false => bad(input, u.reason()),
+            true => bad(
+                input,
+                format!(
+                    "the images' numbers skip frames (the longest run missing: {}; at most {} \
+                     in a row, and a tenth of all, are filled in): add the missing images or \
+                     keep an evenly numbered part",
+                    u.gap.map_or(0, |g| g.1),
+                    super::clock::MAX_MISSING
+                ),
+            ),
+        })?;
+        if !folder && timeline_fps.is_none_or(|c| (c * clock.interval - 1.0).abs() > 1e-3) {
+            timeline_fps = Some(1.0 / clock.interval);
+        }
+        if !clock.is_even() {
+            frames = clock.resample(&times, &frames, per);
+            count = frames.len() / per;
+            clock_note = clock.note(!folder);
+        }
+    }
     let span = (opts.frames_per_clip - 1).saturating_mul(opts.stride);
     if count <= span {
         return Err(bad(
@@ -286,17 +266,9 @@ pub fn decode(
         clip_starts,
         hop,
         size: opts.size,
+        timeline_fps,
+        clock_note,
     })
-}
-
-/// Clip starts over `count` frames for clips spanning `span` frames, and the hop between
-/// them (`opts.hop`, or as small as keeps within `opts.max_clips`).
-fn cut(count: usize, span: usize, opts: &VideoOptions) -> (Vec<usize>, usize) {
-    let possible = count.saturating_sub(span);
-    let hop = opts
-        .hop
-        .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
-    ((0..possible).step_by(hop).collect(), hop)
 }
 
 /// Reads until `buf` is full or the stream ends; returns the bytes read.

@@ -3,7 +3,9 @@
 //! Rust (the same code for videos and image folders), and cut the frames into clips. This file:
 //! the errors, the options, and what counts as a recording.
 
+pub mod clock;
 mod decode;
+mod decoded;
 mod folder;
 mod probe;
 mod region;
@@ -11,7 +13,8 @@ mod resize;
 mod survey;
 pub mod timescale;
 
-pub use decode::{decode, DecodedVideo};
+pub use decode::decode;
+pub use decoded::DecodedVideo;
 pub use probe::{probe, VideoInfo};
 pub use resize::FrameResizer;
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
@@ -27,6 +30,14 @@ pub enum VideoError {
     NotAVideo { path: PathBuf, reason: String },
     #[error("{path}: {reason}")]
     BadInput { path: PathBuf, reason: String },
+    /// A temporary file could not be made (the system's temporary folder, TMPDIR, is full or
+    /// unwritable): a failure of the machine, not of the input.
+    #[error("cannot write a temporary file in {path} (the temporary folder; set TMPDIR to a writable one)")]
+    Scratch {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
 }
 
 pub(crate) fn bad(path: &Path, reason: impl Into<String>) -> VideoError {

@@ -1,6 +1,7 @@
 //! `probe`: what ffprobe says about a recording (displayed size after the rotation tag, frame
 //! rate, the slow-motion capture tag, frame count), and running the ffmpeg tools at all.
 
+use super::clock::{Clock, Uneven};
 use super::{bad, VideoError};
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -25,21 +26,23 @@ pub struct VideoInfo {
     pub frame_times: Vec<f64>,
 }
 
-/// Intervals longer than this multiple of the median between frames are gaps (dropped frames,
-/// a paused capture): the frames are not evenly spaced there.
-pub const GAP: f64 = 1.5;
-
 impl VideoInfo {
-    /// The median interval between the frames' timestamps within `start`..`end` (s), when the
-    /// file gives timestamps.
-    pub fn median_interval(&self, start: Option<f64>, end: Option<f64>) -> Option<f64> {
-        let d = self.intervals(start, end);
-        if d.is_empty() {
-            return None;
-        }
-        let mut s: Vec<f64> = d.iter().map(|x| x.1).collect();
-        s.sort_by(f64::total_cmp);
-        Some(s[s.len() / 2]).filter(|m| *m > 0.0)
+    /// The even clock the frames' timestamps within `start`..`end` (s) sit on, when the file
+    /// gives at least two (`clock::Clock`), or why none fits.
+    pub fn clock(&self, start: Option<f64>, end: Option<f64>) -> Option<Result<Clock, Uneven>> {
+        let t = self.times_within(start, end);
+        (t.len() >= 2).then(|| Clock::fit(&t))
+    }
+
+    /// The frames' timestamps within `start`..`end` (s from the first frame; the end excluded,
+    /// as the decoder keeps them).
+    pub fn times_within(&self, start: Option<f64>, end: Option<f64>) -> Vec<f64> {
+        let (lo, hi) = self.bounds(start, end);
+        self.frame_times
+            .iter()
+            .copied()
+            .filter(|&t| t >= lo - 1e-6 && t < hi)
+            .collect()
     }
 
     /// How many frames the container's index puts within `start`..`end` (s; the end excluded,
@@ -62,25 +65,6 @@ impl VideoInfo {
             t0 + start.unwrap_or(0.0),
             end.map_or(f64::INFINITY, |e| t0 + e),
         )
-    }
-
-    /// The first gap within `start`..`end`: (the time it starts, its length), if any.
-    pub fn first_gap(&self, start: Option<f64>, end: Option<f64>) -> Option<(f64, f64)> {
-        let m = self.median_interval(start, end)?;
-        self.intervals(start, end)
-            .into_iter()
-            .find(|(_, d)| *d > GAP * m)
-    }
-
-    /// (time, interval to the next frame) within `start`..`end`.
-    fn intervals(&self, start: Option<f64>, end: Option<f64>) -> Vec<(f64, f64)> {
-        let t0 = self.frame_times.first().copied().unwrap_or(0.0);
-        let (lo, hi) = self.bounds(start, end);
-        self.frame_times
-            .windows(2)
-            .filter(|w| w[0] >= lo - 1e-9 && w[1] <= hi + 1e-9)
-            .map(|w| (w[0] - t0, w[1] - w[0]))
-            .collect()
     }
 }
 
@@ -244,9 +228,9 @@ mod tests {
             expected_frames: None,
             frame_times: vec![0.0, 0.1, 0.2, 0.3, 0.9, 1.0, 1.1],
         };
-        assert!((info.median_interval(None, None).unwrap() - 0.1).abs() < 1e-9);
-        let (at, len) = info.first_gap(None, None).unwrap();
-        assert!((at - 0.3).abs() < 1e-9 && (len - 0.6).abs() < 1e-9);
-        assert!(info.first_gap(Some(0.85), None).is_none());
+        let e = info.clock(None, None).unwrap().unwrap_err();
+        assert_eq!(e.gap.map(|g| g.1), Some(5), "{e:?}");
+        let c = info.clock(Some(0.85), None).unwrap().unwrap();
+        assert!(c.is_even() && (c.interval - 0.1).abs() < 1e-9, "{c:?}");
     }
 }

@@ -166,4 +166,7 @@ impl PhysicsBlock for FileBlock {
     fn calibrate(&self, latents: &Tensor, values: &Tensor) {
         self.shooting.calibrate(latents, values);
     }
+    fn law_failure(&self) -> Option<String> {
+        self.shooting.law_failure()
+    }
 }

@@ -1,7 +1,7 @@
 //! A model file's equations as an `OdeSystem` for the shooting machinery, and the frequency of
 //! its motion at given parameters (for the data-driven start and the horizon curriculum).
 
-use crate::physics::ode::{FixedLaw, Jacobians, OdeSystem};
+use crate::physics::ode::{FixedLaw, Jacobians, LawWords, OdeSystem};
 use physvid_shared::model_file::expr::Expr;
 use physvid_shared::model_file::{AtParams, CompiledSystem, ModelFile};
 use physvid_shared::recurrence::fit_two_step_recurrence;
@@ -16,6 +16,8 @@ pub struct FileSystem {
     observed: Vec<usize>,
     /// A typical initial state (the middle of `[initial]`'s ranges; the observed at their top).
     typical: Vec<f64>,
+    /// The states, their laws as the file writes them and the parameters, for messages.
+    words: LawWords,
 }
 
 impl FileSystem {
@@ -48,6 +50,7 @@ impl FileSystem {
             derivative_of,
             observed: file.observed.clone(),
             typical,
+            words: words(file),
         }
     }
 
@@ -71,6 +74,15 @@ impl FileSystem {
             // Oscillating, and sampled at least 6 times per period.
             (w2 > 0.0 && w2.sqrt() * h < std::f64::consts::PI / 3.0).then(|| g0.sqrt())
         })
+    }
+}
+
+/// The file's states, each one's law as it writes it, and its parameters.
+fn words(file: &ModelFile) -> LawWords {
+    LawWords {
+        states: file.states.clone(),
+        equations: file.equation_texts.clone(),
+        parameters: file.parameters.iter().map(|p| p.name.clone()).collect(),
     }
 }
 
@@ -106,6 +118,9 @@ impl OdeSystem for FileSystem {
     /// The tape's operations on the parameters alone done once an integration.
     fn at<'a>(&'a self, p: &[f64]) -> Option<Box<dyn FixedLaw + 'a>> {
         Some(Box::new(self.compiled.at(p)))
+    }
+    fn words(&self) -> Option<&LawWords> {
+        Some(&self.words)
     }
     /// Observed states from the first frame, their derivatives from the first three frames
     /// (second-order one-sided difference), the rest at their typical value.

@@ -13,7 +13,7 @@
 use super::map::ObservationMap;
 use super::rk4::Span;
 use super::shooting::{fit_clip, ClipFit, POOR_FIT};
-use super::OdeSystem;
+use super::{not_finite_at, OdeSystem};
 use crate::physics::Clips;
 use crate::physics::{Bounds, ParamSpec};
 use std::cell::RefCell;
@@ -93,6 +93,8 @@ pub struct ShootingBlock {
     /// The last reference frames' latents and known values [R] (no host copy per step): they
     /// fix the units of the final solve through a smooth map (`smooth.rs`).
     pub(super) references: RefCell<Option<(Tensor, Tensor)>>,
+    /// Where the law gave no finite value for most clips of a batch (`law_failure`).
+    failure: RefCell<Option<String>>,
 }
 
 impl ShootingBlock {
@@ -126,6 +128,7 @@ impl ShootingBlock {
             substeps: substeps.max(1),
             warm: RefCell::new(HashMap::new()),
             references: RefCell::new(None),
+            failure: RefCell::new(None),
         }
     }
 
@@ -169,6 +172,7 @@ impl ShootingBlock {
         let parallel = theta.device() != Device::Cpu;
         let shape = (b as usize, t as usize, rows);
         let mut fits = self.fit_batch(&target, &p_host, clips, shape, parallel);
+        self.note_law_failure(&fits, &p_host, clips);
         let failed = poor_cost(&target, rows) * FAILED_FIT / POOR_FIT;
         for (i, f) in fits.iter_mut().enumerate() {
             if f.cost.is_nan() || f.cost > failed {
@@ -204,6 +208,39 @@ impl ShootingBlock {
         let res = (&base - theta.reshape([b, t * d])).unsqueeze(-1);
         let correction = q.bmm(&q.transpose(1, 2).bmm(&res));
         (base - correction.squeeze_dim(-1)).view([b, t, d])
+    }
+
+    /// Notes where the law gave no finite value when, for most of a batch's clips, it is NaN
+    /// or infinite at the very state the fit started from: a fit that fails alone falls back
+    /// on its clip's latents, but a law that is not finite where the data are (x/0, √−1,
+    /// exp(1000), ln of a negative latent) would leave every parameter at its start. (A
+    /// solution that only leaves the law's domain within a clip is the fit's to avoid.)
+    fn note_law_failure(&self, fits: &[ClipFit], p: &[f64], clips: Clips) {
+        let failed = fits.iter().filter(|f| !f.cost.is_finite()).count();
+        if failed * 2 <= fits.len() {
+            return;
+        }
+        let t0 = clips.start.map(host);
+        let system = self.system.as_ref();
+        let at_start: Vec<String> = fits
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| !f.cost.is_finite())
+            .filter_map(|(i, f)| not_finite_at(system, &f.x0, p, t0.as_ref().map_or(0.0, |t| t[i])))
+            .collect();
+        if at_start.len() * 2 > fits.len() {
+            *self.failure.borrow_mut() = Some(format!(
+                "{}, in {} of {} clips of a batch",
+                at_start[0],
+                at_start.len(),
+                fits.len()
+            ));
+        }
+    }
+
+    /// Where the law gave no finite value for most clips of a batch, if it did.
+    pub fn law_failure(&self) -> Option<String> {
+        self.failure.borrow().clone()
     }
 
     /// The fits of `b` clips of `frames` frames (`rows` values each) of `target` with

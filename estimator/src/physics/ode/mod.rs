@@ -41,6 +41,51 @@ pub trait OdeSystem: Send + Sync {
     fn at<'a>(&'a self, _p: &[f64]) -> Option<Box<dyn FixedLaw + 'a>> {
         None
     }
+    /// The law in its own words, for a message (a model file's); `None`, the default, names
+    /// states and parameters by their place.
+    fn words(&self) -> Option<&LawWords> {
+        None
+    }
+}
+
+/// A law's states, each one's d/dt as written, and its parameters' names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LawWords {
+    pub states: Vec<String>,
+    pub equations: Vec<String>,
+    pub parameters: Vec<String>,
+}
+
+/// Where `sys` is not finite at state `x`, parameters `p`, time `t`: the first derivative that
+/// is NaN or infinite there, in the law's words, with the state and the parameters.
+pub fn not_finite_at(sys: &dyn OdeSystem, x: &[f64], p: &[f64], t: f64) -> Option<String> {
+    let mut f = vec![0.0; sys.states()];
+    sys.eval(x, p, t, &mut f, None);
+    let i = f.iter().position(|v| !v.is_finite())?;
+    let num = physvid_shared::cli::approx;
+    let named = |names: Option<&Vec<String>>, values: &[f64], letter: &str| -> String {
+        values
+            .iter()
+            .enumerate()
+            .map(|(k, v)| match names.and_then(|n| n.get(k)) {
+                Some(n) => format!("{n} = {}", num(*v)),
+                None => format!("{letter}{k} = {}", num(*v)),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let words = sys.words();
+    let law = match words {
+        Some(w) => format!("d{}/dt = {}", w.states[i], w.equations[i]),
+        None => format!("the derivative of state {i}"),
+    };
+    Some(format!(
+        "{law} is {} at {} (parameters {}; t = {})",
+        f[i],
+        named(words.map(|w| &w.states), x, "x"),
+        named(words.map(|w| &w.parameters), p, "p"),
+        num(t)
+    ))
 }
 
 /// Where a [`FixedLaw`] writes ∂f/∂x [n×n] and, where given, ∂f/∂p [n×m], row-major.

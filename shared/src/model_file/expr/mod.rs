@@ -303,9 +303,15 @@ mod tests {
         assert!(err("min(x)").message.contains("2 argument"));
         assert!(err("x v").message.contains("after"));
         assert!(err("").message.contains("early"));
-        let deep = format!("{}x{}", "(".repeat(100_000), ")".repeat(100_000));
+        let deep = format!("{}x{}", "(".repeat(300), ")".repeat(300));
         assert!(err(&deep).message.contains("nested more than 200"));
-        assert!(err(&"-".repeat(100_000)).message.contains("nested"));
+        // Long but flat: a tree as deep as the expression is long, refused before it is built.
+        let deep = format!("{}x{}", "(".repeat(100_000), ")".repeat(100_000));
+        assert!(err(&deep).message.contains("at most 1000"));
+        let flat = vec!["x"; 30_000].join("+");
+        let e = err(&flat);
+        assert!(e.message.contains("59999 tokens"), "{}", e.message);
+        assert!(err(&"-".repeat(300)).message.contains("nested"));
     }
 
     #[test]

@@ -7,6 +7,11 @@ use super::{Expr, Func};
 /// The deepest nesting an expression may have (a bound on the parser's recursion).
 pub const MAX_NESTING: usize = 200;
 
+/// The most tokens an expression may have: a flat sum of tens of thousands of terms is a tree
+/// as deep as it is long, which every pass over it (derivatives, the tape, dropping it) would
+/// walk recursively.
+pub const MAX_TOKENS: usize = 1000;
+
 /// A parse or name error: the 1-based column and what is wrong there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {
@@ -221,8 +226,19 @@ impl Parser<'_> {
 /// Parses `text`, turning names into variable indices with `lookup` (`pi` and the functions
 /// are known already).
 pub fn parse(text: &str, lookup: &dyn Fn(&str) -> Option<usize>) -> Result<Expr, ParseError> {
+    let tokens = lex(text)?;
+    if tokens.len() > MAX_TOKENS {
+        return Err(ParseError {
+            column: tokens[MAX_TOKENS].1,
+            message: format!(
+                "the expression has {} tokens (numbers, names, operators); at most {MAX_TOKENS} \
+                 are taken",
+                tokens.len() - 1
+            ),
+        });
+    }
     let mut p = Parser {
-        tokens: lex(text)?,
+        tokens,
         at: 0,
         depth: 0,
         lookup,

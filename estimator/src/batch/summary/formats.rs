@@ -1,135 +1,13 @@
-//! A batch's summary: one `RowResult` per row of the batch file (those of other shards marked
-//! so), written as summary.json (what `--merge` reads), summary.csv (one line per row, one
-//! group of columns per reported value) and summary.md.
+//! A batch summary as text: summary.csv (one line per row, one group of columns per reported
+//! value) and summary.md (a table, each row linked to its report), with text from files and
+//! messages escaped for each format.
 
-use super::shard::Shard;
+use super::{Estimate, RowStatus, Summary};
 use crate::html::sig;
 use crate::report::text::significant;
-use serde::{Deserialize, Serialize};
-
-/// What summary.json holds.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Summary {
-    pub format: String,
-    /// The batch file as given on the command line.
-    pub batch_file: String,
-    pub shard: Option<Shard>,
-    /// Every row of the batch file, in order.
-    pub rows: Vec<RowResult>,
-}
-
-/// Where a row stands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum RowStatus {
-    Ok,
-    /// An estimate graded `unreliable` (exit code 4): counted as failed.
-    Unreliable,
-    Failed,
-    /// Not yet run (the batch is under way or was stopped).
-    Pending,
-    /// Run by another shard.
-    OtherShard,
-    /// In no merged summary.
-    NotRun,
-}
-
-impl RowStatus {
-    pub fn word(self) -> &'static str {
-        match self {
-            RowStatus::Ok => "ok",
-            RowStatus::Unreliable => "unreliable",
-            RowStatus::Failed => "failed",
-            RowStatus::Pending => "pending",
-            RowStatus::OtherShard => "other shard",
-            RowStatus::NotRun => "not run",
-        }
-    }
-}
-
-/// One reported value of a row.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct Estimate {
-    pub name: String,
-    pub value: f64,
-    pub unit: String,
-    pub truth: Option<f64>,
-    pub relative_error: Option<f64>,
-    #[serde(default)]
-    pub standard_error: Option<f64>,
-}
-
-/// One row's outcome.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct RowResult {
-    /// From 1, in the batch file's order.
-    pub row: usize,
-    /// The row's directory name.
-    pub name: String,
-    /// The input as the batch file gives it.
-    pub input: String,
-    pub model: String,
-    pub status: RowStatus,
-    pub exit_code: Option<i32>,
-    /// A failed row's one-line error.
-    pub error: Option<String>,
-    pub estimates: Vec<Estimate>,
-    pub epochs: Option<usize>,
-    pub wall_s: Option<f64>,
-    pub warnings: Vec<String>,
-    /// The verdict's grade (`ok`, `doubtful`, `unreliable`) and its reasons, one line each.
-    #[serde(default)]
-    pub verdict: Option<String>,
-    #[serde(default)]
-    pub reasons: Vec<String>,
-    /// The row's directory, relative to the summary's.
-    pub dir: String,
-    /// The command that ran the row.
-    pub command: String,
-}
+use physvid_shared::escape::{csv_text, md_text};
 
 impl Summary {
-    /// The rows this summary ran (or will run): those not of another shard.
-    pub fn own_rows(&self) -> impl Iterator<Item = &RowResult> {
-        self.rows
-            .iter()
-            .filter(|r| r.status != RowStatus::OtherShard)
-    }
-
-    /// Err(`RowsFailed`) when any own row failed or was not run; `summary_md` is named in it.
-    pub fn outcome(&self, summary_md: std::path::PathBuf) -> Result<(), crate::EstimateError> {
-        match self.failed() {
-            0 => Ok(()),
-            failed => Err(crate::EstimateError::RowsFailed {
-                failed,
-                total: self.own_rows().count(),
-                summary: summary_md,
-            }),
-        }
-    }
-
-    pub fn failed(&self) -> usize {
-        self.own_rows()
-            .filter(|r| {
-                matches!(
-                    r.status,
-                    RowStatus::Failed | RowStatus::NotRun | RowStatus::Unreliable
-                )
-            })
-            .count()
-    }
-
-    /// Reported value names over all rows, in order of first appearance.
-    fn value_names(&self) -> Vec<String> {
-        let mut names: Vec<String> = Vec::new();
-        for e in self.own_rows().flat_map(|r| &r.estimates) {
-            if !names.contains(&e.name) {
-                names.push(e.name.clone());
-            }
-        }
-        names
-    }
-
     /// summary.csv: row, name, input, model, status, verdict, epochs, wall_s; for each reported
     /// value NAME, NAME_se, NAME_unit, NAME_truth, NAME_rel_error; the verdict's reasons and
     /// the warnings (each joined by " | "); error.
@@ -151,16 +29,19 @@ impl Summary {
             ]);
         }
         header.extend(["reasons".into(), "warnings".into(), "error".into()]);
+        // Text from files and messages is written so that a spreadsheet shows it as text.
+        let text = |t: &str| csv_text(t).into_owned();
+        let header: Vec<String> = header.iter().map(|h| text(h)).collect();
         w.write_record(&header).expect("in memory");
         let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
         for r in self.own_rows() {
             let mut rec = vec![
                 r.row.to_string(),
-                r.name.clone(),
-                r.input.clone(),
-                r.model.clone(),
+                text(&r.name),
+                text(&r.input),
+                text(&r.model),
                 r.status.word().to_string(),
-                r.verdict.clone().unwrap_or_default(),
+                text(r.verdict.as_deref().unwrap_or_default()),
                 r.epochs.map_or(String::new(), |e| e.to_string()),
                 r.wall_s.map_or(String::new(), |w| format!("{w:.2}")),
             ];
@@ -169,28 +50,29 @@ impl Summary {
                     Some(e) => rec.extend([
                         format!("{}", e.value),
                         opt(e.standard_error),
-                        e.unit.clone(),
+                        text(&e.unit),
                         opt(e.truth),
                         opt(e.relative_error),
                     ]),
                     None => rec.extend(std::iter::repeat_n(String::new(), 5)),
                 }
             }
-            rec.push(r.reasons.join(" | "));
-            rec.push(r.warnings.join(" | "));
-            rec.push(r.error.clone().unwrap_or_default());
+            rec.push(text(&r.reasons.join(" | ")));
+            rec.push(text(&r.warnings.join(" | ")));
+            rec.push(text(r.error.as_deref().unwrap_or_default()));
             w.write_record(&rec).expect("in memory");
         }
         String::from_utf8(w.into_inner().expect("in memory")).expect("UTF-8 fields")
     }
 
-    /// summary.md: a Markdown table, each row's name linked to its report.html.
+    /// summary.md: a Markdown table, each row's name linked to its report.html. Text from files
+    /// and messages is escaped (`md_text`): it cannot open HTML, a link or a column.
     pub fn markdown(&self) -> String {
         let mut s = format!(
             "# Batch {}\n\n{} of {} rows failed{}.\n\n\
              | row | name | model | status | verdict | estimates | epochs | wall (s) | reasons, warnings, error |\n\
              |---:|---|---|---|---|---|---:|---:|---|\n",
-            self.batch_file,
+            md_text(&self.batch_file),
             self.failed(),
             self.own_rows().count(),
             self.shard.map_or(String::new(), |s| format!(
@@ -198,28 +80,33 @@ impl Summary {
                 s.index, s.count
             ))
         );
-        let cell = |t: &str| t.replace('|', "\\|").replace('\n', " ");
         for r in self.own_rows() {
             let name = if matches!(r.status, RowStatus::Ok | RowStatus::Unreliable) {
-                format!("[{}]({}/report.html)", r.name, r.dir)
+                // The folder is the row's sanitised name (letters, digits, `._-`), or a merge's
+                // relative path to it: `<…>` keeps any other character out of the link.
+                format!(
+                    "[{}](<{}/report.html>)",
+                    md_text(&r.name),
+                    r.dir.replace(['<', '>', '\n', '\r'], "_")
+                )
             } else {
-                r.name.clone()
+                md_text(&r.name)
             };
-            let estimates: Vec<String> = r.estimates.iter().map(Estimate::text).collect();
-            let mut notes = r.reasons.clone();
-            notes.extend(r.warnings.iter().cloned());
-            notes.extend(r.error.iter().map(|e| format!("**error**: {e}")));
+            let estimates: Vec<String> = r.estimates.iter().map(|e| md_text(&e.text())).collect();
+            let mut notes: Vec<String> = r.reasons.iter().map(|t| md_text(t)).collect();
+            notes.extend(r.warnings.iter().map(|t| md_text(t)));
+            notes.extend(r.error.iter().map(|e| format!("**error**: {}", md_text(e))));
             s += &format!(
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                 r.row,
-                cell(&name),
-                r.model,
+                name,
+                md_text(&r.model),
                 r.status.word(),
-                r.verdict.as_deref().unwrap_or(""),
-                cell(&estimates.join("<br>")),
+                md_text(r.verdict.as_deref().unwrap_or("")),
+                estimates.join("<br>"),
                 r.epochs.map_or(String::new(), |e| e.to_string()),
                 r.wall_s.map_or(String::new(), |w| format!("{w:.1}")),
-                cell(&notes.join("<br>"))
+                notes.join("<br>")
             );
         }
         s
@@ -248,6 +135,7 @@ impl Estimate {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::batch::summary::RowResult;
 
     fn row(n: usize, status: RowStatus, estimates: Vec<Estimate>) -> RowResult {
         RowResult {
@@ -295,10 +183,54 @@ mod tests {
         assert!(lines[0].contains("g,g_se,g_unit,g_truth,g_rel_error,reasons,warnings,error"));
         assert!(lines[2].ends_with("no such file, x\""), "{csv}");
         assert_eq!(s.failed(), 1);
-        assert!(s.markdown().contains("[01-x](01-x/report.html)"));
+        assert!(s.markdown().contains("[01-x](<01-x/report.html>)"));
         assert_eq!(
             g.text(),
             "g = 9.87000 ± 0.012 m/s^2 (truth 9.81000, +0.60 %)"
         );
+    }
+
+    #[test]
+    fn text_from_files_cannot_become_a_formula_html_or_a_column() {
+        let mut r = row(1, RowStatus::Ok, vec![]);
+        r.input = "=HYPERLINK(\"http://x\",\"y\").mp4".into();
+        r.model = "@SUM(A1).toml".into();
+        r.warnings = vec!["-2+3 <script>alert(1)</script> | x".into()];
+        r.estimates.push(Estimate {
+            name: "k".into(),
+            value: -0.5,
+            unit: "+1 <b>".into(),
+            truth: None,
+            relative_error: None,
+            standard_error: None,
+        });
+        let s = Summary {
+            format: "x".into(),
+            batch_file: "<i>runs</i>.csv".into(),
+            shard: None,
+            rows: vec![r],
+        };
+        let csv = s.csv();
+        let mut reader = csv::Reader::from_reader(csv.as_bytes());
+        let rec = reader.records().next().unwrap().unwrap();
+        let cells: Vec<&str> = rec.iter().collect();
+        assert!(
+            cells.contains(&"'=HYPERLINK(\"http://x\",\"y\").mp4"),
+            "{cells:?}"
+        );
+        assert!(cells.contains(&"'@SUM(A1).toml"), "{cells:?}");
+        assert!(cells.contains(&"'+1 <b>"), "{cells:?}");
+        assert!(
+            cells.contains(&"-0.5"),
+            "a number stays a number: {cells:?}"
+        );
+        assert!(cells.iter().any(|c| c.starts_with("'-2+3")), "{cells:?}");
+        let md = s.markdown();
+        assert!(
+            !md.contains("<script>") && !md.contains("<i>") && !md.contains("<b>"),
+            "{md}"
+        );
+        let row_line = md.lines().last().unwrap();
+        assert_eq!(row_line.matches(" | ").count(), 8, "nine cells: {row_line}");
     }
 }

@@ -2,10 +2,14 @@
 //! parameters in latent units (Torricelli's k, the constant accelerations) need the latent's
 //! scale α (z = α·q + c for the physical quantity q), which two or more reference frames of
 //! known q give: `--reference CLIP:FRAME=VALUE,...`, or meta.json for `gen` data. This module
-//! holds the resolved `Calibration` and the helpers the models' `derive` use.
+//! holds the resolved `Calibration` and the helpers the models' `derive` use; `positions.rs`
+//! the bodies' positions of a vector latent.
+
+mod positions;
 
 use physvid_shared::cli::num;
-use physvid_shared::{AffineFit, SimilarityFit};
+use physvid_shared::AffineFit;
+pub use positions::{position_scale, POSITION_FIT_R2};
 
 /// What turns latent units into SI units, resolved from the flags and meta.json.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
@@ -145,32 +149,6 @@ impl Calibration {
         }
     }
 
-    /// Checks the body-position references against a latent of `dims` numbers per frame: each
-    /// gives `dims` finite numbers, and one frame is not given two different sets.
-    pub fn check_positions(&self, dims: usize) -> Result<(), String> {
-        let origin = self.origin();
-        for (i, (c, f, p)) in self.positions.iter().enumerate() {
-            if p.len() != dims {
-                return Err(format!(
-                    "{origin} {c}:{f} gives {} numbers; this model's latent has {dims} per frame (x1/y1/x2/y2…)",
-                    p.len()
-                ));
-            }
-            if let Some(v) = p.iter().find(|v| !v.is_finite()) {
-                return Err(format!("{origin} {c}:{f}: {v} is not a finite position"));
-            }
-            if let Some((c2, f2, _)) = self.positions[..i]
-                .iter()
-                .find(|(c2, f2, p2)| c2 == c && f2 == f && p2 != p)
-            {
-                return Err(format!(
-                    "{origin} {c2}:{f2} is given twice with different positions"
-                ));
-            }
-        }
-        Ok(())
-    }
-
     /// How a reference point is named in messages: the flag or the file it came from.
     pub fn origin(&self) -> &'static str {
         if self.source == "flags" {
@@ -267,45 +245,6 @@ pub fn needs_reference(what: &str) -> String {
          CLIP:FRAME=VALUE,... to get it in SI units"
     )
 }
-
-/// The scale of the similarity from the bodies' true positions to their latents at the
-/// reference frames (every body's point of every frame), and the fit's R²; `None` with fewer
-/// than two frames or without spread. All the points, not only the relative vectors: twice
-/// the points and the wider spread of the positions (measured: the rest length's calibration
-/// error from five frames +0.65 % with the positions, +1.9 % with the relative vectors alone;
-/// the centre of mass comes out on the relative vector's scale, 0.0318 against 0.0316–0.0318
-/// over the validation clips).
-pub fn position_scale(cal: &Calibration, latents: &[Vec<f64>]) -> Option<(f64, f64)> {
-    if cal.positions.len() < 2 || latents.len() != cal.positions.len() {
-        return None;
-    }
-    let points = |v: &[f64]| -> Vec<[f64; 2]> { v.chunks(2).map(|c| [c[0], c[1]]).collect() };
-    let latent: Vec<[f64; 2]> = latents.iter().flat_map(|v| points(v)).collect();
-    // The encoder may have either body first: the better of both pairings.
-    [false, true]
-        .into_iter()
-        .filter_map(|swap| {
-            let truth: Vec<[f64; 2]> = cal
-                .positions
-                .iter()
-                .flat_map(|p| {
-                    let mut q = points(&p.2);
-                    if swap {
-                        q.reverse();
-                    }
-                    q
-                })
-                .collect();
-            SimilarityFit::of(&truth, &latent)
-        })
-        .filter(|f| f.scale > 0.0)
-        .max_by(|a, b| a.r2.total_cmp(&b.r2))
-        .map(|f| (f.scale, f.r2))
-}
-
-/// Below this R² the reference frames' relative vectors are not a similarity of the latent's:
-/// the rest length in pixels is then suspect.
-pub const POSITION_FIT_R2: f64 = 0.98;
 
 #[cfg(test)]
 mod tests {

@@ -1,0 +1,99 @@
+//! What may be written where, judged before any work and again under the folder's lock: a
+//! folder that is new, empty or this tool's (its manifest), whose entries under the names to be
+//! written are the tool's own, with no link out of it.
+
+use super::error::{io, OutputError};
+use super::manifest::{Manifest, MANIFEST};
+use std::path::Path;
+
+/// Checks, before any work, that `dir` may be written by this tool with the entries `names`:
+/// a writable folder (or one that can be made) that is new, empty or this tool's, whose
+/// entries under `names` are the tool's, with no link out of it; `force` allows a folder or
+/// names that are not the tool's. Reads only.
+pub fn check(flag: &str, dir: &Path, names: &[&str], force: bool) -> Result<(), OutputError> {
+    crate::atomic::check_writable_dir(flag, dir).map_err(|reason| OutputError::Unusable {
+        flag: flag.into(),
+        dir: dir.to_path_buf(),
+        reason: reason
+            .strip_prefix(&format!("{flag} {}: ", dir.display()))
+            .unwrap_or(&reason)
+            .to_string(),
+    })?;
+    if !dir.is_dir() || force {
+        return Ok(());
+    }
+    let manifest = Manifest::read(dir);
+    judge(flag, dir, manifest.as_ref(), names)
+}
+
+/// The refusals of [`check`] for an existing folder, without `--force`.
+pub(super) fn judge(
+    flag: &str,
+    dir: &Path,
+    manifest: Option<&Manifest>,
+    names: &[&str],
+) -> Result<(), OutputError> {
+    let entries: Vec<String> = std::fs::read_dir(dir)
+        .map_err(io(dir))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != MANIFEST)
+        .collect();
+    let Some(manifest) = manifest else {
+        if entries.is_empty() {
+            return Ok(());
+        }
+        let mut shown: Vec<&String> = entries.iter().collect();
+        shown.sort();
+        let mut names = shown
+            .iter()
+            .take(3)
+            .map(|n| crate::term::one_line(n).into_owned())
+            .collect::<Vec<_>>()
+            .join(", ");
+        if shown.len() > 3 {
+            names += ", …";
+        }
+        return Err(OutputError::NotOurs {
+            flag: flag.into(),
+            dir: dir.to_path_buf(),
+            count: entries.len(),
+            names,
+        });
+    };
+    for name in &entries {
+        let path = dir.join(name);
+        if let Some(target) = link_out(dir, &path) {
+            return Err(OutputError::LinkOut {
+                flag: flag.into(),
+                dir: dir.to_path_buf(),
+                name: name.clone(),
+                target,
+            });
+        }
+    }
+    for name in names {
+        let path = dir.join(name);
+        if path.symlink_metadata().is_ok() && !manifest.owns(dir, name) {
+            return Err(OutputError::NotOurFile {
+                flag: flag.into(),
+                path,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Where `path` leads when it is a symbolic link to somewhere outside `dir` (or to nothing).
+fn link_out(dir: &Path, path: &Path) -> Option<String> {
+    let meta = path.symlink_metadata().ok()?;
+    if !meta.file_type().is_symlink() {
+        return None;
+    }
+    let target = std::fs::read_link(path).ok()?;
+    let shown = target.display().to_string();
+    match (std::fs::canonicalize(path), std::fs::canonicalize(dir)) {
+        (Ok(t), Ok(d)) if t.starts_with(&d) => None,
+        _ => Some(shown),
+    }
+}
