@@ -51,6 +51,8 @@ pub fn common_cut(
         Some(s) => (s, "--stride".to_string()),
         None => {
             let survey = video::survey(input, &info, (flags.start, flags.end), true)?;
+            // Where a hand takes the picture at an end, the free motion is what is kept.
+            let kept = survey.free.map_or(kept, |f| f.last + 1 - f.first);
             stride_for(survey.period_frames, frames, kept, &seconds)
         }
     };

@@ -95,12 +95,14 @@ impl EstimateArgs {
 
     /// What to load, as the data layer reads it.
     pub fn load_request(&self) -> crate::data::LoadRequest {
+        let mut recording = self.recording.request();
+        recording.measured_at = self.model.reference_times().iter().map(|t| t.0).collect();
         crate::data::LoadRequest {
             input: self.input().to_path_buf(),
             model: self.model.given(),
             trying: self.trying,
             dt: self.model.dt,
-            recording: self.recording.request(),
+            recording,
         }
     }
 

@@ -122,6 +122,7 @@ impl RecordingArgs {
             hop: self.hop,
             preview: self.preview,
             given: self.given(),
+            measured_at: Vec::new(),
         }
     }
 

@@ -236,9 +236,13 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     let whole: Vec<(f64, f64)> = out[..=end].iter().map(|q| (q.0 as f64, q.1)).collect();
     let fitted = perspective::fit(&whole, first_k as f64);
     let bend = fitted.and_then(|f| f.bend);
+    // A release before the recording's first frame (the object already moving when filming
+    // began: a pipe let go a tenth of a second before) stands where the parabola puts it, as far
+    // back as the projective fit looks (a third of the descent).
+    let before = 0.3 * (last - first_k) as f64;
     let release = fitted
         .map_or(-b / (2.0 * c), |f| f.release)
-        .clamp(0.0, first_k as f64);
+        .clamp((first_k as f64 - before).min(0.0), first_k as f64);
     let frames = last as f64 - release;
     let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;
     Some(Descent {
@@ -308,6 +312,15 @@ mod tests {
             *s = 5.0;
         }
         assert_eq!(crowded(&path, &late, 39), 0.0);
+    }
+
+    #[test]
+    fn an_object_already_moving_in_the_first_frame_was_released_before_it() {
+        // Released at frame −3.6 (a pipe let go 0.12 s before filming began), 40 frames seen.
+        let path: Vec<(usize, f64)> = (0..40).map(|k| (k, (k as f64 + 3.6).powi(2))).collect();
+        let d = along(&path, [0.0, 1.0], 2000.0).expect("a descent");
+        assert!((d.release + 3.6).abs() < 0.3, "{}", d.release);
+        assert_eq!(d.first, 0);
     }
 
     #[test]

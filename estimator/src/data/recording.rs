@@ -9,6 +9,7 @@ use super::{LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
+use physvid_shared::video::free::FreeSpan;
 use physvid_shared::video::VideoOptions;
 use std::path::Path;
 
@@ -112,7 +113,30 @@ pub fn load_recording(
     let kept = if model.released_from_rest() {
         kept::trim_to_descent(&mut decoded, &opts, timeline_fps, &mut warnings)
     } else {
-        stillness::trim(&mut decoded, &opts, timeline_fps, &mut warnings)
+        // The survey's free motion, in frames of the decode (by their times where the frames
+        // were put on their clock).
+        let free = survey.as_ref().and_then(|s| s.free).map(|f| {
+            let times = info
+                .as_ref()
+                .map(|i| i.times_within(flags.start, flags.end))
+                .unwrap_or_default();
+            let at = |i: usize| match times.get(i) {
+                Some(t) => ((t - times[0]) * timeline_fps).round() as usize,
+                None => i,
+            };
+            // A time the user measured the system at (a --reference) is in the free motion.
+            let frame_of = |t: f64| (t - flags.start.unwrap_or(0.0)) * timeline_fps;
+            let measured = flags.measured_at.iter().map(|&t| frame_of(t));
+            let (early, late) = measured.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), f| {
+                (a.min(f), b.max(f))
+            });
+            FreeSpan {
+                first: at(f.first).min(early.max(0.0).floor() as usize),
+                last: at(f.last).max(late.max(0.0).ceil() as usize),
+                ..f
+            }
+        });
+        stillness::trim(&mut decoded, &opts, timeline_fps, free, &mut warnings)
     };
     let object = kept
         .descent

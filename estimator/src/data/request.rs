@@ -39,6 +39,9 @@ pub struct RecordingRequest {
     pub hop: Option<usize>,
     /// `--preview`: write clips.png.
     pub preview: bool,
+    /// The `--reference` times (seconds of the file's timeline): frames the user measured the
+    /// system at, which the free motion found in the frames is taken to include.
+    pub measured_at: Vec<f64>,
     /// The recording flags given, as written (a data set refuses them by name).
     pub given: Vec<String>,
 }

@@ -8,6 +8,7 @@
 
 use super::kept::{Kept, Outside};
 use physvid_shared::cli::approx;
+use physvid_shared::video::free::FreeSpan;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
 
 /// A frame is still while it differs from the recording's first (or last) frames by less than
@@ -74,27 +75,42 @@ pub fn moving_span(frames: &[f32], per: usize, min_still: usize) -> Option<(usiz
     (first > 0 || last < n - 1).then_some((first, last))
 }
 
-/// Leaves out the still frames of `decoded` (cut with `opts`) at each end `--start`/`--end` do
-/// not fix, where at least two clips still fit, saying so in `warnings`.
+/// Leaves out what is not the free motion of `decoded` (cut with `opts`) at each end
+/// `--start`/`--end` do not fix, where at least two clips still fit, saying so in `warnings`:
+/// the frames `free` leaves out (something beside the object takes the picture: a hand
+/// holding, pulling or stopping it; frames of the decode), then the still frames within.
 pub fn trim(
     decoded: &mut DecodedVideo,
     opts: &VideoOptions,
     timeline_fps: f64,
+    free: Option<FreeSpan>,
     warnings: &mut Vec<String>,
 ) -> Kept {
     let mut kept = Kept::untrimmed(opts);
     let n = decoded.frame_count();
     let min_still = ((MIN_STILL_S * decoded.fps).round() as usize).max(2);
     let per = decoded.size.0 * decoded.size.1;
-    let Some((first, last)) = moving_span(&decoded.frames, per, min_still) else {
-        return kept;
-    };
+    // The free motion's frames (the flags' ends stand).
+    let lo = free
+        .filter(|_| opts.start.is_none())
+        .map_or(0, |f| f.first.min(n - 1));
+    let hi = free
+        .filter(|_| opts.end.is_none())
+        .map_or(n - 1, |f| f.last.clamp(lo, n - 1));
+    let inner = &decoded.frames[lo * per..(hi + 1) * per];
+    let (still_first, still_last) =
+        moving_span(inner, per, min_still).map_or((lo, hi), |(a, b)| (lo + a, lo + b));
     let span = (opts.frames_per_clip - 1) * opts.stride;
-    let first = if opts.start.is_none() { first } else { 0 };
-    // One clip's span of the settled state kept.
-    let settled = last;
-    let last = (last + span).min(n - 1);
-    let last = if opts.end.is_none() && n - 1 - last >= min_still {
+    let first = if opts.start.is_none() { still_first } else { 0 };
+    // One clip's span of the settled state kept (where the picture settles, not where a hand
+    // comes in).
+    let settled = still_last;
+    let last = if still_last < hi {
+        (still_last + span).min(hi)
+    } else {
+        hi
+    };
+    let last = if opts.end.is_none() && (n - 1 - last >= min_still || hi < n - 1) {
         last
     } else {
         n - 1
@@ -103,27 +119,46 @@ pub fn trim(
         return kept;
     }
     let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
-    let held = format!(
-        "the picture is still before {} s and after {} s",
-        approx(at(first)),
-        approx(at(settled))
-    );
+    let mut why = Vec::new();
+    if lo > 0 || hi < n - 1 {
+        let f = free.expect("a free span");
+        why.push(format!(
+            "something beside the object takes up to {:.0} % of the picture (the object {:.1} %: \
+             a hand holding, pulling or stopping it?) {}",
+            100.0 * f.intrusion_share,
+            100.0 * f.object_share,
+            match (lo > 0, hi < n - 1) {
+                (true, true) => format!("until {} s and from {} s", approx(at(lo)), approx(at(hi))),
+                (true, false) => format!("until {} s", approx(at(lo))),
+                _ => format!("from {} s", approx(at(hi))),
+            }
+        ));
+    }
+    if still_first > lo || still_last < hi {
+        why.push(format!(
+            "the picture is still before {} s and after {} s",
+            approx(at(still_first)),
+            approx(at(settled))
+        ));
+    }
+    let why = why.join("; ");
     if !kept.keep(decoded, opts, (first, last), timeline_fps) {
         warnings.push(format!(
-            "{held}, but two clips of {} frames at stride {} do not fit between: every frame \
+            "{why}, but two clips of {} frames at stride {} do not fit between: every frame \
              kept (lower --stride, or trim with --start/--end)",
             opts.frames_per_clip, opts.stride
         ));
         return kept;
     }
-    if first > 0 {
+    // A reference among still frames is taken at the kept end; among a hand's, refused.
+    if still_first > lo && lo == 0 {
         kept.before = Outside::Still;
     }
-    if last < n - 1 {
+    if last < n - 1 && still_last < hi && hi == n - 1 {
         kept.after = Outside::Still;
     }
     warnings.push(format!(
-        "{held}: kept {}–{} s, where it moves and one clip's span after (--start/--end choose)",
+        "{why}: kept {}–{} s, the free motion (--start/--end choose)",
         approx(kept.start.unwrap_or(0.0)),
         approx(kept.end.unwrap_or(at(last)))
     ));

@@ -7,6 +7,7 @@ pub mod clock;
 mod decode;
 mod decoded;
 mod folder;
+pub mod free;
 mod probe;
 mod region;
 mod resize;

@@ -8,6 +8,7 @@
 //! kept.
 
 use super::decode::read_full;
+use super::free::{free_span, FreeSpan};
 use super::probe::tool;
 use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
@@ -52,6 +53,10 @@ pub struct Survey {
     /// (`timescale::Thumbnails::period`), when asked for; `None` for a motion that does not
     /// come back.
     pub period_frames: Option<f64>,
+    /// The free motion (`free`), in frames surveyed, where something beside the object (a
+    /// hand) takes the picture at the start or the end: the map, the region and the period
+    /// are measured on it alone.
+    pub free: Option<FreeSpan>,
 }
 
 /// Surveys `input` (trimmed to `start`..`end` seconds, as the decode will be) for where it
@@ -81,6 +86,8 @@ pub fn survey(
         "0:v:0",
         "-fps_mode",
         "passthrough",
+        "-enc_time_base",
+        "-1",
         "-vf",
         &format!("scale={w}:{h}:flags=area"),
         "-f",
@@ -96,16 +103,24 @@ pub fn survey(
         .spawn()
         .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
     let mut stdout = child.stdout.take().expect("piped stdout");
+    // The frames are held (a byte a pixel at this size): the free motion is found first, and
+    // only it is measured.
+    let mut frames = Vec::new();
     let mut buf = vec![0u8; w * h];
-    let mut stats = MotionStats::new(w * h);
-    let mut thumbnails = period.then(|| Thumbnails::new((w, h)));
     while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
-        stats.add(&buf);
-        if let Some(t) = thumbnails.as_mut() {
-            t.add(&buf);
-        }
+        frames.extend_from_slice(&buf);
     }
     let _ = child.wait();
+    let free = free_span(&frames, (w, h));
+    let span = free.map_or(0..frames.len() / (w * h), |f| f.first..f.last + 1);
+    let mut stats = MotionStats::new(w * h);
+    let mut thumbnails = period.then(|| Thumbnails::new((w, h)));
+    for frame in frames.chunks_exact(w * h).skip(span.start).take(span.len()) {
+        stats.add(frame);
+        if let Some(t) = thumbnails.as_mut() {
+            t.add(frame);
+        }
+    }
     let found = stats.survey((w, h), (info.width, info.height));
     // The period where the picture moves most (in survey pixels).
     let region = found.crop.map(|c| {
@@ -115,6 +130,7 @@ pub fn survey(
     });
     Ok(Survey {
         period_frames: thumbnails.and_then(|t| t.period(region)),
+        free,
         ..found
     })
 }
@@ -220,6 +236,7 @@ impl MotionStats {
             map_size: size,
             frames: self.n,
             period_frames: None,
+            free: None,
         };
         if self.n < 3 || top <= 0.0 {
             return empty;
