@@ -48,6 +48,14 @@ pub fn check_out(out: &Path, input: Option<&Path>, force: bool) -> Result<(), Es
             )));
         }
     }
+    // A run folder of a version before the mark is this tool's: its report says so.
+    let report_of_estimate = |dir: &Path| {
+        std::fs::read(dir.join("report.json"))
+            .ok()
+            .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+            .is_some_and(|r| r["tool"] == "estimate")
+    };
+    outdir::adopt(out, "estimate", &OUTPUTS, report_of_estimate)?;
     Ok(outdir::check("--out", out, &OUTPUTS, force)?)
 }
 

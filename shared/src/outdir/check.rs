@@ -97,3 +97,88 @@ fn link_out(dir: &Path, path: &Path) -> Option<String> {
         _ => Some(shown),
     }
 }
+
+/// Marks `dir` as `program`'s where it holds nothing but `names` (and the lock file versions
+/// before the mark used) and `made_here` says the files are the tool's (a run folder of an
+/// earlier version, recognised by its report): the files listed as they are. Whether it did.
+pub fn adopt(
+    dir: &Path,
+    program: &str,
+    names: &[&str],
+    made_here: impl Fn(&Path) -> bool,
+) -> Result<bool, OutputError> {
+    if Manifest::read(dir).is_some() || !dir.is_dir() {
+        return Ok(false);
+    }
+    let mut manifest = Manifest::new(program);
+    let mut lock = None;
+    for entry in std::fs::read_dir(dir).map_err(io(dir))? {
+        let entry = entry.map_err(io(dir))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let meta = entry.path().symlink_metadata().map_err(io(dir))?;
+        if name == ".lock" && meta.is_file() && meta.len() == 0 {
+            lock = Some(entry.path());
+            continue;
+        }
+        if !meta.is_file() || !names.contains(&name.as_str()) {
+            return Ok(false);
+        }
+        manifest
+            .entries
+            .insert(name, super::manifest::Identity::of(&meta));
+    }
+    if manifest.entries.is_empty() || !made_here(dir) {
+        return Ok(false);
+    }
+    let path = dir.join(MANIFEST);
+    crate::atomic::write_atomic(&path, &manifest.bytes(program)).map_err(|e| OutputError::Io {
+        path,
+        source: std::io::Error::other(e.to_string()),
+    })?;
+    // The empty lock file those versions left: the folder itself is locked now.
+    if let Some(lock) = lock {
+        let _ = std::fs::remove_file(lock);
+    }
+    Ok(true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_folder_of_an_earlier_version_is_adopted_and_nothing_else() {
+        let tmp = tempfile::tempdir().unwrap();
+        let names = ["report.json", "metrics.csv"];
+        let ours = |d: &Path| {
+            std::fs::read_to_string(d.join("report.json")).is_ok_and(|t| t.contains("estimate"))
+        };
+        let folder = |name: &str, files: &[(&str, &str)]| {
+            let d = tmp.path().join(name);
+            std::fs::create_dir(&d).unwrap();
+            for (f, text) in files {
+                std::fs::write(d.join(f), text).unwrap();
+            }
+            d
+        };
+        let old = folder(
+            "old",
+            &[
+                ("report.json", "estimate"),
+                ("metrics.csv", "x"),
+                (".lock", ""),
+            ],
+        );
+        assert!(adopt(&old, "estimate", &names, ours).unwrap());
+        assert!(check("--out", &old, &names, false).is_ok());
+        assert!(!old.join(".lock").exists());
+        let mixed = folder(
+            "mixed",
+            &[("report.json", "estimate"), ("notes.txt", "mine")],
+        );
+        assert!(!adopt(&mixed, "estimate", &names, ours).unwrap());
+        let foreign = folder("foreign", &[("report.json", "my own report")]);
+        assert!(!adopt(&foreign, "estimate", &names, ours).unwrap());
+        assert!(check("--out", &foreign, &names, false).is_err());
+    }
+}

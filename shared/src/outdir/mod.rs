@@ -13,7 +13,7 @@ mod dir;
 mod error;
 mod manifest;
 
-pub use check::check;
+pub use check::{adopt, check};
 pub use dir::{OutputDir, Wait};
 pub use error::OutputError;
 pub use manifest::{Identity, Manifest, MANIFEST};
