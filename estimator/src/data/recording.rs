@@ -126,13 +126,13 @@ pub fn load_recording(
             };
             // A time the user measured the system at (a --reference) is in the free motion.
             let frame_of = |t: f64| (t - flags.start.unwrap_or(0.0)) * timeline_fps;
-            let measured = flags.measured_at.iter().map(|&t| frame_of(t));
-            let (early, late) = measured.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), f| {
-                (a.min(f), b.max(f))
-            });
+            let early = flags
+                .measured_at
+                .iter()
+                .map(|&t| frame_of(t))
+                .fold(f64::INFINITY, f64::min);
             FreeSpan {
                 first: at(f.first).min(early.max(0.0).floor() as usize),
-                last: at(f.last).max(late.max(0.0).ceil() as usize),
                 ..f
             }
         });

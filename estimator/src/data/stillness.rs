@@ -77,8 +77,9 @@ pub fn moving_span(frames: &[f32], per: usize, min_still: usize) -> Option<(usiz
 
 /// Leaves out what is not the free motion of `decoded` (cut with `opts`) at each end
 /// `--start`/`--end` do not fix, where at least two clips still fit, saying so in `warnings`:
-/// the frames `free` leaves out (something beside the object takes the picture: a hand
-/// holding, pulling or stopping it; frames of the decode), then the still frames within.
+/// the frames before `free.first` (something beside the object takes the picture: a hand
+/// holding, pulling or steadying it; a frame of the decode), then the still frames at either
+/// end of the rest.
 pub fn trim(
     decoded: &mut DecodedVideo,
     opts: &VideoOptions,
@@ -90,27 +91,19 @@ pub fn trim(
     let n = decoded.frame_count();
     let min_still = ((MIN_STILL_S * decoded.fps).round() as usize).max(2);
     let per = decoded.size.0 * decoded.size.1;
-    // The free motion's frames (the flags' ends stand).
+    // The free motion's first frame (the flag's start stands).
     let lo = free
         .filter(|_| opts.start.is_none())
         .map_or(0, |f| f.first.min(n - 1));
-    let hi = free
-        .filter(|_| opts.end.is_none())
-        .map_or(n - 1, |f| f.last.clamp(lo, n - 1));
-    let inner = &decoded.frames[lo * per..(hi + 1) * per];
+    let inner = &decoded.frames[lo * per..];
     let (still_first, still_last) =
-        moving_span(inner, per, min_still).map_or((lo, hi), |(a, b)| (lo + a, lo + b));
+        moving_span(inner, per, min_still).map_or((lo, n - 1), |(a, b)| (lo + a, lo + b));
     let span = (opts.frames_per_clip - 1) * opts.stride;
     let first = if opts.start.is_none() { still_first } else { 0 };
-    // One clip's span of the settled state kept (where the picture settles, not where a hand
-    // comes in).
+    // One clip's span of the settled state kept.
     let settled = still_last;
-    let last = if still_last < hi {
-        (still_last + span).min(hi)
-    } else {
-        hi
-    };
-    let last = if opts.end.is_none() && (n - 1 - last >= min_still || hi < n - 1) {
+    let last = (still_last + span).min(n - 1);
+    let last = if opts.end.is_none() && n - 1 - last >= min_still {
         last
     } else {
         n - 1
@@ -120,21 +113,16 @@ pub fn trim(
     }
     let at = |f: usize| Kept::time_of(opts, timeline_fps, f as f64);
     let mut why = Vec::new();
-    if lo > 0 || hi < n - 1 {
-        let f = free.expect("a free span");
+    if let Some(f) = free.filter(|_| lo > 0) {
         why.push(format!(
-            "something beside the object takes up to {:.0} % of the picture (the object {:.1} %: \
-             a hand holding, pulling or stopping it?) {}",
+            "something beside the object takes up to {:.0} % of the picture until {} s (the \
+             object {:.1} %: a hand holding, pulling or steadying it?)",
             100.0 * f.intrusion_share,
-            100.0 * f.object_share,
-            match (lo > 0, hi < n - 1) {
-                (true, true) => format!("until {} s and from {} s", approx(at(lo)), approx(at(hi))),
-                (true, false) => format!("until {} s", approx(at(lo))),
-                _ => format!("from {} s", approx(at(hi))),
-            }
+            approx(at(lo)),
+            100.0 * f.object_share
         ));
     }
-    if still_first > lo || still_last < hi {
+    if still_first > lo || still_last < n - 1 {
         why.push(format!(
             "the picture is still before {} s and after {} s",
             approx(at(still_first)),
@@ -154,7 +142,7 @@ pub fn trim(
     if still_first > lo && lo == 0 {
         kept.before = Outside::Still;
     }
-    if last < n - 1 && still_last < hi && hi == n - 1 {
+    if last < n - 1 {
         kept.after = Outside::Still;
     }
     warnings.push(format!(
