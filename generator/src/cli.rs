@@ -40,7 +40,8 @@ pub struct GenArgs {
     /// scene's z in [-1, 1] (the map and reference frames of known value go to meta.json).
     #[arg(long, value_name = "FILE.toml")]
     pub model: Option<PathBuf>,
-    /// Output directory (created; must be empty unless --force).
+    /// Output directory (created and marked as this tool's, .physvid-outputs.json; must be empty
+    /// unless --force; a refused or stopped run leaves no folder it made).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Number of clips N (≥ 1).
@@ -71,7 +72,8 @@ pub struct GenArgs {
     pub noise: f64,
     #[arg(long, value_name = "NAME:LEVEL,...", help = perturb_help())]
     pub perturb: Option<String>,
-    /// Overwrite the dataset files in a non-empty DIR.
+    /// Write into a non-empty DIR, replacing frames.npy, meta.json and preview.png (nothing of
+    /// another name is touched).
     #[arg(long)]
     pub force: bool,
     /// The scene in colour (spring: PAIG's digit one in the red channel, digit two in green,
