@@ -81,16 +81,11 @@ pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
     let mut command = Command::new(exe);
     command.arg("estimate").args(args).env(WORKER, report);
     physvid_shared::child::die_with_parent(&mut command);
-    let child = command
+    command
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()?;
-    let pid = child.id();
-    physvid_shared::interrupt::child_started(pid);
-    let out = child.wait_with_output();
-    physvid_shared::interrupt::child_ended(pid);
-    let out = out?;
+        .stderr(Stdio::piped());
+    let out = physvid_shared::interrupt::run_child(&mut command)?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         anyhow::bail!(

@@ -82,18 +82,17 @@ impl Write for PendingFile {
 
 /// Writes `bytes` to `path` through a temporary file and a rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DatasetError> {
-    write_atomic_meta(path, bytes).map(|_| ())
-}
-
-/// [`write_atomic`], returning the written file's metadata.
-pub fn write_atomic_meta(path: &Path, bytes: &[u8]) -> Result<std::fs::Metadata, DatasetError> {
-    let err = |source| DatasetError::Write {
+    write_whole(path, bytes).map_err(|source| DatasetError::Write {
         path: path.to_path_buf(),
         source,
-    };
-    let mut pending = PendingFile::create(path).map_err(err)?;
-    pending.file().write_all(bytes).map_err(err)?;
-    pending.commit().map_err(err)
+    })
+}
+
+/// [`write_atomic`] with the I/O error as it is.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut pending = PendingFile::create(path)?;
+    pending.file().write_all(bytes)?;
+    pending.commit().map(|_| ())
 }
 
 /// Checks, before any work, that `dir` is or can become a writable directory: it is one, or

@@ -72,13 +72,24 @@ impl Drop for Registered {
 }
 
 /// Notes that child process `pid` runs: a signal stops it too, until [`child_ended`].
-pub fn child_started(pid: u32) {
+fn child_started(pid: u32) {
     registry().children.push(pid);
 }
 
 /// Notes that child process `pid` ended.
-pub fn child_ended(pid: u32) {
+fn child_ended(pid: u32) {
     registry().children.retain(|p| *p != pid);
+}
+
+/// Runs `command` (its standard streams as it set them) to its end, a signal stopping it
+/// meanwhile, and returns its output.
+pub fn run_child(command: &mut std::process::Command) -> std::io::Result<std::process::Output> {
+    let child = command.spawn()?;
+    let pid = child.id();
+    child_started(pid);
+    let out = child.wait_with_output();
+    child_ended(pid);
+    out
 }
 
 /// From now on SIGINT, SIGTERM and SIGHUP stop the registered children, remove the registered

@@ -198,18 +198,11 @@ fn run_row(
     let mut command = Command::new(exe);
     command.args(&argv);
     physvid_shared::child::die_with_parent(&mut command);
-    let output = command
+    command
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .and_then(|child| {
-            interrupt::child_started(child.id());
-            let id = child.id();
-            let out = child.wait_with_output();
-            interrupt::child_ended(id);
-            out
-        });
+        .stderr(std::process::Stdio::piped());
+    let output = interrupt::run_child(&mut command);
     result.wall_s = Some(start.elapsed().as_secs_f64());
     let output = match output {
         Ok(o) => o,

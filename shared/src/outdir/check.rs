@@ -131,10 +131,7 @@ pub fn adopt(
         return Ok(false);
     }
     let path = dir.join(MANIFEST);
-    crate::atomic::write_atomic(&path, &manifest.bytes(program)).map_err(|e| OutputError::Io {
-        path,
-        source: std::io::Error::other(e.to_string()),
-    })?;
+    crate::atomic::write_whole(&path, &manifest.bytes(program)).map_err(io(&path))?;
     // The empty lock file those versions left: the folder itself is locked now.
     if let Some(lock) = lock {
         let _ = std::fs::remove_file(lock);

@@ -27,9 +27,9 @@ pub struct OutputDir {
     manifest: Manifest,
     force: bool,
     _lock: File,
-    /// Set while a folder this run created holds nothing of its own yet.
+    /// Set while a folder this run created holds nothing of its own yet (and the run is not
+    /// over).
     created: Option<Registered>,
-    finished: bool,
 }
 
 impl OutputDir {
@@ -79,7 +79,6 @@ impl OutputDir {
             force,
             _lock: lock,
             created: registered,
-            finished: false,
         };
         out.save_manifest()?;
         Ok(out)
@@ -207,20 +206,12 @@ impl OutputDir {
 
     fn save_manifest(&mut self) -> Result<(), OutputError> {
         let path = self.path.join(MANIFEST);
-        crate::atomic::write_atomic(&path, &self.manifest.bytes(self.program)).map_err(
-            |e| match e {
-                crate::DatasetError::Write { source, .. } => OutputError::Io { path, source },
-                other => OutputError::Io {
-                    path,
-                    source: std::io::Error::other(other.to_string()),
-                },
-            },
-        )
+        crate::atomic::write_whole(&path, &self.manifest.bytes(self.program)).map_err(io(&path))
     }
 
     /// The run is over: the folder stays, whatever it holds.
     pub fn finish(mut self) {
-        self.finished = true;
+        self.created = None;
     }
 }
 
@@ -228,7 +219,7 @@ impl Drop for OutputDir {
     /// A folder this run created and wrote nothing of its own into is removed again (a run
     /// refused or failed leaves no empty folder behind).
     fn drop(&mut self) {
-        if !self.finished && self.created.is_some() {
+        if self.created.is_some() {
             crate::interrupt::remove_if_unfilled(&self.path, MANIFEST);
         }
     }

@@ -161,13 +161,13 @@ mod tests {
             free_span(&scene(120, |t| (20..24).contains(&t)), (40, 30)),
             None
         );
-        // The object's own progression (a tank draining: the water's dark column shrinks from
-        // 28 rows to 2 over the recording) departs from the median frame the more the further
-        // from the middle: not a hand.
-        let mut fading = scene(120, |_| false);
+        // The object's own progression (a light dimming to its floor, a tank draining to its
+        // outlet: the dark column shrinks from 28 rows to 14 over the first 80 of 200 frames and
+        // stays) departs from the median frame less and less: not steady, not a hand.
+        let mut fading = scene(200, |_| false);
         for (t, f) in fading.chunks_exact_mut(40 * 30).enumerate() {
-            let level = 30 - (28.0 - 26.0 * t as f64 / 119.0).round() as usize;
-            for r in level..30 {
+            let rows = (28.0 - 14.0 * (t as f64 / 80.0).min(1.0)).round() as usize;
+            for r in 30 - rows..30 {
                 f[r * 40..r * 40 + 12].iter_mut().for_each(|v| *v = 40);
             }
         }
