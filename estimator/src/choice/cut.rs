@@ -42,7 +42,11 @@ pub fn common_cut(
     let kept = info
         .frames_within(flags.start, flags.end)
         .unwrap_or(info.frame_times.len());
-    let fps = flags.fps.or(info.capture_fps).or(info.container_fps);
+    let fps = flags
+        .fps
+        .map(|f| info.read_rate(f))
+        .or(info.capture_fps)
+        .or(info.container_fps);
     let seconds = |frames: f64| match fps {
         Some(f) => format!("{} s", approx(frames / f)),
         None => format!("{} frames", approx(frames)),

@@ -19,7 +19,8 @@ pub const MAX_FPS: f64 = 1e7;
 pub struct RecordingArgs {
     /// Frames per second of real time [default: a slow-motion file's capture tag
     /// (com.android.capture.fps: 120 where the container says 30), else the container's, else
-    /// the frames' timestamps']; required for an image folder.
+    /// the frames' timestamps']; required for an image folder. An interlaced recording (its
+    /// rows comb where it moves) is read as its fields, at twice this rate.
     #[arg(long)]
     pub fps: Option<f64>,
     /// What part of the frame the encoder sees: X,Y,W,H in pixels of the displayed (rotated)

@@ -166,6 +166,7 @@ mod tests {
                 capture_fps: None,
                 rotation: 0,
                 expected_frames: None,
+                fields: None,
                 frame_times: Vec::new(),
             },
             fps: 10.0,

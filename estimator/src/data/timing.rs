@@ -78,8 +78,25 @@ pub(super) fn frame_rate(
     let capture = info
         .and_then(|i| i.capture_fps.zip(i.container_fps))
         .filter(|(capture, container)| (capture / container - 1.0).abs() > 0.01);
+    if let Some(f) = info.and_then(|i| i.fields) {
+        warnings.push(format!(
+            "interlaced ({}, as {} says{}): each frame's two fields are read as frames of \
+             their own, at twice the frame rate",
+            f.order.words(),
+            match f.by {
+                "picture" => "the picture",
+                _ => "the container's field-order tag",
+            },
+            f.voting.map_or(String::new(), |v| format!(
+                ": on {} % of the frame pairs that move, the rows woven from one frame's field and \
+                 the next frame's other comb clearly less than the other weave",
+                approx(100.0 * v)
+            )),
+        ));
+    }
     Ok(match (flags.fps, capture, container, stamped) {
-        (Some(f), _, _, _) => (f, "--fps"),
+        // --fps is the recording's frames per second; an interlaced one's fields come at twice.
+        (Some(f), _, _, _) => (info.map_or(f, |i| i.read_rate(f)), "--fps"),
         (None, Some((capture, container)), _, _) => {
             warnings.push(format!(
                 "the container says {} fps but the file's com.android.capture.fps tag says {} \

@@ -6,9 +6,9 @@
 use super::clock::Clock;
 use super::decoded::{cut, DecodedVideo};
 use super::folder::{check_alike, concat_list, damaged_folder, numbered};
-use super::probe::tool;
+use super::tools::{read_full, tool};
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
-use std::io::{BufRead, Read};
+use std::io::BufRead;
 use std::path::Path;
 use std::process::Stdio;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -49,6 +49,7 @@ pub fn decode(
         info.container_fps = None;
         info.frame_times = Vec::new();
         info.expected_frames = Some(files.len());
+        info.fields = None;
         let list = concat_list(&files)?;
         cmd.args(["-f", "concat", "-safe", "0", "-i"])
             .arg(list.path());
@@ -94,6 +95,9 @@ pub fn decode(
     // Every frame as it is, stamped on the input's own time base: at the default 1/fps a
     // variable-rate file's frames collide in the output and ffmpeg complains about its own
     // muxer.
+    if let Some(filter) = info.filter() {
+        cmd.args(["-vf", &filter]);
+    }
     cmd.args([
         "-map",
         "0:v:0",
@@ -269,20 +273,6 @@ pub fn decode(
         timeline_fps,
         clock_note,
     })
-}
-
-/// Reads until `buf` is full or the stream ends; returns the bytes read.
-pub(super) fn read_full(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
-    let mut n = 0;
-    while n < buf.len() {
-        match r.read(&mut buf[n..]) {
-            Ok(0) => break,
-            Ok(k) => n += k,
-            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e),
-        }
-    }
-    Ok(n)
 }
 
 /// An ffmpeg log line without its `[h264 @ 0x55…] ` context prefix.

@@ -6,6 +6,7 @@
 pub mod clock;
 mod decode;
 mod decoded;
+pub mod fields;
 mod folder;
 pub mod free;
 mod probe;
@@ -13,6 +14,7 @@ mod region;
 mod resize;
 mod survey;
 pub mod timescale;
+mod tools;
 
 pub use decode::decode;
 pub use decoded::DecodedVideo;

@@ -1,10 +1,11 @@
 //! `probe`: what ffprobe says about a recording (displayed size after the rotation tag, frame
-//! rate, the slow-motion capture tag, frame count), and running the ffmpeg tools at all.
+//! rate, the slow-motion capture tag, frame count, interlacing).
 
 use super::clock::{Clock, Uneven};
+use super::fields::{self, Fields};
+use super::tools::tool;
 use super::{bad, VideoError};
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 /// What ffprobe says about a recording.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -18,6 +19,9 @@ pub struct VideoInfo {
     pub capture_fps: Option<f64>,
     /// Rotation tag in degrees (0 when absent).
     pub rotation: i64,
+    /// An interlaced recording's fields (`fields`): read as frames at twice the rate, so the
+    /// rates, counts and times here are the fields'.
+    pub fields: Option<Fields>,
     /// Frames the container says it holds (nb_frames, or duration × fps), when it says.
     pub expected_frames: Option<usize>,
     /// The frames' own presentation times (s, sorted), from the container's index without
@@ -27,6 +31,35 @@ pub struct VideoInfo {
 }
 
 impl VideoInfo {
+    /// The recording read as its `fields`: twice the frames, at twice the rate, each frame's
+    /// time followed by its second field's.
+    fn into_fields(self, fields: Fields) -> VideoInfo {
+        VideoInfo {
+            container_fps: self.container_fps.map(|f| 2.0 * f),
+            capture_fps: self.capture_fps.map(|f| 2.0 * f),
+            expected_frames: self.expected_frames.map(|n| 2 * n),
+            frame_times: fields::times(&self.frame_times),
+            fields: Some(fields),
+            ..self
+        }
+    }
+
+    /// The filter ffmpeg applies before anything else (an interlaced recording's fields made
+    /// frames), when one is needed.
+    pub fn filter(&self) -> Option<String> {
+        self.fields.map(|f| f.filter())
+    }
+
+    /// Frames per second of what is read for `fps` frames per second of the recording (twice
+    /// it for an interlaced one's fields).
+    pub fn read_rate(&self, fps: f64) -> f64 {
+        if self.fields.is_some() {
+            2.0 * fps
+        } else {
+            fps
+        }
+    }
+
     /// The even clock the frames' timestamps within `start`..`end` (s) sit on, when the file
     /// gives at least two (`clock::Clock`), or why none fits.
     pub fn clock(&self, start: Option<f64>, end: Option<f64>) -> Option<Result<Clock, Uneven>> {
@@ -65,18 +98,6 @@ impl VideoInfo {
             t0 + start.unwrap_or(0.0),
             end.map_or(f64::INFINITY, |e| t0 + e),
         )
-    }
-}
-
-pub(crate) fn tool(name: &'static str) -> Result<Command, VideoError> {
-    match Command::new(name)
-        .arg("-version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-    {
-        Ok(_) => Ok(Command::new(name)),
-        Err(_) => Err(VideoError::ToolMissing { tool: name }),
     }
 }
 
@@ -153,7 +174,7 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
             Some((d * fps?).round() as usize)
         })
         .filter(|&n| n > 0);
-    Ok(VideoInfo {
+    let info = VideoInfo {
         frame_times: frame_times(path)?,
         expected_frames,
         width: if quarter { h } else { w },
@@ -161,6 +182,18 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
         container_fps: fps,
         capture_fps,
         rotation,
+        fields: None,
+    };
+    // Fields are rows as stored: a rotated recording (a phone's, never interlaced) is not
+    // looked at.
+    if rotation != 0 {
+        return Ok(info);
+    }
+    let tag = stream["field_order"].as_str().and_then(fields::from_tag);
+    let counted = info.expected_frames.or(Some(info.frame_times.len()));
+    Ok(match fields::find(path, (w, h), counted, tag)? {
+        Some(f) => info.into_fields(f),
+        None => info,
     })
 }
 
@@ -226,6 +259,7 @@ mod tests {
             capture_fps: None,
             rotation: 0,
             expected_frames: None,
+            fields: None,
             frame_times: vec![0.0, 0.1, 0.2, 0.3, 0.9, 1.0, 1.1],
         };
         let e = info.clock(None, None).unwrap().unwrap_err();

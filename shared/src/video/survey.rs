@@ -7,11 +7,10 @@
 //! of its own), widened by a margin. Where motion fills most of the frame, the whole frame is
 //! kept.
 
-use super::decode::read_full;
 use super::free::{free_span, FreeSpan};
-use super::probe::tool;
 use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
+use super::tools::{read_full, tool};
 use super::{bad, Crop, VideoError, VideoInfo};
 use std::path::Path;
 use std::process::Stdio;
@@ -89,7 +88,10 @@ pub fn survey(
         "-enc_time_base",
         "-1",
         "-vf",
-        &format!("scale={w}:{h}:flags=area"),
+        &match info.filter() {
+            Some(fields) => format!("{fields},scale={w}:{h}:flags=area"),
+            None => format!("scale={w}:{h}:flags=area"),
+        },
         "-f",
         "rawvideo",
         "-pix_fmt",
