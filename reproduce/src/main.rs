@@ -8,6 +8,7 @@ mod init;
 mod losses;
 mod model_choice;
 mod noise;
+mod real;
 mod robustness;
 mod runner;
 mod spring;
@@ -57,12 +58,15 @@ enum TableKind {
     /// The model chosen by the evidence (--model auto) on every built-in system of one latent
     /// number, clean and under footage of others: the share chosen right, the confusion.
     ModelChoice,
+    /// The verdict on the shared real recordings (--recordings) with their README's readings:
+    /// every candidate's answer right or wrong, the detection and false-alarm rates.
+    Real,
     /// Every table above, one after another.
     All,
 }
 
 impl TableKind {
-    const EACH: [TableKind; 10] = [
+    const EACH: [TableKind; 11] = [
         TableKind::Table3,
         TableKind::Table6,
         TableKind::Init,
@@ -73,6 +77,7 @@ impl TableKind {
         TableKind::Verdict,
         TableKind::Robustness,
         TableKind::ModelChoice,
+        TableKind::Real,
     ];
 
     fn name(self) -> &'static str {
@@ -87,6 +92,7 @@ impl TableKind {
             TableKind::Verdict => "verdict",
             TableKind::Robustness => "robustness",
             TableKind::ModelChoice => "model-choice",
+            TableKind::Real => "real",
             TableKind::All => "all",
         }
     }
@@ -103,6 +109,7 @@ impl TableKind {
             TableKind::Verdict => verdict::make(r),
             TableKind::Robustness => robustness::make(r),
             TableKind::ModelChoice => model_choice::make(r),
+            TableKind::Real => real::make(r),
             TableKind::All => unreachable!("expanded before"),
         }
     }
@@ -147,6 +154,10 @@ struct Cli {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// The shared real recordings the `real` table reads (its README's files; those absent are
+    /// left out and named).
+    #[arg(long, default_value = "../shared/real-videos", value_name = "DIR")]
+    recordings: PathBuf,
 }
 
 impl Cli {
@@ -218,6 +229,7 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
             (cores / cfg.jobs).max(1)
         }),
         scratch,
+        recordings: cfg.recordings.clone(),
         bar,
         lines: !cfg.quiet && !terminal,
         keep: cfg.scratch.is_some(),

@@ -89,6 +89,8 @@ pub struct Runner {
     /// CPU threads of each of those (`--threads`, or the cores shared out by `--jobs`).
     pub(crate) job_threads: usize,
     pub(crate) scratch: PathBuf,
+    /// Where the shared real recordings are (`--recordings`).
+    pub(crate) recordings: PathBuf,
     pub(crate) bar: ProgressBar,
     /// stderr is not a terminal (a log file, CI): one line per finished run instead of the bar.
     pub(crate) lines: bool,

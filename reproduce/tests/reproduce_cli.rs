@@ -3,62 +3,11 @@
 //! within 1 % at every dt while Euler's γ0 falls with dt); same seed, same numbers; bad flags
 //! get one line and exit code 2.
 
-use physvid_testkit::{stderr, TestCommand};
-use std::collections::HashMap;
+mod util;
+
+use physvid_testkit::stderr;
 use std::path::Path;
-
-fn reproduce() -> TestCommand {
-    TestCommand::new(env!("CARGO_BIN_EXE_reproduce"))
-}
-
-/// Runs `reproduce TABLE --quick` into `out` on two threads.
-fn reproduce_quick(table: &str, out: &Path) {
-    reproduce_quick_with(table, out, &[]);
-}
-
-/// As [`reproduce_quick`], with `extra` flags.
-fn reproduce_quick_with(table: &str, out: &Path, extra: &[&str]) {
-    let o = reproduce()
-        .args([
-            table,
-            "--quick",
-            "--quiet",
-            "--threads",
-            "2",
-            "--device",
-            "cpu",
-        ])
-        .args(extra)
-        .out(out)
-        .output();
-    assert!(o.status.success(), "reproduce {table}: {}", stderr(&o));
-}
-
-/// The rows of `<out>/<table>.csv` as column → text maps.
-fn read_csv(out: &Path, table: &str) -> Vec<HashMap<String, String>> {
-    let text = std::fs::read_to_string(out.join(format!("{table}.csv"))).expect("csv written");
-    let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    lines
-        .map(|l| {
-            header
-                .iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(row: &HashMap<String, String>, col: &str) -> f64 {
-    row[col]
-        .parse()
-        .unwrap_or_else(|_| panic!("{col} = '{}' is not a number", row[col]))
-}
-
-fn markdown(out: &Path, table: &str) -> String {
-    std::fs::read_to_string(out.join(format!("{table}.md"))).expect("md written")
-}
+use util::{markdown, num, read_csv, reproduce, reproduce_quick, reproduce_quick_with};
 
 #[test]
 fn table3_mse_only_collapses_and_mse_kl_recovers_gamma0() {

@@ -62,8 +62,13 @@ impl Fields {
     }
 }
 
-/// Frames looked at: pairs spread over the recording (every frame of a short one).
+/// Frames looked at: pairs spread over the recording's first [`WITHIN`] frames (every frame of
+/// a short one), each narrowed to at most [`WIDTH`] columns (the rows, where fields differ,
+/// kept whole): the look costs a decode of at most those frames (0.7 s on a 1080p spring, under
+/// 0.2 s at 640×360).
 const LOOKED_AT: usize = 90;
+const WITHIN: usize = 480;
+const WIDTH: usize = 480;
 /// The share of the pairs that move which must vote, the share of the votes that must agree,
 /// and the fewest votes, for the picture to say the recording is interlaced.
 const VOTING: f64 = 0.5;
@@ -83,7 +88,7 @@ pub fn from_tag(tag: &str) -> Option<FieldOrder> {
 }
 
 /// The fields of the recording at `path` (stored `size` (w, h), `frames` in all, `tag` its
-/// container's field order), or `None` when it is progressive. Decodes up to [`LOOKED_AT`]
+/// container's field order), or `None` when it is progressive. Decodes up to [`WITHIN`]
 /// frames; remembered per file for the process (probed again by model choice and the run).
 pub fn find(
     path: &Path,
@@ -125,7 +130,8 @@ fn look(
     if h < 8 || w == 0 {
         return Ok(None);
     }
-    let every = frames.map_or(2, |n| (n / (LOOKED_AT / 2)).max(2));
+    let every = frames.map_or(2, |n| (n.min(WITHIN) / (LOOKED_AT / 2)).max(2));
+    let w = w.min(WIDTH);
     let mut cmd = tool("ffmpeg")?;
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
         .arg(path)
@@ -133,7 +139,7 @@ fn look(
             "-map",
             "0:v:0",
             "-vf",
-            &format!("select='lt(mod(n\\,{every})\\,2)'"),
+            &format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area"),
             "-fps_mode",
             "passthrough",
             "-frames:v",
