@@ -41,26 +41,30 @@ fn interlaced(dir: &Path, mode: &str) -> std::path::PathBuf {
     video
 }
 
+/// `estimate VIDEO --model damped-oscillator --seed 1` into `out`: its report and stderr.
+fn oscillator(video: &Path, out: &Path) -> (serde_json::Value, String) {
+    let o = Estimate::new(video)
+        .args(["--model", "damped-oscillator", "--seed", "1"])
+        .out(out)
+        .output();
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
+    (read_report(out), stderr(&o))
+}
+
 fn read_as_fields(mode: &str, order: &str) {
     if !need_ffmpeg() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
     let video = interlaced(dir.path(), mode);
-    let out = dir.path().join("run");
-    let o = Estimate::new(&video)
-        .args(["--model", "damped-oscillator", "--seed", "1"])
-        .out(&out)
-        .output();
-    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
-    let r = read_report(&out);
+    let (r, err) = oscillator(&video, &dir.path().join("run"));
     let rec = &r["recording"];
     assert_eq!(rec["info"]["fields"]["order"], order, "{}", rec["info"]);
     assert_eq!(rec["info"]["fields"]["by"], "picture");
     // Read as stored frames, the swing came at 30 a second, each frame its two fields' blend.
     assert_eq!(rec["fps"].as_f64(), Some(60.0), "{rec}");
     assert_eq!(rec["frames_decoded"].as_u64(), Some(FIELDS as u64), "{rec}");
-    assert!(stderr(&o).contains("interlaced ("), "{}", stderr(&o));
+    assert!(err.contains("interlaced ("), "{err}");
     let g0 = estimate_of(&r, "gamma0");
     assert!(
         (g0 / GAMMA0 - 1.0).abs() < 0.02,
@@ -88,13 +92,8 @@ fn a_progressive_recording_of_the_same_swing_is_read_as_frames() {
     write_frames_of(&frames, FIELDS / 2, 6.0, |k| (0.9, shift(k as f64 / 30.0)));
     let video = dir.path().join("swing.mkv");
     util::encode_lossless(&frames, &video, 30);
-    let out = dir.path().join("run");
-    let o = Estimate::new(&video)
-        .args(["--model", "damped-oscillator", "--seed", "1"])
-        .out(&out)
-        .output();
-    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
-    let rec = &read_report(&out)["recording"];
+    let (r, _) = oscillator(&video, &dir.path().join("run"));
+    let rec = &r["recording"];
     assert!(rec["info"]["fields"].is_null(), "{rec}");
     assert_eq!(rec["fps"].as_f64(), Some(30.0), "{rec}");
 }

@@ -13,12 +13,11 @@
 //! order and none for the other (a disc swinging 3 pixels: 35 %); the shared recordings and the
 //! same drawings progressive 0–6 %, split evenly.
 
-use super::tools::{read_full, tool};
-use super::{bad, VideoError};
+use super::tools::{gray_frames, read_full, tool};
+use super::VideoError;
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Stdio;
 use std::sync::{Mutex, OnceLock};
 
 /// Which field was taken first.
@@ -144,19 +143,8 @@ fn look(
             "passthrough",
             "-frames:v",
             &LOOKED_AT.to_string(),
-            "-f",
-            "rawvideo",
-            "-pix_fmt",
-            "gray",
-            "-",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .stdin(Stdio::null());
-    let mut child = cmd
-        .spawn()
-        .map_err(|e| bad(path, format!("cannot run ffmpeg: {e}")))?;
-    let mut stdout = child.stdout.take().expect("piped stdout");
+        ]);
+    let (mut child, mut stdout) = gray_frames(cmd, path)?;
     let (mut moving, mut votes) = (0usize, [0usize; 2]);
     let mut prev: Option<Vec<u8>> = None;
     let mut buf = vec![0u8; w * h];

@@ -10,10 +10,9 @@
 use super::free::{free_span, FreeSpan};
 use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
-use super::tools::{read_full, tool};
-use super::{bad, Crop, VideoError, VideoInfo};
+use super::tools::{gray_frames, read_full, tool};
+use super::{Crop, VideoError, VideoInfo};
 use std::path::Path;
-use std::process::Stdio;
 
 /// The long side of the survey's frames.
 pub const SURVEY_SIDE: usize = 160;
@@ -92,19 +91,8 @@ pub fn survey(
             Some(fields) => format!("{fields},scale={w}:{h}:flags=area"),
             None => format!("scale={w}:{h}:flags=area"),
         },
-        "-f",
-        "rawvideo",
-        "-pix_fmt",
-        "gray",
-        "-",
-    ])
-    .stdout(Stdio::piped())
-    .stderr(Stdio::null())
-    .stdin(Stdio::null());
-    let mut child = cmd
-        .spawn()
-        .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
-    let mut stdout = child.stdout.take().expect("piped stdout");
+    ]);
+    let (mut child, mut stdout) = gray_frames(cmd, input)?;
     // The frames are held (a byte a pixel at this size): the free motion is found first, and
     // only it is measured.
     let mut frames = Vec::new();
