@@ -26,7 +26,6 @@ pub mod plots;
 pub mod progress;
 pub mod report;
 pub mod run;
-pub mod spectral;
 pub mod timeline;
 pub mod train;
 pub mod verdict;

@@ -14,6 +14,7 @@ pub mod ode;
 pub mod oscillator;
 pub mod pendulum;
 pub(crate) mod smooth_map;
+pub mod spectral;
 pub mod spring;
 pub mod torricelli;
 

@@ -18,7 +18,7 @@ use super::model::{Derived, Model};
 use super::{Bounds, ModelRef};
 use crate::calibration::{Calibration, CalibrationInput, Readings};
 use crate::encoder::EncoderKind;
-use crate::spectral::spectral_start;
+use crate::physics::spectral::spectral_start;
 use block::FileBlock;
 use physvid_shared::model_file::symmetry::{symmetries, transformed, Transform};
 use physvid_shared::model_file::{self, ModelFile, Symmetries};

@@ -16,7 +16,7 @@ use super::model::{Derived, Implausible, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
-use crate::spectral::spectral_start;
+use crate::physics::spectral::spectral_start;
 use physvid_shared::cli::approx;
 use physvid_shared::systems;
 use tch::nn;

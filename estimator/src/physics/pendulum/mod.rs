@@ -16,7 +16,7 @@ use super::info::{Calibrates, Footage, ModelInfo, ParamSpec, TruthKey};
 use super::model::{Derived, Model};
 use crate::calibration::{Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
-use crate::spectral::spectral_start;
+use crate::physics::spectral::spectral_start;
 use physvid_shared::systems;
 use tch::nn;
 use tch::Tensor;

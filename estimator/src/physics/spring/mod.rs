@@ -25,7 +25,7 @@ use crate::calibration::{
     position_scale, Calibration, CalibrationInput, DerivedValue, Readings, POSITION_FIT_R2,
 };
 use crate::encoder::EncoderKind;
-use crate::spectral::spectral_start;
+use crate::physics::spectral::spectral_start;
 use physvid_shared::systems;
 use system::{SpringSystem, SUBSTEPS_PER_FRAME};
 use tch::nn;

@@ -9,8 +9,8 @@
 //! spurious modes of the fit decay within a few frames). A start there keeps training away from the
 //! harmonics (latents like |z| or z², at 2ω) that a start far off can lock onto.
 
+use super::block::Integrator;
 use crate::pca::{principal_directions, project};
-use crate::physics::block::Integrator;
 use tch::{Device, Kind, Tensor};
 
 /// Principal components fed to the recurrence.
