@@ -41,10 +41,11 @@ fn interlaced(dir: &Path, mode: &str) -> std::path::PathBuf {
     video
 }
 
-/// `estimate VIDEO --model damped-oscillator --seed 1` into `out`: its report and stderr.
-fn oscillator(video: &Path, out: &Path) -> (serde_json::Value, String) {
+/// `estimate VIDEO --model damped-oscillator --seed 1 EXTRA` into `out`: its report and stderr.
+fn oscillator(video: &Path, out: &Path, extra: &[&str]) -> (serde_json::Value, String) {
     let o = Estimate::new(video)
         .args(["--model", "damped-oscillator", "--seed", "1"])
+        .args(extra)
         .out(out)
         .output();
     assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
@@ -57,7 +58,7 @@ fn read_as_fields(mode: &str, order: &str) {
     }
     let dir = tempfile::tempdir().unwrap();
     let video = interlaced(dir.path(), mode);
-    let (r, err) = oscillator(&video, &dir.path().join("run"));
+    let (r, err) = oscillator(&video, &dir.path().join("run"), &[]);
     let rec = &r["recording"];
     assert_eq!(rec["info"]["fields"]["order"], order, "{}", rec["info"]);
     assert_eq!(rec["info"]["fields"]["by"], "picture");
@@ -92,8 +93,36 @@ fn a_progressive_recording_of_the_same_swing_is_read_as_frames() {
     write_frames_of(&frames, FIELDS / 2, 6.0, |k| (0.9, shift(k as f64 / 30.0)));
     let video = dir.path().join("swing.mkv");
     util::encode_lossless(&frames, &video, 30);
-    let (r, _) = oscillator(&video, &dir.path().join("run"));
+    let (r, _) = oscillator(&video, &dir.path().join("run"), &[]);
     let rec = &r["recording"];
     assert!(rec["info"]["fields"].is_null(), "{rec}");
     assert_eq!(rec["fps"].as_f64(), Some(30.0), "{rec}");
+}
+
+#[test]
+fn fields_flag_reads_the_frames_or_refuses_an_image_folder() {
+    if !need_ffmpeg() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let video = interlaced(dir.path(), "interleave_top");
+    let (r, err) = oscillator(&video, &dir.path().join("run"), &["--fields", "frames"]);
+    let rec = &r["recording"];
+    assert!(rec["info"]["fields"].is_null(), "{rec}");
+    assert_eq!(rec["fps"].as_f64(), Some(30.0), "{rec}");
+    assert!(!err.contains("interlaced ("), "{err}");
+    // An image folder's images are whole frames.
+    let o = Estimate::new(dir.path().join("frames"))
+        .args([
+            "--model",
+            "damped-oscillator",
+            "--fps",
+            "60",
+            "--fields",
+            "top-first",
+        ])
+        .out(&dir.path().join("folder"))
+        .output();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--fields"), "{}", stderr(&o));
 }

@@ -37,7 +37,7 @@ pub fn common_cut(
     if flags.frames_per_clip.is_some() && flags.stride.is_some() {
         return Ok(None);
     }
-    let info = video::probe(input)?;
+    let info = video::probe_as(input, flags.fields)?;
     let frames = flags.frames_per_clip.unwrap_or(FRAMES);
     let kept = info
         .frames_within(flags.start, flags.end)

@@ -6,6 +6,7 @@ use crate::data::{Framing, RecordingRequest, DEFAULT_SIZE};
 use crate::error::{input_error, EstimateError};
 use crate::physics::MODELS;
 use physvid_shared::cli::num;
+use physvid_shared::video::fields::FieldsChoice;
 use physvid_shared::video::Crop;
 use serde::Serialize;
 
@@ -60,6 +61,12 @@ pub struct RecordingArgs {
     /// Also write clips.png, the first clips as the model sees them (check crop and stride).
     #[arg(long)]
     pub preview: bool,
+    /// How an interlaced recording (two fields a frame, taken half an interval apart) is read:
+    /// `auto` finds the fields from the picture (a moving region's rows comb) or the
+    /// container's tag and reads each as a frame, at twice the rate; `frames` never splits;
+    /// `top-first` / `bottom-first` split in that order [default: auto].
+    #[arg(long, value_enum, value_name = "auto|frames|top-first|bottom-first")]
+    pub fields: Option<FieldsChoice>,
 }
 
 fn frames_help() -> String {
@@ -122,6 +129,7 @@ impl RecordingArgs {
             stride: self.stride,
             hop: self.hop,
             preview: self.preview,
+            fields: self.fields.unwrap_or_default(),
             given: self.given(),
             measured_at: Vec::new(),
         }
@@ -139,6 +147,7 @@ impl RecordingArgs {
             ("stride", self.stride.is_some()),
             ("hop", self.hop.is_some()),
             ("preview", self.preview),
+            ("fields", self.fields.is_some()),
         ]
         .into_iter()
         .filter(|&(_, given)| given)

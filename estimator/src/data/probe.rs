@@ -6,6 +6,7 @@
 use super::{dataset, timing, LoadRequest};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
+use physvid_shared::video::fields::FieldsChoice;
 use physvid_shared::video::{self, is_recording, VideoInfo};
 use physvid_shared::{DatasetHeader, DatasetMeta};
 
@@ -96,10 +97,17 @@ fn recording(req: &LoadRequest) -> Result<Probe, EstimateError> {
     let (table_frames, table_dt) = model.table5_clip();
     let frames_per_clip = flags.frames_per_clip.unwrap_or(table_frames);
     let mut warnings = Vec::new();
+    if input.is_dir() && flags.fields != FieldsChoice::Auto {
+        return Err(input_error(format!(
+            "--fields: {} is an image folder, whose images are whole frames; --fields reads \
+             a video's fields",
+            input.display()
+        )));
+    }
     let info = if input.is_dir() {
         None
     } else {
-        Some(video::probe(input)?)
+        Some(video::probe_as(input, flags.fields)?)
     };
     let (fps, fps_source) = timing::frame_rate(input, info.as_ref(), flags, &mut warnings)?;
     let stride = timing::stride(

@@ -3,6 +3,7 @@
 
 use super::framing::Framing;
 use crate::physics::ModelRef;
+use physvid_shared::video::fields::FieldsChoice;
 use std::path::PathBuf;
 
 /// The input and the flags that decide how it becomes clips.
@@ -39,6 +40,8 @@ pub struct RecordingRequest {
     pub hop: Option<usize>,
     /// `--preview`: write clips.png.
     pub preview: bool,
+    /// `--fields`: how an interlaced recording's fields are read.
+    pub fields: FieldsChoice,
     /// The `--reference` times (seconds of the file's timeline): frames the user measured the
     /// system at, which the free motion found in the frames is taken to include.
     pub measured_at: Vec<f64>,

@@ -85,7 +85,8 @@ pub(super) fn frame_rate(
             f.order.words(),
             match f.by {
                 "picture" => "the picture",
-                _ => "the container's field-order tag",
+                "container" => "the container's field-order tag",
+                other => other,
             },
             f.voting.map_or(String::new(), |v| format!(
                 ": on {} % of the frame pairs that move, the rows woven from one frame's field and \

@@ -38,12 +38,24 @@ impl FieldOrder {
     }
 }
 
+/// How a recording's fields are read (`--fields`): found from the picture or the tag
+/// (`auto`), never split (`frames`), or split in the order given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum FieldsChoice {
+    #[default]
+    Auto,
+    Frames,
+    TopFirst,
+    BottomFirst,
+}
+
 /// An interlaced recording's fields: their order and what said so.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Fields {
     pub order: FieldOrder,
-    /// "picture" (its rows comb where it moves) or "container" (its field-order tag, where
-    /// nothing moves enough to tell).
+    /// "picture" (its rows comb where it moves), "container" (its field-order tag, where
+    /// nothing moves enough to tell) or "--fields".
     pub by: &'static str,
     /// The share of the frame pairs that move which voted for this order (the picture's; see
     /// the module's measurements).
@@ -75,6 +87,22 @@ const AGREE: f64 = 0.9;
 const MIN_VOTES: usize = 8;
 /// How much less one weave must comb than the other for a pair to vote.
 const CLEARLY: f64 = 0.8;
+
+/// The fields `choice` gives without looking (`frames`: none; an order: that order), or
+/// `None` where the picture and the tag are to say (`auto`).
+pub fn chosen(choice: FieldsChoice) -> Option<Option<Fields>> {
+    let order = match choice {
+        FieldsChoice::Auto => return None,
+        FieldsChoice::Frames => return Some(None),
+        FieldsChoice::TopFirst => FieldOrder::TopFirst,
+        FieldsChoice::BottomFirst => FieldOrder::BottomFirst,
+    };
+    Some(Some(Fields {
+        order,
+        by: "--fields",
+        voting: None,
+    }))
+}
 
 /// The order a container's `field_order` tag says (ffprobe's tt, bb, tb, bt: the first
 /// letter the field coded first, the second the one shown first).

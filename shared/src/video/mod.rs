@@ -18,7 +18,7 @@ mod tools;
 
 pub use decode::decode;
 pub use decoded::DecodedVideo;
-pub use probe::{probe, VideoInfo};
+pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::FrameResizer;
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 

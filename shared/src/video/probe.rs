@@ -2,7 +2,7 @@
 //! rate, the slow-motion capture tag, frame count, interlacing).
 
 use super::clock::{Clock, Uneven};
-use super::fields::{self, Fields};
+use super::fields::{self, Fields, FieldsChoice};
 use super::tools::tool;
 use super::{bad, VideoError};
 use std::path::Path;
@@ -107,8 +107,13 @@ fn parse_rate(text: &str) -> Option<f64> {
     (d != 0.0 && n > 0.0).then(|| n / d)
 }
 
-/// Probes the first video stream of `path` with ffprobe.
+/// Probes the first video stream of `path` with ffprobe, its fields found (`fields`).
 pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
+    probe_as(path, FieldsChoice::Auto)
+}
+
+/// As [`probe`], its fields read as `choice` says (`--fields`).
+pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
     crate::input::check_kind(path).map_err(|e| bad(path, e))?;
     let out = tool("ffprobe")?
         .args([
@@ -185,13 +190,17 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
         fields: None,
     };
     // Fields are rows as stored: a rotated recording (a phone's, never interlaced) is not
-    // looked at.
+    // looked at, nor split.
     if rotation != 0 {
         return Ok(info);
     }
     let tag = stream["field_order"].as_str().and_then(fields::from_tag);
     let counted = info.expected_frames.or(Some(info.frame_times.len()));
-    Ok(match fields::find(path, (w, h), counted, tag)? {
+    let found = match fields::chosen(choice) {
+        Some(given) => given,
+        None => fields::find(path, (w, h), counted, tag)?,
+    };
+    Ok(match found {
         Some(f) => info.into_fields(f),
         None => info,
     })
