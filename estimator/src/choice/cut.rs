@@ -82,6 +82,20 @@ fn stride_for(
     let gaps = frames.saturating_sub(1).max(1);
     let half = (kept / 2 / gaps).max(1);
     match period {
+        // A motion faster than a clip's frames (under 2/3 of them a period): every frame, and
+        // the recording said to sample it sparsely.
+        Some(p) if gaps as f64 > 1.5 * p => (
+            1,
+            format!(
+                "the motion repeats every {} (only {} frames of the recording): every frame is \
+                 used, a clip spans {} periods; so few frames a period may be too few to follow \
+                 it (a spring filmed at 12 a period came out at half its frequency): film at a \
+                 higher frame rate",
+                seconds(p),
+                approx(p),
+                approx(gaps as f64 / p),
+            ),
+        ),
         Some(p) if ((p / gaps as f64).round() as usize) <= half => (
             ((p / gaps as f64).round() as usize).max(1),
             format!(
@@ -124,7 +138,16 @@ mod tests {
         // A slow swing on a short recording: at most half of it.
         let (s, _) = stride_for(Some(400.0), 20, 500, &at_60);
         assert!(19 * s <= 250, "{s}");
-        // A fast flicker: stride 1 at least.
-        assert_eq!(stride_for(Some(5.0), 20, 500, &at_60).0, 1);
+        // A fast flicker: every frame, and the recording said to sample it sparsely.
+        let (s, why) = stride_for(Some(5.0), 20, 500, &at_60);
+        assert_eq!(s, 1);
+        assert!(
+            why.contains("every frame") && why.contains("too few"),
+            "{why}"
+        );
+        // Fast, a clip of 20 frames about a period: every frame, read as a period.
+        let (s, why) = stride_for(Some(16.0), 20, 500, &at_60);
+        assert_eq!(s, 1);
+        assert!(why.contains("one period"), "{why}");
     }
 }
