@@ -81,7 +81,7 @@ pub(super) fn frame_rate(
     if let Some(f) = info.and_then(|i| i.fields) {
         warnings.push(format!(
             "interlaced ({}, as {} says{}): each frame's two fields are read as frames of \
-             their own, at twice the frame rate",
+             their own, at twice the frame rate (--fields frames reads the frames)",
             f.order.words(),
             match f.by {
                 "picture" => "the picture",
