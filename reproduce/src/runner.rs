@@ -146,12 +146,12 @@ impl Runner {
     /// discarded; every candidate with `--model auto`).
     pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
         self.bar
-            .set_message(format!("estimate {}", flags.join(" ")));
+            .set_message(format!("estimate {} {}", named(data), flags.join(" ")));
         let flags: Vec<String> = flags.iter().map(|f| f.to_string()).collect();
         let mut args = vec!["estimate".to_string()];
         args.extend(self.arguments(data, &flags, &self.scratch.join("run"), self.threads));
         let run = Run::of(&estimate_here(&args)?)?;
-        self.finished(&flags, &run);
+        self.finished(data, &flags, &run);
         Ok(run)
     }
 
@@ -178,15 +178,16 @@ impl Runner {
         args
     }
 
-    /// Counts a finished run (a line of its own where stderr is not a terminal).
-    fn finished(&self, flags: &[String], run: &Run) {
+    /// Counts a finished run on `data` (a line of its own where stderr is not a terminal).
+    fn finished(&self, data: &Path, flags: &[String], run: &Run) {
         self.bar.inc(1);
         if self.lines {
             eprintln!(
-                "{} {}/{}: estimate {} ({:.1} s)",
+                "{} {}/{}: estimate {} {} ({:.1} s)",
                 self.bar.prefix(),
                 self.bar.position(),
                 self.bar.length().unwrap_or(0),
+                named(data),
                 flags.join(" "),
                 run.wall_time_s
             );
@@ -210,13 +211,16 @@ impl Runner {
             };
             let data = jobs[i].file.map_or(dir.clone(), |f| dir.join(f));
             let run = if self.jobs > 1 {
-                self.bar
-                    .set_message(format!("estimate {}", jobs[i].flags.join(" ")));
+                self.bar.set_message(format!(
+                    "estimate {} {}",
+                    named(&data),
+                    jobs[i].flags.join(" ")
+                ));
                 let run = estimate_apart(
                     &self.arguments(&data, &jobs[i].flags, out, Some(self.job_threads)),
                     &out.with_extension("cbor"),
                 )?;
-                self.finished(&jobs[i].flags, &run);
+                self.finished(&data, &jobs[i].flags, &run);
                 run
             } else {
                 let flags: Vec<&str> = jobs[i].flags.iter().map(String::as_str).collect();
@@ -280,4 +284,13 @@ impl Job {
             file: None,
         }
     }
+}
+
+/// `data` as a progress line names it: its file or folder name (a data set's folder says its
+/// scene and flags, a recording its file).
+fn named(data: &Path) -> String {
+    data.file_name().map_or_else(
+        || data.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }
