@@ -7,7 +7,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{estimate_of, need_ffmpeg, read_report, stderr, write_disc_frames, Estimate};
+use util::{estimate_of, need_ffmpeg, oscillator_run, write_disc_frames, Estimate};
 
 /// The disc's brightness: z(t) = e^(−0.1 t)·cos(π t), so γ0 = π² + 0.01 and γ1 = 0.2.
 fn z(t: f64) -> f64 {
@@ -23,22 +23,6 @@ fn ffmpeg(args: &[&str]) {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-}
-
-/// `estimate VIDEO --model damped-oscillator` into `out`: its report and stderr.
-fn oscillator(video: &Path, out: &Path, extra: &[&str]) -> (serde_json::Value, String) {
-    let o = Estimate::new(video)
-        .args(["--model", "damped-oscillator", "--seed", "1"])
-        .args(extra)
-        .out(out)
-        .output();
-    assert!(
-        matches!(o.status.code(), Some(0 | 4)),
-        "{}: {}",
-        video.display(),
-        stderr(&o)
-    );
-    (read_report(out), stderr(&o))
 }
 
 /// Frames of the swing at the real times `times` (s) as frame1.png … in `dir`.
@@ -91,7 +75,7 @@ fn a_gif_is_read_at_its_own_rate_not_its_median_delay() {
             frames.join("frame%d.png").to_str().unwrap(),
             gif.to_str().unwrap(),
         ]);
-        let (report, err) = oscillator(&gif, &tmp.path().join("run"), &[]);
+        let (report, err) = oscillator_run(&gif, &tmp.path().join("run"), &[]);
         let read = report["recording"]["fps"].as_f64().unwrap();
         assert!(
             (read / fps - 1.0).abs() < 0.003,
@@ -117,7 +101,7 @@ fn uneven_frame_times_are_resampled_onto_their_clock() {
         .map(|n| ((n / 3) as f64 * 3.45 + (n % 3) as f64) * d)
         .collect();
     let video = video_at(tmp.path(), &times, "(floor(N/3)*3.45+mod(N,3))/30");
-    let (report, err) = oscillator(&video, &tmp.path().join("run"), &[]);
+    let (report, err) = oscillator_run(&video, &tmp.path().join("run"), &[]);
     let read = report["recording"]["fps"].as_f64().unwrap();
     assert!(
         (read * 1.15 * d - 1.0).abs() < 0.01,
@@ -144,7 +128,7 @@ fn dropped_frames_are_filled_in_and_a_pause_is_refused_with_its_numbers() {
         &times,
         "(N+gte(N,80)+gte(N,160))/30",
     );
-    let (report, err) = oscillator(&video, &tmp.path().join("run"), &[]);
+    let (report, err) = oscillator_run(&video, &tmp.path().join("run"), &[]);
     assert!(err.contains("2 dropped frames filled in"), "{err}");
     let g0 = estimate_of(&report, "gamma0");
     assert!((g0 / GAMMA0 - 1.0).abs() < 0.03, "γ0 {g0}: {err}");
@@ -171,7 +155,7 @@ fn an_image_folder_is_read_on_its_numbers() {
     frames_at(&frames, &times);
     // frame101.png, the swing at 100/30 s, is missing: the next image is 101/30 s, not 100/30.
     std::fs::remove_file(frames.join("frame101.png")).unwrap();
-    let (report, err) = oscillator(&frames, &tmp.path().join("run"), &["--fps", "30"]);
+    let (report, err) = oscillator_run(&frames, &tmp.path().join("run"), &["--fps", "30"]);
     assert!(err.contains("1 dropped frame filled in"), "{err}");
     assert_eq!(report["recording"]["frames_decoded"], 240, "{err}");
 }

@@ -7,7 +7,7 @@
 mod util;
 
 use std::path::Path;
-use util::{estimate_of, need_ffmpeg, read_report, stderr, write_frames_of, Estimate};
+use util::{estimate_of, need_ffmpeg, oscillator_run, stderr, write_frames_of, Estimate};
 
 /// The disc's shift right of the centre (pixels) at time t: 9·e^(−0.1 t)·cos(2π t), so
 /// γ0 = 4π² + 0.01 and γ1 = 0.2.
@@ -41,24 +41,13 @@ fn interlaced(dir: &Path, mode: &str) -> std::path::PathBuf {
     video
 }
 
-/// `estimate VIDEO --model damped-oscillator --seed 1 EXTRA` into `out`: its report and stderr.
-fn oscillator(video: &Path, out: &Path, extra: &[&str]) -> (serde_json::Value, String) {
-    let o = Estimate::new(video)
-        .args(["--model", "damped-oscillator", "--seed", "1"])
-        .args(extra)
-        .out(out)
-        .output();
-    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
-    (read_report(out), stderr(&o))
-}
-
 fn read_as_fields(mode: &str, order: &str) {
     if !need_ffmpeg() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
     let video = interlaced(dir.path(), mode);
-    let (r, err) = oscillator(&video, &dir.path().join("run"), &[]);
+    let (r, err) = oscillator_run(&video, &dir.path().join("run"), &[]);
     let rec = &r["recording"];
     assert_eq!(rec["info"]["fields"]["order"], order, "{}", rec["info"]);
     assert_eq!(rec["info"]["fields"]["by"], "picture");
@@ -93,7 +82,7 @@ fn a_progressive_recording_of_the_same_swing_is_read_as_frames() {
     write_frames_of(&frames, FIELDS / 2, 6.0, |k| (0.9, shift(k as f64 / 30.0)));
     let video = dir.path().join("swing.mkv");
     util::encode_lossless(&frames, &video, 30);
-    let (r, _) = oscillator(&video, &dir.path().join("run"), &[]);
+    let (r, _) = oscillator_run(&video, &dir.path().join("run"), &[]);
     let rec = &r["recording"];
     assert!(rec["info"]["fields"].is_null(), "{rec}");
     assert_eq!(rec["fps"].as_f64(), Some(30.0), "{rec}");
@@ -106,7 +95,7 @@ fn fields_flag_reads_the_frames_or_refuses_an_image_folder() {
     }
     let dir = tempfile::tempdir().unwrap();
     let video = interlaced(dir.path(), "interleave_top");
-    let (r, err) = oscillator(&video, &dir.path().join("run"), &["--fields", "frames"]);
+    let (r, err) = oscillator_run(&video, &dir.path().join("run"), &["--fields", "frames"]);
     let rec = &r["recording"];
     assert!(rec["info"]["fields"].is_null(), "{rec}");
     assert_eq!(rec["fps"].as_f64(), Some(30.0), "{rec}");

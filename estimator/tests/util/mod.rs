@@ -202,3 +202,20 @@ pub fn oscillator_video(dir: &Path, fps: u32) -> (PathBuf, PathBuf) {
     encode_lossless(&frames, &video, fps);
     (frames, video)
 }
+
+/// `estimate VIDEO --model damped-oscillator --seed 1 EXTRA` into `out`, which must end with
+/// an estimate (exit 0 or 4): its report and stderr.
+pub fn oscillator_run(video: &Path, out: &Path, extra: &[&str]) -> (serde_json::Value, String) {
+    let o = Estimate::new(video)
+        .args(["--model", "damped-oscillator", "--seed", "1"])
+        .args(extra)
+        .out(out)
+        .output();
+    assert!(
+        matches!(o.status.code(), Some(0 | 4)),
+        "{}: {}",
+        video.display(),
+        stderr(&o)
+    );
+    (read_report(out), stderr(&o))
+}
