@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The layout invariants of ARCHITECTURE.md: no import cycles inside a crate, no source file over
-# 350 lines, no #[path] test files, and in `estimator` only the command-line layer (cli/,
-# config/, run.rs, batch/, main.rs, lib.rs) names the CLI's types. Prints what breaks them; exit code 1 if anything does.
+# The layout invariants of ARCHITECTURE.md: no import cycles inside a crate (between files, and
+# between top-level modules as ../shared/tools/layer_cycles.py counts them), no source file over
+# 350 lines, no #[path] test files, and in `estimator` only the command-line layer (cli/, batch/,
+# main.rs, lib.rs) names the CLI's types. Prints what breaks them; exit code 1 if anything does.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -54,8 +55,65 @@ for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
             if v not in seen:
                 seen.add(v)
                 todo.extend(g[v])
+# Between top-level modules (every file under src/a/ counts as module a), counting `use
+# crate::{a, b}` groups and `super::` paths that climb to the crate root: no cycle either.
+def heads(group):
+    out, depth, cur = [], 0, ""
+    for ch in group:
+        depth += {"{": 1, "}": -1}.get(ch, 0)
+        if depth == 0 and ch == ",":
+            out.append(cur); cur = ""
+        else:
+            cur += ch
+    out.append(cur)
+    return [re.split(r"[:\s{]", x.strip())[0] for x in out if x.strip()]
+def targets(text, pattern):
+    found = set()
+    for m in re.finditer(pattern, text):
+        if m.group(1):
+            j, depth = m.end(), 1
+            while j < len(text) and depth:
+                depth += {"{": 1, "}": -1}.get(text[j], 0); j += 1
+            found.update(heads(text[m.end():j - 1]))
+        else:
+            n = re.match(r"[A-Za-z_][A-Za-z0-9_]*", text[m.end():])
+            if n: found.add(n.group(0))
+    return found
+for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
+    src = os.path.join(crate, "src")
+    files = [os.path.join(d, f) for d, _, fs in os.walk(src) for f in fs if f.endswith(".rs")]
+    def top(f):
+        rel = os.path.relpath(f, src)[:-3].split(os.sep)
+        return None if rel in (["lib"], ["main"]) else rel[0]
+    tops = {top(f) for f in files} - {None}
+    g = {t: set() for t in tops}
+    for f in files:
+        t = top(f)
+        if t is None:
+            continue
+        rel = os.path.relpath(f, src)[:-3].split(os.sep)
+        depth = len(rel) - 1 if rel[-1] == "mod" else len(rel)
+        text = open(f, encoding="utf-8").read()
+        text = text[: text.find("#[cfg(test)]")] if "#[cfg(test)]" in text else text
+        text = re.sub(r"//[^\n]*", "", text)
+        found = targets(text, r"crate::(\{)?")
+        for m in re.finditer(r"((?:super::)+)", text):
+            if m.group(1).count("super::") >= depth:
+                found |= targets(text[m.start():], r"^(?:super::)+(\{)?")
+        g[t] |= {x for x in found if x in tops and x != t}
+    for start in sorted(g):
+        seen, todo = set(), list(g[start])
+        while todo:
+            v = todo.pop()
+            if v == start:
+                print(f"{crate}: top-level module {start} is on an import cycle")
+                bad += 1
+                break
+            if v not in seen:
+                seen.add(v)
+                todo.extend(g[v])
 # Below the command line, no module names the CLI's types.
-cli_layer = ("cli", "config", "run", "batch", "main", "lib")
+cli_layer = ("cli", "batch", "main", "lib")
 src = os.path.join("estimator", "src")
 for d, _, fs in os.walk(src):
     for f in fs:
@@ -73,5 +131,5 @@ for d, _, fs in os.walk(src):
             bad += 1
 sys.exit(1 if bad else 0)
 PY
-[ "$status" = 0 ] && echo "layout: ok (no cycles, no file over 350 lines, no #[path], the CLI's types only in its layer)"
+[ "$status" = 0 ] && echo "layout: ok (no cycles between files or top-level modules, no file over 350 lines, no #[path], the CLI's types only in its layer)"
 exit "$status"

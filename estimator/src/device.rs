@@ -10,10 +10,13 @@ use std::sync::OnceLock;
 use tch::Device;
 
 /// Where to train.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum DeviceChoice {
     /// CUDA when libtorch sees a GPU, else CPU.
+    #[default]
     Auto,
     Cpu,
     Cuda,

@@ -4,9 +4,20 @@
 use tch::{Kind, Tensor};
 
 /// Which loss to train with (appendix Table 3 ablates the KL term).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 pub enum LossKind {
     /// MSE(encoded, rolled out) + KL(N(μ, σ²) ‖ N(0, 1)), weight 1 : 1 (the paper's).
+    #[default]
     #[value(name = "mse+kl")]
     #[serde(rename = "mse+kl")]
     MseKl,

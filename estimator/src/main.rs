@@ -28,7 +28,7 @@ fn main() -> ExitCode {
             } else if !args.batch.merge.is_empty() {
                 estimator::batch::merge(&args.batch.merge, &args.output.out, args.output.force)
             } else {
-                estimator::run(&args)
+                estimator::run(&args.request()?)
             }
         });
     exit_with("estimate", result)

@@ -116,15 +116,20 @@ pub fn write_outputs(
     };
     let mut figures = vec![plot_figure(
         "Parameters over epochs",
-        plot(&mut dir, "parameters.png", parameters_png(report))?,
+        plot(&mut dir, "parameters.png", parameters_png(&report.run))?,
     )];
-    let dims = report.config.model.latent_dims();
-    let latents = latents_png(report, report.config.dt, data.frames_per_clip, dims);
+    let dims = report.run.config.model.latent_dims();
+    let latents = latents_png(
+        &report.run,
+        report.run.config.dt,
+        data.frames_per_clip,
+        dims,
+    );
     figures.push(plot_figure(
         "Latents of validation clips",
         plot(&mut dir, "latents.png", latents)?,
     ));
-    if let Some(t) = &report.outcome.timeline {
+    if let Some(t) = &report.run.outcome.timeline {
         figures.push(plot_figure(
             "The recording's timeline",
             plot(&mut dir, "timeline.png", timeline_png(t))?,
@@ -132,7 +137,7 @@ pub fn write_outputs(
         dir.write("timeline.csv", t.csv(dims).as_bytes())?;
     }
     if let Some(png) = &data.preview_png {
-        if report.recording.as_ref().is_some_and(|r| r.preview) {
+        if report.run.recording.as_ref().is_some_and(|r| r.preview) {
             dir.write("clips.png", png)?;
         }
         figures.push(Figure {

@@ -3,7 +3,7 @@
 //! validation clips (the bodies' paths in the latent plane for a vector latent), and a
 //! recording's timeline. One chart set-up serves all three.
 
-use crate::report::Report;
+use crate::analysis::Run;
 use crate::timeline::Timeline;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -101,7 +101,7 @@ fn range(values: impl Iterator<Item = f64>) -> Range<f64> {
 }
 
 /// `parameters.png`: each of the block's parameters against the epoch, its ground truth dashed.
-pub fn parameters_png(report: &Report) -> Result<Vec<u8>, String> {
+pub fn parameters_png(report: &Run) -> Result<Vec<u8>, String> {
     let n = report.block_parameters.len().max(1);
     render_png(PANEL_HEIGHT * n as u32, |root| {
         let panels = root.split_evenly((n, 1));
@@ -173,7 +173,7 @@ fn trace(
 /// For a vector latent of (x, y) per body (`dims` numbers per frame), the bodies' paths in the
 /// latent plane instead.
 pub fn latents_png(
-    report: &Report,
+    report: &Run,
     dt: f64,
     frames_per_clip: i64,
     dims: usize,
@@ -242,7 +242,7 @@ pub fn timeline_png(t: &Timeline) -> Result<Vec<u8>, String> {
 
 /// The planar `latents.png`: each example clip's bodies in the latent plane, encoded (dots,
 /// the first body filled, the others hollow) and rolled out (lines).
-fn planar_latents_png(report: &Report, dims: usize) -> Result<Vec<u8>, String> {
+fn planar_latents_png(report: &Run, dims: usize) -> Result<Vec<u8>, String> {
     let z = &report.outcome.example_latents;
     let r = &report.outcome.example_rollouts;
     let coord = |rows: &[Vec<f32>], axis: usize| -> Vec<f64> {

@@ -1,17 +1,18 @@
 //! `run`: probes the input, resolves the configuration, loads the data, picks the device,
 //! trains (the ensemble's members too), and hands the report to `output` and the terminal.
 
+use crate::analysis::ensemble::summarise;
+use crate::analysis::{Run, RunInfo};
 use crate::choice;
-use crate::cli::EstimateArgs;
-use crate::config::RunConfig;
+use crate::choice::ChoiceRequest;
+use crate::config::{Request, RunConfig};
 use crate::data::{load_clips, probe, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
 use crate::output::{check_out, clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
-use crate::report::ensemble::summarise;
-use crate::report::{Report, RunInfo};
+use crate::report::Report;
 use crate::train::{fit, fit_best, StopReason};
 use crate::verdict::{self, Grade};
 use physvid_shared::term;
@@ -23,11 +24,10 @@ pub struct Estimation {
     pub data: ClipData,
 }
 
-/// Runs one estimation as the (validated) arguments say, writes its outputs and prints the
-/// table.
-pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
-    check_out(&args.output.out, args.input.as_deref(), args.output.force)?;
-    let Estimation { mut report, data } = match estimation(args) {
+/// Runs one estimation as `req` asks, writes its outputs and prints the table.
+pub fn run(req: &Request) -> anyhow::Result<()> {
+    check_out(&req.out, Some(req.input()), req.force)?;
+    let Estimation { mut report, data } = match estimation(req) {
         Ok(e) => e,
         Err(e) => {
             // No estimate: an earlier run's report must not stand in --out as if it were this
@@ -36,7 +36,7 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
                 e.downcast_ref::<EstimateError>(),
                 Some(EstimateError::NoEstimate(_))
             ) {
-                clear_earlier(&args.output.out, args.output.force)?;
+                clear_earlier(&req.out, req.force)?;
             }
             return Err(e);
         }
@@ -44,16 +44,16 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     report.command = Some(shell_words::join(
         std::env::args_os().map(|a| a.to_string_lossy().into_owned()),
     ));
-    let cfg = &report.config;
+    let cfg = &report.run.config;
     write_outputs(&cfg.out, cfg.force, &data, &report)?;
     if let Some(c) = &report.model_choice {
         term::print(&c.text())?;
     }
     term::print(&report.table())?;
-    if let Some(e) = &report.ensemble {
+    if let Some(e) = &report.run.ensemble {
         term::print(&e.table())?;
     }
-    for w in &report.warnings {
+    for w in &report.run.warnings {
         term::eprint_line(&format!("warning: {w}"));
     }
     term::print(&report.verdict.text())?;
@@ -69,35 +69,43 @@ pub fn run(args: &EstimateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The model's choice where the run makes one (`EstimateArgs::chooses_model`), else one
-/// estimation.
-pub fn estimation(args: &EstimateArgs) -> anyhow::Result<Estimation> {
-    if args.chooses_model()? {
-        choose(args)
+/// The model's choice where the request makes one ([`chooses`]), else one estimation; writes
+/// nothing.
+pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
+    if chooses(req) {
+        choose(req)
     } else {
-        estimate(args)
+        estimate(req)
     }
+}
+
+/// Whether `req` chooses its model: asked to (`choose`), or no model named on an input that
+/// names none (a recording or a bare `.npy`; a data set's meta.json names its model).
+pub fn chooses(req: &Request) -> bool {
+    req.choose || (req.load.model.is_none() && choice::chosen_without_model(req.input()))
 }
 
 /// Fits every candidate model and keeps the one the evidence favours (`choice`), with the
 /// ranking in its report; writes nothing.
-pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
+pub fn choose(req: &Request) -> anyhow::Result<Estimation> {
     let begun = Instant::now();
-    let (models, cut) = choice::candidates(&args.choice_request())?;
-    let tries: Vec<EstimateArgs> = models
+    let (models, cut) = choice::candidates(&ChoiceRequest::of(req))?;
+    let tries: Vec<Request> = models
         .into_iter()
-        .map(|m| args.for_candidate(m, cut.as_ref()))
+        .map(|m| choice::candidate_request(req, m, cut.as_ref()))
         .collect();
     let cut = cut.map(|c| c.why);
-    let quiet = args.output.quiet;
+    let quiet = req.quiet;
     let (mut fits, mut summaries, mut errors) = (Vec::new(), Vec::new(), Vec::new());
     for (i, a) in tries.iter().enumerate() {
-        let model = a.model.given().expect("a candidate names its model");
+        let model = a.load.model.expect("a candidate names its model");
         let start = Instant::now();
         let fit = estimate(a);
         let summary = choice::summary(
             model,
-            fit.as_ref().map(|e| &e.report).map_err(|e| e.to_string()),
+            fit.as_ref()
+                .map(|e| (&e.report.run, &e.report.verdict))
+                .map_err(|e| e.to_string()),
         );
         // A candidate that fails says so in the ranking: a refusal every candidate shares
         // (the input's) stays one line.
@@ -128,9 +136,9 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
     };
     let i = tries
         .iter()
-        .position(|a| a.model.given().is_some_and(|m| m.name() == ranked.chosen))
+        .position(|a| a.load.model.is_some_and(|m| m.name() == ranked.chosen))
         .expect("the chosen model is a candidate");
-    let mut chosen = match args.training.ensemble {
+    let mut chosen = match req.training.ensemble {
         1 => fits[i].take().expect("the chosen candidate was fitted"),
         k => {
             let mut a = tries[i].clone();
@@ -138,27 +146,28 @@ pub fn choose(args: &EstimateArgs) -> anyhow::Result<Estimation> {
             estimate(&a)?
         }
     };
-    chosen.report.config.quiet = quiet;
+    chosen.report.run.config.quiet = quiet;
     ranked.wall_time_s = begun.elapsed().as_secs_f64();
     ranked.cut = cut;
+    chosen.report.verdict =
+        verdict::judge(&chosen.report.run).with(choice::close::close_call(&ranked));
     chosen.report.model_choice = Some(ranked);
-    chosen.report = verdict::judged(chosen.report);
     Ok(chosen)
 }
 
 /// Loads the data and trains (and the ensemble's further members); writes nothing.
-pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
+pub fn estimate(req: &Request) -> anyhow::Result<Estimation> {
     let start = Instant::now();
-    tch::set_num_threads(args.training.thread_count() as i32);
+    tch::set_num_threads(req.training.threads as i32);
     // The shooting fits' pool (the first run of a process sizes it; later ones find it made).
     let _ = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.training.thread_count())
+        .num_threads(req.training.threads)
         .build_global();
-    let (device, device_warning) = select_device(args.training.device)?;
-    let cfg = RunConfig::resolve(args, probe(&args.load_request())?)?;
+    let (device, device_warning) = select_device(req.training.device)?;
+    let cfg = RunConfig::resolve(req, probe(&req.load)?)?;
     let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;
     data.warnings.extend(device_warning);
-    let cfg = &cfg.with_frames(args, &data)?;
+    let cfg = &cfg.with_frames(&data)?;
     data.warnings.extend(cfg.encoder_note.clone());
     data.warnings.extend(cfg.reference_notes.iter().cloned());
     let model = cfg.model;
@@ -218,11 +227,12 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         Some(p) => vec![p.initial.clone()],
         None => starts.clone(),
     };
-    let mut report =
-        verdict::judged(Report::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes));
-    if let Some(why) = failure(&report) {
+    let run = Run::new(cfg, &data, info(start), &chosen, outcome).with_starts(probes);
+    if let Some(why) = failure(&run) {
         return Err(EstimateError::NoEstimate(why).into());
     }
+    let verdict = verdict::judge(&run);
+    let mut report = Report::new(run, verdict);
     let (mut members, mut failed) = (Vec::new(), Vec::new());
     for i in 1..cfg.ensemble {
         let member = cfg.with_seed(cfg.seed + i as u64);
@@ -235,16 +245,16 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
             );
         }
         let (o, _) = fit(&member, &data, device, &member_starts, &mut |_| {})?;
-        let r = Report::new(&member, &data, info(start), &chosen, o);
+        let r = Run::new(&member, &data, info(start), &chosen, o);
         match failure(&r) {
             Some(why) => failed.push(format!("seed {}: {why}", member.seed)),
             None => members.push((member.seed, r.parameters)),
         }
     }
     if cfg.ensemble > 1 {
-        members.insert(0, (cfg.seed, report.parameters.clone()));
+        members.insert(0, (cfg.seed, report.run.parameters.clone()));
         if !failed.is_empty() {
-            report.warnings.push(format!(
+            report.run.warnings.push(format!(
                 "ensemble: {} of {} members gave no estimate and are left out of the spread ({})",
                 failed.len(),
                 cfg.ensemble,
@@ -253,9 +263,9 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
         }
         if members.len() >= 2 {
             let (seeds, params): (Vec<u64>, Vec<_>) = members.into_iter().unzip();
-            report.ensemble = Some(summarise(seeds, &params));
+            report.run.ensemble = Some(summarise(seeds, &params));
         } else {
-            report.warnings.push(
+            report.run.warnings.push(
                 "ensemble: fewer than two members gave an estimate: no spread is reported"
                     .to_string(),
             );
@@ -267,8 +277,8 @@ pub fn estimate(args: &EstimateArgs) -> anyhow::Result<Estimation> {
 /// Why a run gave no estimate, if it did not: no epoch with a finite validation error (the
 /// kept values would be the starting ones), or an estimate (learned or derived in SI) that is
 /// not finite.
-fn failure(report: &Report) -> Option<String> {
-    let outcome = &report.outcome;
+fn failure(run: &Run) -> Option<String> {
+    let outcome = &run.outcome;
     if outcome.best_epoch == 0 {
         let when = match &outcome.stop {
             StopReason::NonFiniteLoss { epoch } => {
@@ -290,8 +300,7 @@ fn failure(report: &Report) -> Option<String> {
     if outcome.parameters.iter().any(|p| !p.is_finite()) {
         return Some("a parameter came out infinite or NaN; start elsewhere with --init".into());
     }
-    report
-        .parameters
+    run.parameters
         .iter()
         .find(|p| !p.estimate.is_finite())
         .map(|p| {

@@ -39,7 +39,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             .ok_or_else(|| anyhow::anyhow!("--ensemble {k} gave no ensemble"))?;
         let get = |name: &str| e.values.iter().find(|v| v.name == name);
         let (g0, g1) = (get("gamma0"), get("gamma1"));
-        let covered = |v: Option<&estimator::report::ensemble::EnsembleValue>| {
+        let covered = |v: Option<&estimator::analysis::ensemble::EnsembleValue>| {
             v.and_then(|v| v.truth_within_2std).unwrap_or(false)
         };
         hits0 += covered(g0) as usize;

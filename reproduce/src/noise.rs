@@ -56,7 +56,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 let e = rep.ensemble.as_ref();
                 let get = |name: &str| e.and_then(|e| e.values.iter().find(|v| v.name == name));
                 let (g0, g1) = (get("gamma0"), get("gamma1"));
-                let rel = |v: Option<&estimator::report::ensemble::EnsembleValue>| {
+                let rel = |v: Option<&estimator::analysis::ensemble::EnsembleValue>| {
                     v.and_then(|v| v.truth.map(|t| (v.mean - t) / t))
                 };
                 t.push(vec![

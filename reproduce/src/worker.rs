@@ -1,25 +1,33 @@
 //! One estimation as the tables read it ([`Run`]), and the process that runs one on its own for
 //! `--jobs N`: libtorch's seed is process-wide, so estimations side by side in one process
-//! would draw from one generator and lose their determinism. The parent starts this same
-//! binary with [`WORKER`] set to a file; it parses `estimate`'s arguments, runs them, and
-//! writes the report there in CBOR (its floats as they are: JSON would write a NaN as null,
-//! and read it back as no number), which the parent reads back.
+//! would draw from one generator and lose their determinism. The parent turns a table row's
+//! `estimate` arguments into a typed `Request` once (as the CLI would), writes it beside the
+//! report's path in JSON and starts this same binary with [`WORKER`] set to that path; the
+//! worker reads the request (no command line to parse), runs it, and writes the report there
+//! in CBOR (its floats as they are: JSON would write a NaN as null, and read it back as no
+//! number), which the parent reads back.
 
 use clap::Parser;
+use estimator::analysis::ensemble::Ensemble;
+use estimator::analysis::parameters::ParameterResult;
+use estimator::analysis::truth::LatentVsTruth;
 use estimator::choice::candidate::ModelChoice;
-use estimator::report::ensemble::Ensemble;
-use estimator::report::parameters::ParameterResult;
-use estimator::report::truth::LatentVsTruth;
 use estimator::report::Report;
 use estimator::train::outcome::EpochRecord;
 use estimator::verdict::Verdict;
-use estimator::{estimation, EstimateArgs};
+use estimator::{estimation, EstimateArgs, Request};
 use serde::Deserialize;
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};
 
-/// Set to the report's path in a worker's environment; its arguments are `estimate`'s.
+/// Set to the report's path in a worker's environment; its request lies beside it
+/// ([`request_path`]).
 pub const WORKER: &str = "PHYSVID_REPRODUCE_WORKER";
+
+/// Where a worker writing `report` finds its request.
+fn request_path(report: &Path) -> std::path::PathBuf {
+    report.with_extension("request.json")
+}
 
 /// What the tables read of one estimation: report.json's fields of the same names.
 #[derive(Debug, Clone, Deserialize)]
@@ -55,37 +63,56 @@ fn encoded(report: &Report) -> anyhow::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Parses `args` (`estimate`'s, the program's name first) and runs them in this process.
-pub fn estimate_here(args: &[String]) -> anyhow::Result<Report> {
+/// The typed request of `args` (`estimate`'s, the program's name first), as the CLI makes it.
+pub fn request_of(args: &[String]) -> anyhow::Result<Request> {
     let args = EstimateArgs::try_parse_from(args)
         .map_err(|e| anyhow::anyhow!("internal flags {args:?}: {e}"))?
         .validate()?;
-    Ok(estimation(&args)?.report)
+    Ok(args.request()?)
 }
 
-/// A worker's whole life: the estimation of its arguments, its report written to `report`.
+/// Runs `args` (`estimate`'s, the program's name first) in this process.
+pub fn estimate_here(args: &[String]) -> anyhow::Result<Report> {
+    Ok(estimation(&request_of(args)?)?.report)
+}
+
+/// A worker's whole life: the estimation of the request beside `report`, its report written
+/// to `report`.
 pub fn main(report: &Path) -> ExitCode {
-    // The program's path, then "estimate" as the program's name of `estimate`'s arguments.
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = estimate_here(&args).and_then(|r| {
+    let result = (|| -> anyhow::Result<()> {
+        let path = request_path(report);
+        let text = std::fs::read_to_string(&path)?;
+        let req: Request = serde_json::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}: not a request: {e}", path.display()))?;
+        let r = estimation(&req)?.report;
         physvid_shared::write_atomic(report, &encoded(&r)?)?;
         Ok(())
-    });
+    })();
     estimator::error::exit_with("reproduce (worker)", result)
 }
 
-/// Runs `args` (`estimate`'s, without the program's name) in a worker process and reads its
-/// run back from `report`.
+/// Runs `args` (`estimate`'s, without the program's name) in a worker process, handed as a
+/// typed request, and reads its run back from `report`.
 pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
+    let line: Vec<String> = std::iter::once("estimate".to_string())
+        .chain(args.iter().cloned())
+        .collect();
+    let request = request_path(report);
+    physvid_shared::write_atomic(
+        &request,
+        serde_json::to_string(&request_of(&line)?)?.as_bytes(),
+    )?;
     let exe = std::env::current_exe()?;
     let mut command = Command::new(exe);
-    command.arg("estimate").args(args).env(WORKER, report);
+    command.env(WORKER, report);
     physvid_shared::child::die_with_parent(&mut command);
     command
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
-    let out = physvid_shared::interrupt::run_child(&mut command)?;
+    let out = physvid_shared::interrupt::run_child(&mut command);
+    let _ = std::fs::remove_file(&request);
+    let out = out?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         anyhow::bail!(

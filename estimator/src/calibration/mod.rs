@@ -51,6 +51,15 @@ impl CalibrationInput {
         CalibrationInput::InclineDeg,
         CalibrationInput::G,
     ];
+
+    /// The flag (and the request's field) that gives it, as written on the command line.
+    pub fn flag(self) -> &'static str {
+        match self {
+            CalibrationInput::Reference => "--reference",
+            CalibrationInput::InclineDeg => "--incline-deg",
+            CalibrationInput::G => "--g",
+        }
+    }
 }
 
 /// Gravitational acceleration assumed when neither `--g` nor meta.json gives it (m/s²).

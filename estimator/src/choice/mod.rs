@@ -1,18 +1,23 @@
 //! The model chosen by the evidence (`--model auto`, or no `--model` on a recording or a bare
 //! `.npy`): which candidates are tried (the built-in laws of one latent number, the laws of
 //! bodies' positions where those are given, and `--candidate` files), the cut of a recording
-//! they share, and each fit summarised for the ranking in `rank.rs`. Each candidate's command
-//! line is the CLI's (`cli::candidate`); the fits are run by `run`, which hands each one's
-//! report here.
+//! they share, each candidate's request derived from the user's (`candidate_request`), and
+//! each fit summarised for the ranking in `rank.rs`. The fits are run by `run`, which hands
+//! each one's result here.
 
 pub mod candidate;
+pub mod close;
 pub mod cut;
 pub mod rank;
 
+use crate::analysis::Run;
+use crate::calibration::CalibrationInput;
+use crate::config::Request;
 use crate::data::RecordingRequest;
+use crate::digits::sig;
 use crate::error::{input_error, EstimateError};
 use crate::physics::{ModelRef, MODELS};
-use crate::report::Report;
+use crate::verdict::Verdict;
 use cut::CommonCut;
 use physvid_shared::dataset::{read_meta, META_FILE};
 use physvid_shared::meta::DatasetMeta;
@@ -25,8 +30,7 @@ use std::path::{Path, PathBuf};
 /// incline, the second otherwise).
 const SAME_LAW: &[(&str, &str)] = &[("sliding-block", "free-fall")];
 
-/// What a model choice reads of the command line (resolved there:
-/// `cli::EstimateArgs::choice_request`).
+/// What a model choice reads of the request (`ChoiceRequest::of`).
 #[derive(Debug, Clone)]
 pub struct ChoiceRequest {
     /// The recording, data set or array.
@@ -38,6 +42,45 @@ pub struct ChoiceRequest {
     pub incline: bool,
     /// The model files named as candidates (`--candidate`).
     pub files: Vec<ModelRef>,
+}
+
+/// `req` for trying `model` in a choice (on the `cut` shared by all, unless it is
+/// released from rest): the model set, what it does not read dropped (a calibration it has
+/// no use for, starting values of parameters it lacks), one member and no progress lines.
+pub fn candidate_request(req: &Request, model: ModelRef, cut: Option<&CommonCut>) -> Request {
+    let mut r = req.clone();
+    if let Some(c) = cut.filter(|_| !model.released_from_rest()) {
+        r.load.recording.frames_per_clip = Some(c.frames_per_clip);
+        r.load.recording.stride = Some(c.stride);
+    }
+    r.load.model = Some(model);
+    r.load.trying = true;
+    r.choose = false;
+    r.candidates.clear();
+    for c in CalibrationInput::ALL {
+        if !model.info().calibration.inputs.contains(&c) {
+            r.calibration.drop(c);
+        }
+    }
+    r.load.recording.measured_at = r.calibration.times.iter().map(|t| t.0).collect();
+    r.init
+        .retain(|(name, _)| model.parameters().iter().any(|p| p.name == name));
+    r.training.ensemble = 1;
+    r.quiet = true;
+    r
+}
+
+impl ChoiceRequest {
+    /// What the choice reads of `req`.
+    pub fn of(req: &Request) -> ChoiceRequest {
+        ChoiceRequest {
+            input: req.input().to_path_buf(),
+            recording: req.load.recording.clone(),
+            positions: !req.calibration.positions.is_empty(),
+            incline: req.calibration.incline_deg.is_some(),
+            files: req.candidates.clone(),
+        }
+    }
 }
 
 /// Whether a run without `--model` chooses its model: a recording or a bare `.npy` does, a
@@ -90,13 +133,13 @@ fn meta_of(input: &Path) -> Option<DatasetMeta> {
         .flatten()
 }
 
-/// `model`'s fit as the ranking sees it: its report, or why it gave none.
-pub fn summary(model: ModelRef, fit: Result<&Report, String>) -> Candidate {
+/// `model`'s fit as the ranking sees it: its run and verdict, or why it gave none.
+pub fn summary(model: ModelRef, fit: Result<(&Run, &Verdict), String>) -> Candidate {
     let parameters = model.parameters().len();
     match fit {
-        Ok(r) => Candidate {
+        Ok((r, verdict)) => Candidate {
             model: model.name().to_string(),
-            grade: Some(r.verdict.grade),
+            grade: Some(verdict.grade),
             unexplained: r.evidence.law.as_ref().map(|l| l.unexplained_within),
             parameters,
             // Without a law fit, as a second-order rollout would.
@@ -109,11 +152,10 @@ pub fn summary(model: ModelRef, fit: Result<&Report, String>) -> Candidate {
                 .parameters
                 .iter()
                 .filter(|p| p.units == "SI")
-                .map(|p| format!("{} = {} {}", p.name, crate::html::sig(p.estimate), p.unit))
+                .map(|p| format!("{} = {} {}", p.name, sig(p.estimate), p.unit))
                 .collect::<Vec<_>>()
                 .join(", "),
-            reasons: r
-                .verdict
+            reasons: verdict
                 .reasons
                 .iter()
                 .map(|r| r.check.to_string())
@@ -132,5 +174,51 @@ pub fn summary(model: ModelRef, fit: Result<&Report, String>) -> Candidate {
             picture: None,
             explains: false,
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::CalibrationRequest;
+
+    #[test]
+    fn a_candidate_is_asked_only_what_it_reads() {
+        let mut req = Request::new("clip.mp4");
+        req.choose = true;
+        req.calibration.times = vec![(1.0, 0.5), (2.0, 0.2)];
+        req.load.recording.measured_at = vec![1.0, 2.0];
+        req.calibration.incline_deg = Some(10.0);
+        req.init = vec![("gamma0".into(), 3.0), ("rate".into(), 0.1)];
+        req.training.ensemble = 4;
+        let oscillator = ModelRef::by_name("damped-oscillator").unwrap();
+        let cut = CommonCut {
+            frames_per_clip: 24,
+            stride: 3,
+            why: String::new(),
+        };
+        let r = candidate_request(&req, oscillator, Some(&cut));
+        assert_eq!(r.load.model, Some(oscillator));
+        assert!(r.load.trying && !r.choose && r.quiet);
+        assert_eq!(r.training.ensemble, 1);
+        assert_eq!(r.init, vec![("gamma0".to_string(), 3.0)]);
+        // The oscillator's answers are SI without a calibration: none is asked of it.
+        assert_eq!(r.calibration, CalibrationRequest::default());
+        assert!(r.load.recording.measured_at.is_empty());
+        assert_eq!(
+            (r.load.recording.frames_per_clip, r.load.recording.stride),
+            (Some(24), Some(3))
+        );
+        // A fall reads the reference (its distances), not an incline.
+        let fall = ModelRef::by_name("free-fall").unwrap();
+        let f = candidate_request(&req, fall, Some(&cut));
+        assert_eq!(f.calibration.times, req.calibration.times);
+        assert_eq!(f.load.recording.measured_at, vec![1.0, 2.0]);
+        assert_eq!(f.calibration.incline_deg, None);
+        assert_eq!(
+            (f.load.recording.frames_per_clip, f.load.recording.stride),
+            (None, None),
+            "a fall from rest is cut its own way"
+        );
     }
 }

@@ -1,13 +1,10 @@
-//! A model choice's command lines: whether a run chooses its model, what the choice reads of
-//! the flags (`choice::ChoiceRequest`), and each candidate's own flags (the user's, with the
-//! model set and what it does not read dropped). The choice itself (`choice`) never sees
-//! these types.
+//! Whether a run's flags choose its model (`--model auto`, or none on a recording); what each
+//! candidate is asked is derived from the typed request (`choice::candidate_request`), never
+//! from these flags.
 
 use super::{EstimateArgs, ModelSpec};
-use crate::calibration::CalibrationInput;
-use crate::choice::{self, cut::CommonCut, ChoiceRequest};
+use crate::choice;
 use crate::error::{input_error, EstimateError};
-use crate::physics::ModelRef;
 
 impl EstimateArgs {
     /// Whether this run chooses its model: `--model auto`, or no `--model` on an input that
@@ -25,43 +22,5 @@ impl EstimateArgs {
             ));
         }
         Ok(wanted)
-    }
-
-    /// What the model choice reads of these flags.
-    pub fn choice_request(&self) -> ChoiceRequest {
-        ChoiceRequest {
-            input: self.input().to_path_buf(),
-            recording: self.recording.request(),
-            positions: !self.model.reference_positions().is_empty(),
-            incline: self.model.incline_deg.is_some(),
-            files: self.model.candidate.clone(),
-        }
-    }
-
-    /// The flags for trying `model` (on the `cut` shared by all, unless it is released from
-    /// rest): the model set, the flags it does not read dropped (a calibration it has no use
-    /// for, `--init` of parameters it lacks), one member and no progress bars.
-    pub fn for_candidate(&self, model: ModelRef, cut: Option<&CommonCut>) -> EstimateArgs {
-        let mut a = self.clone();
-        if let Some(c) = cut.filter(|_| !model.released_from_rest()) {
-            a.recording.frames_per_clip = Some(c.frames_per_clip);
-            a.recording.stride = Some(c.stride);
-        }
-        let m = &mut a.model;
-        m.model = Some(ModelSpec::Given(model));
-        m.candidate.clear();
-        for c in CalibrationInput::ALL {
-            if !model.info().calibration.inputs.contains(&c) {
-                m.drop_calibration(c);
-            }
-        }
-        if let Some(init) = m.init.as_mut() {
-            init.0
-                .retain(|(name, _)| model.parameters().iter().any(|p| p.name == name));
-        }
-        a.trying = true;
-        a.training.ensemble = 1;
-        a.output.quiet = true;
-        a
     }
 }

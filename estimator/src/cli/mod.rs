@@ -1,10 +1,10 @@
 //! `EstimateArgs`: `estimate`'s command line, in argument groups flattened into one command
 //! (the model, training, recording and output flags; ripgrep's low-level arguments). Nothing
-//! here knows the data: `config::RunConfig::resolve` turns these arguments and a probe of the
-//! input (the model, dt, the load's plan) into the one resolved configuration. Help
-//! for `--model`, `--init` and the per-model defaults is generated from `physics::MODELS`.
-//! `reproduce` builds its runs from the same arguments, so each table row is a command a user
-//! can type.
+//! here knows the data: `EstimateArgs::request` turns the flags into a typed
+//! `config::Request`, which `config::RunConfig::resolve` completes with a probe of the input
+//! (the model, dt, the load's plan). Help for `--model`, `--init` and the per-model defaults is
+//! generated from `physics::MODELS`. `reproduce` builds its runs from the same arguments, so
+//! each table row is a command a user can type.
 
 mod batch;
 mod candidate;
@@ -18,9 +18,11 @@ pub use crate::device::DeviceChoice;
 pub use batch::{parse_shard, BatchArgs, Shard};
 pub use model::{parse_init, ModelArgs, ModelSpec};
 pub use recording::{parse_crop, parse_size, RecordingArgs};
-pub use reference::{calibration_flag, parse_reference, ReferencePoints};
+pub use reference::{parse_reference, ReferencePoints};
 pub use training::TrainingArgs;
 
+use crate::config::request::DEFAULT_OUT;
+use crate::config::{CalibrationRequest, Request, TrainingRequest};
 use crate::error::{input_error, EstimateError};
 use clap::Parser;
 use std::path::PathBuf;
@@ -60,10 +62,6 @@ pub struct EstimateArgs {
     pub output: OutputArgs,
     #[command(flatten)]
     pub batch: BatchArgs,
-    /// Set for the fits of a model choice (`EstimateArgs::for_candidate`): the model is one candidate,
-    /// which a data set's meta.json may contradict.
-    #[arg(skip)]
-    pub trying: bool,
 }
 
 /// Where the results go.
@@ -75,7 +73,7 @@ pub struct OutputArgs {
     /// tool's (.physvid-outputs.json); an existing folder it did not make is refused unless it
     /// is empty or --force is given, and only files this tool wrote there are ever removed or
     /// replaced
-    #[arg(long, default_value = "runs/estimate", value_name = "DIR")]
+    #[arg(long, default_value = DEFAULT_OUT, value_name = "DIR")]
     pub out: PathBuf,
     /// Write into an existing --out that this tool did not make, replacing files under its
     /// output names (report.json, …); nothing of another name is removed or changed
@@ -93,14 +91,53 @@ impl EstimateArgs {
         self.input.as_deref().unwrap_or(std::path::Path::new(""))
     }
 
+    /// The run these (validated) flags ask for, typed: what every layer below reads instead
+    /// of the flags. Fails where `--candidate` is given without a model choice.
+    pub fn request(&self) -> Result<Request, EstimateError> {
+        let (m, t) = (&self.model, &self.training);
+        let reference = m.reference.clone().unwrap_or_default();
+        Ok(Request {
+            load: self.load_request(),
+            choose: self.chooses_model()?,
+            candidates: m.candidate.clone(),
+            init: m.init_pairs().to_vec(),
+            calibration: CalibrationRequest {
+                values: reference.values,
+                times: reference.times,
+                positions: reference.positions,
+                incline_deg: m.incline_deg,
+                g: m.g,
+            },
+            integrator: m.integrator,
+            rollout_start: m.rollout_start,
+            training: TrainingRequest {
+                epochs: t.epochs,
+                patience: t.patience,
+                batch_size: t.batch_size,
+                lr: t.lr,
+                lr_phys: t.lr_phys,
+                single_start: t.single_start,
+                loss: t.loss,
+                encoder: t.encoder,
+                seed: t.seed,
+                ensemble: t.ensemble,
+                device: t.device,
+                threads: t.thread_count(),
+            },
+            out: self.output.out.clone(),
+            force: self.output.force,
+            quiet: self.output.quiet,
+        })
+    }
+
     /// What to load, as the data layer reads it.
-    pub fn load_request(&self) -> crate::data::LoadRequest {
+    fn load_request(&self) -> crate::data::LoadRequest {
         let mut recording = self.recording.request();
         recording.measured_at = self.model.reference_times().iter().map(|t| t.0).collect();
         crate::data::LoadRequest {
             input: self.input().to_path_buf(),
             model: self.model.given(),
-            trying: self.trying,
+            trying: false,
             dt: self.model.dt,
             recording,
         }
@@ -138,5 +175,59 @@ pub(crate) fn positive(flag: &str, v: f64) -> Result<(), EstimateError> {
             "{flag} {}: must be a finite number > 0",
             physvid_shared::cli::num(v)
         )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn request(line: &[&str]) -> Request {
+        EstimateArgs::try_parse_from(line)
+            .unwrap()
+            .validate()
+            .unwrap()
+            .request()
+            .unwrap()
+    }
+
+    #[test]
+    fn a_bare_command_line_asks_what_a_default_request_does() {
+        // A data set's folder: its meta.json names the model.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("meta.json"), "{}").unwrap();
+        let input = dir.path().to_str().unwrap();
+        assert_eq!(request(&["estimate", input]), Request::new(input));
+    }
+
+    #[test]
+    fn flags_land_in_their_typed_fields() {
+        let r = request(&[
+            "estimate",
+            "clip.mp4",
+            "--model",
+            "pendulum",
+            "--reference",
+            "1s=0.5,2s=0.2",
+            "--g",
+            "9.8",
+            "--epochs",
+            "7",
+            "--threads",
+            "1",
+            "--stride",
+            "2",
+        ]);
+        assert_eq!(r.load.model.map(|m| m.name()), Some("pendulum"));
+        assert!(!r.choose);
+        assert_eq!(r.calibration.times, vec![(1.0, 0.5), (2.0, 0.2)]);
+        assert_eq!(r.load.recording.measured_at, vec![1.0, 2.0]);
+        assert_eq!(r.calibration.g, Some(9.8));
+        assert_eq!((r.training.epochs, r.training.threads), (7, 1));
+        assert_eq!(r.load.recording.stride, Some(2));
+        assert!(
+            request(&["estimate", "clip.mp4"]).choose,
+            "a recording without --model"
+        );
     }
 }

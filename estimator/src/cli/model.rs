@@ -4,7 +4,7 @@
 
 use super::positive;
 use super::reference::{parse_reference, ReferencePoints};
-use crate::calibration::{CalibrationInput, DEFAULT_G};
+use crate::calibration::DEFAULT_G;
 use crate::error::{input_error, EstimateError};
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use clap::builder::{PossibleValue, TypedValueParser};
@@ -46,13 +46,13 @@ pub struct ModelArgs {
     pub g: Option<f64>,
     /// Physics integrator: exact (closed form, or RK4 with sub-steps for the pendulum), or the
     /// paper's Euler step (biased at large dt).
-    #[arg(long, value_enum, default_value_t = Integrator::Exact)]
+    #[arg(long, value_enum, default_value_t = Integrator::default())]
     pub integrator: Integrator,
     /// damped-oscillator: where each clip's rollout starts: fit (the initial state that fits
     /// the whole clip in least squares, robust to pixel noise) or frames (the first two encoded
     /// frames, the paper's). The pendulum always fits its start; first-order and
     /// constant-acceleration blocks start from the first frame.
-    #[arg(long, value_enum, default_value_t = RolloutStart::Fit)]
+    #[arg(long, value_enum, default_value_t = RolloutStart::default())]
     pub rollout_start: RolloutStart,
 }
 
@@ -190,27 +190,6 @@ impl ModelArgs {
         match self.model {
             Some(ModelSpec::Given(m)) => Some(m),
             _ => None,
-        }
-    }
-
-    /// The calibrations these flags give.
-    pub fn calibration_given(&self) -> Vec<CalibrationInput> {
-        CalibrationInput::ALL
-            .into_iter()
-            .filter(|&c| match c {
-                CalibrationInput::Reference => self.reference.is_some(),
-                CalibrationInput::InclineDeg => self.incline_deg.is_some(),
-                CalibrationInput::G => self.g.is_some(),
-            })
-            .collect()
-    }
-
-    /// Drops the flag that gives calibration `c`.
-    pub fn drop_calibration(&mut self, c: CalibrationInput) {
-        match c {
-            CalibrationInput::Reference => self.reference = None,
-            CalibrationInput::InclineDeg => self.incline_deg = None,
-            CalibrationInput::G => self.g = None,
         }
     }
 

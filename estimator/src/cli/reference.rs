@@ -1,8 +1,6 @@
 //! The calibration flags' values: `--reference` parsed (frames, a recording's times, bodies'
-//! positions), and the flag that gives each kind of calibration (`CalibrationInput`), named
-//! from its clap definition.
-
-use crate::calibration::CalibrationInput;
+//! positions); a test holds each kind of calibration's flag name (`CalibrationInput::flag`) to
+//! its clap definition.
 
 /// `--reference` values: CLIP:FRAME=VALUE triples, SECONDSs=VALUE pairs (a recording's
 /// timeline), and CLIP:FRAME=X1/Y1/X2/Y2 body positions.
@@ -69,26 +67,19 @@ pub fn parse_reference(text: &str) -> Result<ReferencePoints, String> {
     Ok(points)
 }
 
-/// The flag that gives calibration `c`.
-pub fn calibration_flag(c: CalibrationInput) -> String {
-    super::flag_name(match c {
-        CalibrationInput::Reference => "reference",
-        CalibrationInput::InclineDeg => "incline_deg",
-        CalibrationInput::G => "g",
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::calibration::CalibrationInput;
 
     #[test]
-    fn every_calibration_has_its_flag() {
-        let flags: Vec<String> = CalibrationInput::ALL
+    fn every_calibration_names_its_flag() {
+        for (c, id) in CalibrationInput::ALL
             .into_iter()
-            .map(calibration_flag)
-            .collect();
-        assert_eq!(flags, ["--reference", "--incline-deg", "--g"]);
+            .zip(["reference", "incline_deg", "g"])
+        {
+            assert_eq!(c.flag(), super::super::flag_name(id));
+        }
     }
     #[test]
     fn references_parse_or_say_what_is_wrong() {

@@ -3,6 +3,8 @@
 //! `physics::MODELS`.
 
 use super::positive;
+use crate::config::request::all_cores;
+use crate::config::TrainingRequest;
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
@@ -14,19 +16,19 @@ use crate::physics::MODELS;
 #[command(next_help_heading = "Training")]
 pub struct TrainingArgs {
     /// Maximum number of epochs; the early stop usually ends training sooner.
-    #[arg(long, default_value_t = 300)]
+    #[arg(long, default_value_t = TrainingRequest::default().epochs)]
     pub epochs: usize,
     #[arg(long, help = patience_help())]
     pub patience: Option<usize>,
     /// Clips per optimisation step.
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = TrainingRequest::default().batch_size)]
     pub batch_size: usize,
     /// Adam learning rate of the encoder.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = TrainingRequest::default().lr)]
     pub lr: f64,
     /// Adam learning rate of the physics parameters. Those that must stay positive (γ0, g/L,
     /// rates) are learned as logarithms, so for them it is a relative step.
-    #[arg(long, default_value_t = 1e-2)]
+    #[arg(long, default_value_t = TrainingRequest::default().lr_phys)]
     pub lr_phys: f64,
     /// Train only from --init (the paper's behaviour). By default starts estimated from the
     /// frames (principal components) are probed beside it and the best one kept, and an
@@ -34,19 +36,19 @@ pub struct TrainingArgs {
     #[arg(long)]
     pub single_start: bool,
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.
-    #[arg(long, value_enum, default_value_t = LossKind::MseKl)]
+    #[arg(long, value_enum, default_value_t = LossKind::default())]
     pub loss: LossKind,
     #[arg(long, value_enum, help = encoder_help())]
     pub encoder: Option<EncoderKind>,
     /// Seed of the weight initialisation and batch order.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = TrainingRequest::default().seed)]
     pub seed: u64,
     /// Train K models with seeds --seed … --seed+K−1 (one after another, each on every core)
     /// and report each value's mean, standard deviation and range (report.json `ensemble`).
-    #[arg(long, default_value_t = 1, value_name = "K")]
+    #[arg(long, default_value_t = TrainingRequest::default().ensemble, value_name = "K")]
     pub ensemble: usize,
     /// Where to train.
-    #[arg(long, value_enum, default_value_t = DeviceChoice::Auto)]
+    #[arg(long, value_enum, default_value_t = DeviceChoice::default())]
     pub device: DeviceChoice,
     /// CPU threads for libtorch, 1 to 256 (default: all cores).
     #[arg(long, value_parser = physvid_shared::cli::thread_count)]
@@ -90,8 +92,7 @@ pub const MAX_BATCH: usize = 65_536;
 impl TrainingArgs {
     /// CPU threads for libtorch: `--threads`, else every core.
     pub fn thread_count(&self) -> usize {
-        self.threads
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        self.threads.unwrap_or_else(all_cores)
     }
 
     /// Checks the flags that do not depend on the data.

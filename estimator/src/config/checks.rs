@@ -2,8 +2,8 @@
 //! a dt outside the range taken or beyond the model's longest, references of the wrong kind
 //! for its latent.
 
+use super::CalibrationRequest;
 use crate::calibration::Calibration;
-use crate::cli::{calibration_flag, ModelArgs};
 use crate::data::Plan;
 use crate::error::{input_error, EstimateError};
 use crate::physics::info::DT_RANGE;
@@ -11,9 +11,12 @@ use crate::physics::{ModelRef, MODELS};
 use physvid_shared::cli::num;
 
 /// Refuses a calibration flag the model's answers do not read, naming the models that do.
-pub(super) fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<(), EstimateError> {
-    let Some(c) = m
-        .calibration_given()
+pub(super) fn check_calibration_flags(
+    model: ModelRef,
+    asked: &CalibrationRequest,
+) -> Result<(), EstimateError> {
+    let Some(c) = asked
+        .given()
         .into_iter()
         .find(|c| !model.info().calibration.inputs.contains(c))
     else {
@@ -27,7 +30,7 @@ pub(super) fn check_calibration_flags(model: ModelRef, m: &ModelArgs) -> Result<
     Err(input_error(format!(
         "{}: {} does not use it (its answers need no calibration of that kind); it applies \
          to {}; drop it",
-        calibration_flag(c),
+        c.flag(),
         model.name(),
         readers.join(", ")
     )))

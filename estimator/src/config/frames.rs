@@ -3,7 +3,6 @@
 //! against the model's need, and `--reference` times placed on the clip frames they fall on.
 
 use super::{check_references, RunConfig};
-use crate::cli::EstimateArgs;
 use crate::data::ClipData;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
@@ -12,13 +11,9 @@ use crate::physics::ModelRef;
 impl RunConfig {
     /// This configuration completed by the clips loaded as it planned: the one step after the
     /// load, for what the frames alone can tell.
-    pub fn with_frames(
-        mut self,
-        args: &EstimateArgs,
-        data: &ClipData,
-    ) -> Result<RunConfig, EstimateError> {
+    pub fn with_frames(mut self, data: &ClipData) -> Result<RunConfig, EstimateError> {
         let model = self.model;
-        if args.training.encoder.is_none() {
+        if !self.encoder_named {
             if let Some(note) = read_by_position(model, data) {
                 self.encoder = EncoderKind::Centroid;
                 self.encoder_note = Some(note);

@@ -1,15 +1,18 @@
 //! `RunConfig`: the one resolved configuration of an `estimate` run (ripgrep's high-level
-//! arguments), made from the command line and a probe of the input before any frame is read:
+//! arguments), made from a typed `Request` (`request.rs`: the command line's flags, or a
+//! program's) and a probe of the input before any frame is read:
 //! model, dt, the load's plan, every per-model default, the calibration. What only frames tell
 //! is settled once they are loaded (`frames`). Nothing downstream re-derives a default.
 
 mod checks;
 mod frames;
+pub mod request;
+
+pub use request::{CalibrationRequest, Request, TrainingRequest};
 
 use checks::{check_calibration_flags, check_dt, check_references};
 
 use crate::calibration::Calibration;
-use crate::cli::EstimateArgs;
 use crate::data::{LoadRequest, Plan, Probe};
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
@@ -50,6 +53,9 @@ pub struct RunConfig {
     pub encoder: EncoderKind,
     /// Why the model chose `encoder` itself, when it did and no flag chose (a warning).
     pub encoder_note: Option<String>,
+    /// The request named the encoder (what the frames show does not change it).
+    #[serde(skip)]
+    pub encoder_named: bool,
     pub seed: u64,
     /// Independently seeded trainings whose spread is reported (1: a single run).
     pub ensemble: usize,
@@ -75,18 +81,18 @@ pub struct RunConfig {
 }
 
 impl RunConfig {
-    /// Resolves `args` (validated) against the probe of their input.
-    pub fn resolve(args: &EstimateArgs, probe: Probe) -> Result<RunConfig, EstimateError> {
+    /// Resolves `req` against the probe of its input.
+    pub fn resolve(req: &Request, probe: Probe) -> Result<RunConfig, EstimateError> {
         let Probe { model, dt, plan } = probe;
-        let (m, t) = (&args.model, &args.training);
-        let init = initial_values(model, m.init_pairs())?;
+        let (c, t) = (&req.calibration, &req.training);
+        let init = initial_values(model, &req.init)?;
         if t.loss == LossKind::ResidualFloor && !model.supports_residual() {
             return Err(input_error(format!(
                 "--loss residual+floor: implemented for damped-oscillator only, not {}; use --loss mse+kl",
                 model.name()
             )));
         }
-        if m.integrator == Integrator::Euler && !model.info().training.has_euler {
+        if req.integrator == Integrator::Euler && !model.info().training.has_euler {
             return Err(input_error(format!(
                 "--integrator euler: {} has no Euler step (it is integrated by RK4); use --integrator exact",
                 model.name()
@@ -106,8 +112,8 @@ impl RunConfig {
             )));
         }
         check_dt(model, dt, &plan)?;
-        check_calibration_flags(model, m)?;
-        let reference_times = m.reference_times().to_vec();
+        check_calibration_flags(model, c)?;
+        let reference_times = c.times.clone();
         if let (Some(&(t, v)), Plan::Dataset(_)) = (reference_times.first(), &plan) {
             return Err(input_error(format!(
                 "--reference {}s={}: times apply to recordings; for a data set give CLIP:FRAME=VALUE",
@@ -116,17 +122,17 @@ impl RunConfig {
             )));
         }
         let calibration = Calibration::resolve(
-            m.reference_points(),
-            m.reference_positions(),
+            &c.values,
+            &c.positions,
             !reference_times.is_empty(),
-            m.incline_deg,
-            m.g,
+            c.incline_deg,
+            c.g,
             plan.meta().map(|meta| &meta.calibration),
         );
         // The values are checked once the times are placed on frames, with the others.
         check_references(&calibration, model, reference_times.is_empty())?;
         Ok(RunConfig {
-            input: args.input().to_path_buf(),
+            input: req.input().to_path_buf(),
             model,
             dt,
             epochs: t.epochs,
@@ -136,20 +142,21 @@ impl RunConfig {
             lr_phys: t.lr_phys,
             init,
             calibration,
-            integrator: m.integrator,
-            rollout_start: m.rollout_start,
+            integrator: req.integrator,
+            rollout_start: req.rollout_start,
             single_start: t.single_start,
             loss: t.loss,
             encoder,
             encoder_note,
+            encoder_named: t.encoder.is_some(),
             seed: t.seed,
             ensemble: t.ensemble,
             device: t.device,
-            threads: t.thread_count(),
-            out: args.output.out.clone(),
-            force: args.output.force,
-            quiet: args.output.quiet,
-            request: args.load_request(),
+            threads: t.threads,
+            out: req.out.clone(),
+            force: req.force,
+            quiet: req.quiet,
+            request: req.load.clone(),
             plan,
             reference_times,
             reference_notes: Vec::new(),
@@ -226,10 +233,13 @@ mod tests {
         }
     }
 
-    fn args(flags: &[&str]) -> EstimateArgs {
+    fn args(flags: &[&str]) -> Request {
         use clap::Parser;
         let line = ["estimate", "clip.mp4"].iter().chain(flags);
-        EstimateArgs::try_parse_from(line).unwrap()
+        crate::cli::EstimateArgs::try_parse_from(line)
+            .unwrap()
+            .request()
+            .unwrap()
     }
 
     #[test]
@@ -237,7 +247,7 @@ mod tests {
         let a = args(&["--model", "torricelli", "--reference", "3s=0.07,12s=0.04"]);
         let cfg = RunConfig::resolve(&a, recording("torricelli")).unwrap();
         assert_eq!((cfg.model.name(), cfg.dt), ("torricelli", 0.1));
-        assert_eq!(cfg.request, a.load_request());
+        assert_eq!(cfg.request, a.load);
         // The times wait for the cut to be placed on frames; they are the flags' already.
         assert_eq!(cfg.reference_times, vec![(3.0, 0.07), (12.0, 0.04)]);
         assert!(cfg.calibration.reference.is_empty());

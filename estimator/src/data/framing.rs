@@ -11,7 +11,7 @@ use serde::Serialize;
 use std::path::Path;
 
 /// `--crop`'s choice of what the encoder sees.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Framing {
     /// Where the picture moves (a survey of the recording).

@@ -1,17 +1,20 @@
-//! What to load, resolved once from the command line (`cli::EstimateArgs::load_request`): the
-//! data layer sits below the CLI and never reads its types.
+//! What to load, part of the typed request (`config::Request`, made from the command line by
+//! `cli::EstimateArgs::request`): the data layer sits below the CLI and never reads its types.
 
 use super::framing::Framing;
+use crate::physics::model::by_source;
 use crate::physics::ModelRef;
 use physvid_shared::video::fields::FieldsChoice;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// The input and the flags that decide how it becomes clips.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct LoadRequest {
     /// A `gen` data set directory, a `.npy`, a video or an image folder.
     pub input: PathBuf,
     /// `--model`, when given (a data set's meta.json may name it instead).
+    #[serde(serialize_with = "by_source::option")]
     pub model: Option<ModelRef>,
     /// `model` is one candidate of a choice: a data set's meta.json may name another (its
     /// ground truth is then compared by name where the names agree).
@@ -23,7 +26,7 @@ pub struct LoadRequest {
 
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
 /// defaults (Table 5's clip) are resolved in `data::recording` once the model is known.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct RecordingRequest {
     /// `--fps`: frames per second of real time, overriding the container's.
     pub fps: Option<f64>,

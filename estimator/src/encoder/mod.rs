@@ -13,7 +13,9 @@ use tch::nn::{self, Module};
 use tch::Tensor;
 
 /// Encoder architectures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum EncoderKind {
     /// D → 16 → 1 with ReLU: fast, and accurate on every synthetic set.

@@ -3,7 +3,7 @@
 //! shares. One self-contained file each, plain HTML and CSS from minijinja templates; nothing
 //! is fetched from the network.
 
-use crate::report::text::significant;
+use crate::digits::{sig, significant};
 use crate::report::Report;
 use base64::Engine;
 use minijinja::{context, Environment};
@@ -52,6 +52,7 @@ pub struct Figure {
 pub fn report_page(report: &Report, figures: &[Figure]) -> String {
     let b64 = base64::engine::general_purpose::STANDARD;
     let parameters: Vec<Row> = report
+        .run
         .parameters
         .iter()
         .map(|p| Row {
@@ -68,6 +69,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         })
         .collect();
     let ensemble: Vec<_> = report
+        .run
         .ensemble
         .iter()
         .flat_map(|e| &e.values)
@@ -79,7 +81,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             }
         })
         .collect();
-    let cross_check = report.cross_check.as_ref().map(|c| {
+    let cross_check = report.run.cross_check.as_ref().map(|c| {
         format!(
             "Cross-check: {} from the amplitude decay of {} swings (appendix A.6) is {} ± {} \
              (learned {}): {}.",
@@ -95,33 +97,36 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             }
         )
     });
-    let cfg = &report.config;
-    let [n, t, ch, h, w] = report.shape;
+    let cfg = &report.run.config;
+    let [n, t, ch, h, w] = report.run.shape;
     let mut facts = vec![
-        ("model", report.model.clone()),
-        ("frame interval dt", format!("{} s", sig(report.dt))),
+        ("model", report.run.model.clone()),
+        ("frame interval dt", format!("{} s", sig(report.run.dt))),
         ("clips", format!("{n} × {t} frames of {w}×{h}×{ch}")),
         (
             "train / validation clips",
-            format!("{} / {}", report.train_clips, report.validation_clips),
+            format!(
+                "{} / {}",
+                report.run.train_clips, report.run.validation_clips
+            ),
         ),
         ("loss", cfg.loss.name().to_string()),
         ("integrator", cfg.integrator.name().to_string()),
         (
             "epochs run (best)",
-            format!("{} ({})", report.epochs_run, report.best_epoch),
+            format!("{} ({})", report.run.epochs_run, report.run.best_epoch),
         ),
-        ("stopped", stop_text(&report.stop)),
+        ("stopped", stop_text(&report.run.stop)),
         (
             "validation rel. MSE",
-            format!("{:.3e}", report.best_val_rel_mse),
+            format!("{:.3e}", report.run.best_val_rel_mse),
         ),
         (
             "latent std",
             format!(
                 "{:.3e}{}",
-                report.latent_std,
-                if report.latent_collapsed {
+                report.run.latent_std,
+                if report.run.latent_collapsed {
                     " (collapsed)"
                 } else {
                     ""
@@ -131,11 +136,11 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         ("seed", cfg.seed.to_string()),
         (
             "device, threads",
-            format!("{}, {}", report.device, report.threads),
+            format!("{}, {}", report.run.device, report.run.threads),
         ),
-        ("wall time", format!("{:.1} s", report.wall_time_s)),
+        ("wall time", format!("{:.1} s", report.run.wall_time_s)),
     ];
-    if let Some(p) = &report.photometric {
+    if let Some(p) = &report.run.photometric {
         facts.push((
             "light normalised",
             format!(
@@ -145,10 +150,10 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             ),
         ));
     }
-    if let Some(l) = &report.latent_vs_truth {
+    if let Some(l) = &report.run.latent_vs_truth {
         facts.push(("latent vs truth R²", format!("{:.4}", l.r2())));
     }
-    let recording = report.recording.as_ref().map(|r| {
+    let recording = report.run.recording.as_ref().map(|r| {
         vec![
             (
                 "frame rate",
@@ -206,19 +211,19 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
     });
     let headline = format!(
         "{} clips, dt {} s; {} epochs in {:.1} s on {}",
-        report.train_clips + report.validation_clips,
-        sig(report.dt),
-        report.epochs_run,
-        report.wall_time_s,
-        report.device
+        report.run.train_clips + report.run.validation_clips,
+        sig(report.run.dt),
+        report.run.epochs_run,
+        report.run.wall_time_s,
+        report.run.device
     );
     render(
         "report.html",
         include_str!("report.html"),
         context! {
             style => style(),
-            model => report.model, input => report.input, headline,
-            parameters, ensemble, cross_check, warnings => report.warnings, facts, recording, choice,
+            model => report.run.model, input => report.run.input, headline,
+            parameters, ensemble, cross_check, warnings => report.run.warnings, facts, recording, choice,
             grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
             version => report.version, libtorch => report.libtorch_version,
@@ -237,18 +242,5 @@ fn stop_text(stop: &crate::train::StopReason) -> String {
         MaxEpochs => "at --epochs".into(),
         NonFiniteLoss { epoch } => format!("non-finite loss at epoch {epoch}"),
         LawNotFinite { epoch, .. } => format!("the law not finite at epoch {epoch}"),
-    }
-}
-
-/// Six significant digits.
-pub fn sig(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
-        format!("{v:.5e}")
-    } else {
-        let digits = (5 - v.abs().log10().floor() as i64).clamp(0, 9) as usize;
-        format!("{v:.digits$}")
     }
 }

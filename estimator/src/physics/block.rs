@@ -4,11 +4,22 @@
 use tch::{Kind, Tensor};
 
 /// How a block advances the latent one frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Integrator {
     /// Exact propagator of the linear ODE (closed form), or RK4 with sub-steps for nonlinear
     /// ones: no discretisation bias at any dt.
+    #[default]
     Exact,
     /// The paper's explicit Euler step with a backward-difference velocity (biased at large dt).
     Euler,
@@ -24,11 +35,22 @@ impl Integrator {
 }
 
 /// Where the oscillator's rollout starts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum RolloutStart {
     /// The state (z0, z1) whose rollout fits the whole clip in least squares: noise in the first
     /// two frames is not carried through the clip.
+    #[default]
     Fit,
     /// The first two encoded frames (the paper's): pixel noise there biases the damping high.
     Frames,

@@ -159,3 +159,37 @@ impl serde::Serialize for ModelRef {
         s.serialize_str(self.name())
     }
 }
+
+/// Read back from a built-in's name or a model file's path (`ModelRef::parse`).
+impl<'de> serde::Deserialize<'de> for ModelRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ModelRef, D::Error> {
+        let text = <String as serde::Deserialize>::deserialize(d)?;
+        ModelRef::parse(&text).map_err(serde::de::Error::custom)
+    }
+}
+
+impl ModelRef {
+    /// What names it so that `ModelRef::parse` finds it again: a built-in's name, a model
+    /// file's path.
+    pub fn source(&self) -> &'static str {
+        self.info().law.file.unwrap_or(self.0.name())
+    }
+}
+
+/// Serde helpers writing models by [`ModelRef::source`] (a typed request handed to another
+/// process; report.json names them by name).
+pub mod by_source {
+    use super::ModelRef;
+    use serde::Serializer;
+
+    pub fn option<S: Serializer>(m: &Option<ModelRef>, s: S) -> Result<S::Ok, S::Error> {
+        match m {
+            Some(m) => s.serialize_some(m.source()),
+            None => s.serialize_none(),
+        }
+    }
+
+    pub fn list<S: Serializer>(ms: &[ModelRef], s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(ms.iter().map(|m| m.source()))
+    }
+}

@@ -1,29 +1,30 @@
 //! The report as text: the table printed at the end of a run and `metrics.csv`.
 
 use super::Report;
+use crate::digits::significant;
 
 impl Report {
     /// The closing table: parameter, estimate, ground truth, relative error.
     pub fn table(&self) -> String {
-        let noise = self.training_noise.map_or(String::new(), |s| {
+        let noise = self.run.training_noise.map_or(String::new(), |s| {
             format!(", fresh noise σ {s:.2} on the training frames")
         });
         let mut s = format!(
             "{} on {} ({}, {} integrator, {} epochs, best {}{noise}, {:.1} s on {})\n",
-            self.model,
-            self.input,
-            self.config.loss.name(),
-            self.config.integrator.name(),
-            self.epochs_run,
-            self.best_epoch,
-            self.wall_time_s,
-            self.device
+            self.run.model,
+            self.run.input,
+            self.run.config.loss.name(),
+            self.run.config.integrator.name(),
+            self.run.epochs_run,
+            self.run.best_epoch,
+            self.run.wall_time_s,
+            self.run.device
         );
         s += &format!(
             "{:<20} {:>12} {:>12} {:>8} {:>12} {:>12}\n",
             "parameter", "estimate", "± std. err.", "unit", "truth", "rel. error"
         );
-        for p in &self.parameters {
+        for p in &self.run.parameters {
             let truth = p.truth.map_or("-".into(), |t| format!("{t:.6}"));
             let err = p
                 .relative_error
@@ -36,7 +37,7 @@ impl Report {
                 p.name, p.estimate, se, p.unit, truth, err
             );
         }
-        if let Some(c) = &self.cross_check {
+        if let Some(c) = &self.run.cross_check {
             s += &format!(
                 "cross-check: {} from the amplitude decay of {} swings (appendix A.6): {:.4} ± {:.4} \
                  (learned {:.4}: {})\n",
@@ -57,12 +58,17 @@ impl Report {
 
     /// `metrics.csv`: one row per epoch.
     pub fn metrics_csv(&self) -> String {
-        let names: Vec<&str> = self.block_parameters.iter().map(String::as_str).collect();
+        let names: Vec<&str> = self
+            .run
+            .block_parameters
+            .iter()
+            .map(String::as_str)
+            .collect();
         let mut s = format!(
             "epoch,train_loss,val_loss,val_mse,val_rel_mse,latent_std,{},lr,lr_phys,elapsed_s,frames\n",
             names.join(",")
         );
-        for r in &self.history {
+        for r in &self.run.history {
             let params: Vec<String> = r.parameters.iter().map(|v| format!("{v}")).collect();
             s += &format!(
                 "{},{},{},{},{},{},{},{},{},{:.4},{}\n",
@@ -80,18 +86,5 @@ impl Report {
             );
         }
         s
-    }
-}
-
-/// A standard error to two significant digits.
-pub fn significant(e: f64) -> String {
-    if !e.is_finite() || e == 0.0 {
-        return format!("{e}");
-    }
-    let digits = (1 - e.abs().log10().floor() as i32).max(0) as usize;
-    if digits > 8 || e.abs() >= 1e6 {
-        format!("{e:.1e}")
-    } else {
-        format!("{e:.digits$}")
     }
 }

@@ -4,8 +4,8 @@
 //! references are wrong, and every value converted with the fitted scale is suspect.
 
 use super::{Check, Grade, Reason};
+use crate::analysis::Run;
 use crate::calibration::{position_scale, POSITION_FIT_R2};
-use crate::report::Report;
 use physvid_shared::cli::approx;
 
 pub struct References;
@@ -14,7 +14,7 @@ impl Check for References {
     fn name(&self) -> &'static str {
         "calibration"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some((_, r2)) = position_scale(&r.calibration, &r.outcome.readings.positions) else {
             return Vec::new();
         };

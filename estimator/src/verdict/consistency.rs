@@ -7,7 +7,7 @@
 //! the latent's arbitrary map (a tank's k_latent along with its base, while k stays put).
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct Halves;
@@ -34,7 +34,7 @@ impl Check for Halves {
     fn name(&self) -> &'static str {
         "consistency"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let mut out = Vec::new();
         // Values in latent units move along with the latent's arbitrary map (a tank's k_latent
         // with its base); only what the physics fixes is compared.

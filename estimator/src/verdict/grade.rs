@@ -1,6 +1,6 @@
 //! The verdict's types: a `Grade`, the `Reason`s the checks give, and the `Verdict` (the
-//! worst grade and the reasons). Kept apart from the checks, which read the report, so that
-//! the report can hold a verdict without depending on them.
+//! worst grade and the reasons). Kept apart from the checks, which read the pipeline's `Run`,
+//! so that the model choice can grade its candidates without depending on them.
 
 use serde::{Deserialize, Deserializer, Serialize};
 
@@ -84,6 +84,7 @@ fn check_name<'de, D: Deserializer<'de>>(d: D) -> Result<&'static str, D::Error>
     super::CHECKS
         .iter()
         .map(|c| c.name())
+        .chain([super::CHOICE])
         .find(|n| *n == name)
         .ok_or_else(|| serde::de::Error::custom(format!("no check is named {name:?}")))
 }
@@ -96,6 +97,21 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// The verdict of `reasons`: the worst grade, the reasons worst first (in their order at
+    /// equal grade).
+    pub fn of(mut reasons: Vec<Reason>) -> Verdict {
+        reasons.sort_by_key(|r| std::cmp::Reverse(r.grade));
+        Verdict {
+            grade: reasons.iter().map(|r| r.grade).max().unwrap_or(Grade::Ok),
+            reasons,
+        }
+    }
+
+    /// This verdict with `more` reasons weighed in.
+    pub fn with(self, more: impl IntoIterator<Item = Reason>) -> Verdict {
+        Verdict::of(self.reasons.into_iter().chain(more).collect())
+    }
+
     /// The verdict as lines for the terminal.
     pub fn text(&self) -> String {
         let mut s = format!("verdict: {}", self.grade.name());

@@ -5,7 +5,7 @@
 //! the latent while the latent is one of it.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct Harmonic;
@@ -16,7 +16,7 @@ impl Check for Harmonic {
     fn name(&self) -> &'static str {
         "harmonic"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some(f) = &r.evidence.fold else {
             return Vec::new();
         };

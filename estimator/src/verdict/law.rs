@@ -4,7 +4,7 @@
 //! smooth in time rather than noise.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct LawFits;
@@ -24,7 +24,7 @@ impl Check for LawFits {
     fn name(&self) -> &'static str {
         "law"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some(law) = &r.evidence.law else {
             return Vec::new();
         };

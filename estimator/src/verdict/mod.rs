@@ -1,10 +1,11 @@
 //! The verdict on an answer: `ok`, `doubtful` or `unreliable`, with the reasons in words a user
-//! can act on, computed from evidence about the run (`evidence/`) and the report. Each check is
-//! one file implementing [`Check`], listed once in [`CHECKS`]; README's "Reading the verdict"
-//! describes them, and their thresholds are justified there by measurement.
+//! can act on, computed from the pipeline's `Run` (its evidence, fits and data facts; never
+//! report.json's layout). Each check is one file implementing [`Check`], listed once in
+//! [`CHECKS`]; the model choice adds its own reason (`choice::close`, named [`CHOICE`]).
+//! README's "Reading the verdict" describes them, and docs/verdict.md justifies their
+//! thresholds by measurement.
 
 mod calibration;
-mod choice;
 mod consistency;
 pub mod grade;
 mod harmonic;
@@ -20,30 +21,22 @@ mod uncertainty;
 
 pub use grade::{Grade, Reason, Verdict};
 
-use crate::report::Report;
+use crate::analysis::Run;
 
-/// The verdict on `report`'s answer, from every check of [`CHECKS`].
-pub fn judge(report: &Report) -> Verdict {
-    let mut reasons: Vec<Reason> = CHECKS.iter().flat_map(|c| c.judge(report)).collect();
-    reasons.sort_by_key(|r| std::cmp::Reverse(r.grade));
-    Verdict {
-        grade: reasons.iter().map(|r| r.grade).max().unwrap_or(Grade::Ok),
-        reasons,
-    }
-}
+/// The name of the reason a model choice adds to its chosen answer's verdict (a close call).
+pub const CHOICE: &str = "choice";
 
-/// `report` with its verdict.
-pub fn judged(mut report: Report) -> Report {
-    report.verdict = judge(&report);
-    report
+/// The verdict on `run`'s answer, from every check of [`CHECKS`].
+pub fn judge(run: &Run) -> Verdict {
+    Verdict::of(CHECKS.iter().flat_map(|c| c.judge(run)).collect())
 }
 
 /// One check of an answer.
 pub trait Check: Sync {
     /// Its name in report.json's reasons.
     fn name(&self) -> &'static str;
-    /// What it finds against `report`'s answer (nothing: no objection).
-    fn judge(&self, report: &Report) -> Vec<Reason>;
+    /// What it finds against `run`'s answer (nothing: no objection).
+    fn judge(&self, run: &Run) -> Vec<Reason>;
 }
 
 /// Every check, in the order their reasons are listed at equal grade.
@@ -60,7 +53,6 @@ pub static CHECKS: &[&dyn Check] = &[
     &consistency::Halves,
     &physics::Plausible,
     &calibration::References,
-    &choice::Choice,
 ];
 
 #[cfg(test)]
@@ -69,10 +61,10 @@ mod tests {
 
     #[test]
     fn names_are_unique() {
-        let mut names: Vec<_> = CHECKS.iter().map(|c| c.name()).collect();
+        let mut names: Vec<_> = CHECKS.iter().map(|c| c.name()).chain([CHOICE]).collect();
         names.sort();
         names.dedup();
-        assert_eq!(names.len(), CHECKS.len());
+        assert_eq!(names.len(), CHECKS.len() + 1);
         assert!(Grade::Unreliable > Grade::Doubtful && Grade::Doubtful > Grade::Ok);
     }
 }

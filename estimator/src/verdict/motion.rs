@@ -4,7 +4,7 @@
 //! the law describes, and the law fitted to it says nothing about the scene.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct FollowsMotion;
@@ -28,7 +28,7 @@ impl Check for FollowsMotion {
     fn name(&self) -> &'static str {
         "motion"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some(f) = &r.evidence.fold else {
             return Vec::new();
         };

@@ -3,7 +3,7 @@
 //! model states them (`Model::implausible`).
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 
 pub struct Plausible;
 
@@ -11,7 +11,7 @@ impl Check for Plausible {
     fn name(&self) -> &'static str {
         "physics"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let values: Vec<(&str, f64, f64)> = r
             .parameters
             .iter()

@@ -8,8 +8,8 @@
 //! first-order law the latent was bent to follow.
 
 use super::{Check, Grade, Reason};
+use crate::analysis::Run;
 use crate::physics::Picture;
-use crate::report::Report;
 use physvid_shared::cli::approx;
 
 pub struct Premise;
@@ -30,7 +30,7 @@ impl Check for Premise {
     fn name(&self) -> &'static str {
         "premise"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let (Some(premise), Some(f)) = (r.config.model.info().footage.picture, &r.evidence.fold)
         else {
             return Vec::new();

@@ -5,7 +5,7 @@
 //! frames; g goes as 1/(t − release)², so on a short fall each frame is a few per cent.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct Release;
@@ -22,7 +22,7 @@ impl Check for Release {
     fn name(&self) -> &'static str {
         "release"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some(d) = r.recording.as_ref().and_then(|rec| rec.descent) else {
             return Vec::new();
         };

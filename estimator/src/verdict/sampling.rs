@@ -2,7 +2,7 @@
 //! or too slow to show within a clip (a wrong dt, or the wrong model).
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct Sampling;
@@ -19,7 +19,7 @@ impl Check for Sampling {
     fn name(&self) -> &'static str {
         "sampling"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let model = r.config.model;
         let Some(rate) = model.rate(&r.final_values).filter(|v| v.is_finite()) else {
             return Vec::new();

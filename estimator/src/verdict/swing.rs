@@ -5,7 +5,7 @@
 //! the true law; the answer (a pendulum of 95 m damped past its swing) says nothing.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
 pub struct Swings;
@@ -21,7 +21,7 @@ impl Check for Swings {
     fn name(&self) -> &'static str {
         "swing"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let model = r.config.model;
         let (Some(what), Some(share)) = (
             model.info().footage.swings,

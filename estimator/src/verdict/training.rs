@@ -3,7 +3,7 @@
 //! a loss that became NaN.
 
 use super::{Check, Grade, Reason};
-use crate::report::Report;
+use crate::analysis::Run;
 use crate::train::StopReason;
 
 pub struct Training;
@@ -18,7 +18,7 @@ impl Check for Training {
     fn name(&self) -> &'static str {
         "training"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let mut out = Vec::new();
         let name = self.name();
         if r.latent_collapsed {

@@ -4,8 +4,8 @@
 //! known to be determined.
 
 use super::{Check, Grade, Reason};
+use crate::analysis::Run;
 use crate::physics::Settles;
-use crate::report::Report;
 use physvid_shared::cli::approx;
 
 pub struct Determined;
@@ -19,7 +19,7 @@ impl Check for Determined {
     fn name(&self) -> &'static str {
         "uncertainty"
     }
-    fn judge(&self, r: &Report) -> Vec<Reason> {
+    fn judge(&self, r: &Run) -> Vec<Reason> {
         let mut out = Vec::new();
         let any_error = r.parameters.iter().any(|p| p.standard_error.is_some());
         if !any_error && !r.parameters.is_empty() {

@@ -51,7 +51,7 @@ pub(crate) fn bad(path: &Path, reason: impl Into<String>) -> VideoError {
 }
 
 /// A crop rectangle in pixels of the displayed (rotated) frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Crop {
     pub x: usize,
     pub y: usize,

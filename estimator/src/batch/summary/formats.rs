@@ -3,8 +3,7 @@
 //! messages escaped for each format.
 
 use super::{Estimate, RowStatus, Summary};
-use crate::html::sig;
-use crate::report::text::significant;
+use crate::digits::{sig, significant};
 use physvid_shared::escape::{csv_text, md_text};
 
 impl Summary {

@@ -42,7 +42,9 @@ impl FieldOrder {
 
 /// How a recording's fields are read (`--fields`): found from the picture or the tag
 /// (`auto`), never split (`frames`), or split in the order given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum FieldsChoice {
     #[default]

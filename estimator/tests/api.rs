@@ -1,0 +1,55 @@
+//! The library API as a program calls it: a typed `Request` in, the fit with its verdict out,
+//! nothing written; the same answer as the `estimate` binary on the same data, and typed
+//! errors for bad input.
+
+mod util;
+
+use estimator::{estimation, EstimateError, Request};
+use util::{estimate_of, gen_dataset, read_report, Estimate};
+
+#[test]
+fn the_api_answers_as_the_command_line_does_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = gen_dataset(
+        &tmp.path().join("data"),
+        "intensity",
+        &["--samples", "120", "--size", "32", "--seed", "3"],
+    );
+    let cli_out = tmp.path().join("cli");
+    Estimate::new(&data)
+        .out(&cli_out)
+        .args(["--threads", "2", "--epochs", "40"])
+        .ok();
+    let cli = read_report(&cli_out);
+
+    let mut req = Request::new(&data);
+    req.training.threads = 2;
+    req.training.epochs = 40;
+    req.quiet = true;
+    req.out = tmp.path().join("never");
+    let fit = estimation(&req).unwrap();
+    assert!(!req.out.exists(), "a library call writes nothing");
+    let run = &fit.report.run;
+    assert_eq!(run.model, "damped-oscillator", "meta.json names the model");
+    for name in ["gamma0", "gamma1"] {
+        let api = run.parameters.iter().find(|p| p.name == name).unwrap();
+        assert_eq!(api.estimate, estimate_of(&cli, name), "{name}");
+    }
+    assert_eq!(
+        fit.report.verdict.grade.name(),
+        cli["verdict"]["grade"].as_str().unwrap()
+    );
+    assert_eq!(run.epochs_run as u64, cli["epochs_run"].as_u64().unwrap());
+}
+
+#[test]
+fn bad_input_is_a_typed_error_naming_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let missing = tmp.path().join("missing.npy");
+    let mut req = Request::new(&missing);
+    req.load.dt = Some(0.1);
+    req.quiet = true;
+    let e = estimation(&req).err().expect("no such file");
+    let typed = e.downcast_ref::<EstimateError>().expect("an EstimateError");
+    assert!(typed.to_string().contains("missing.npy"), "{typed}");
+}
