@@ -174,7 +174,10 @@ mod tests {
         req.load.recording.crop = Some(crate::data::Framing::Full);
         req.training.encoder = Some(EncoderKind::Centroid);
         let text = serde_json::to_string(&req).unwrap();
-        assert!(text.contains("cooling.toml"), "a file model by its path: {text}");
+        assert!(
+            text.contains("cooling.toml"),
+            "a file model by its path: {text}"
+        );
         let back: Request = serde_json::from_str(&text).unwrap();
         assert_eq!(back, req);
         assert_eq!(back.candidates[0].source(), req.candidates[0].source());
