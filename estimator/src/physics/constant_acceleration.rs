@@ -3,9 +3,11 @@
 //! differ in what their SI answers are.
 
 use super::block::{frame_index, BlockOptions, Clips, PhysicsBlock};
+use super::hooks::Implausible;
 use super::info::{Calibrates, ModelInfo, ParamSpec, TruthKey};
-use super::model::{Derived, Implausible, Model};
+use super::model::{Derived, Model};
 use crate::calibration::{needs_reference, Calibration, CalibrationInput, DerivedValue, Readings};
+use crate::physics::hooks::MotionHooks;
 use physvid_shared::cli::approx;
 use physvid_shared::systems;
 use tch::nn;
@@ -105,6 +107,12 @@ impl Model for ConstantAcceleration {
         }
         (values, warnings)
     }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
+
+impl MotionHooks for ConstantAcceleration {
     /// A negative friction coefficient (the block slides faster than without friction), a
     /// fall upwards, or a g far from Earth's.
     fn implausible(&self, values: &[(&str, f64, f64)]) -> Vec<Implausible> {

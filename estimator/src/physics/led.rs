@@ -5,6 +5,7 @@ use super::info::{Footage, ModelInfo, ParamSpec, Picture, Training, TruthKey};
 use super::model::{Derived, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
+use crate::physics::hooks::MotionHooks;
 use physvid_shared::systems;
 use tch::nn;
 use tch::{Kind, Tensor};
@@ -51,16 +52,22 @@ impl Model for Led {
             opts.dt,
         ))
     }
-    /// The dimming rate γ.
-    fn rate(&self, params: &[f64]) -> Option<f64> {
-        Some(params[0].abs())
-    }
     fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
         let values = vec![
             DerivedValue::si("gamma", "1/s", params[0], Some("gamma")),
             DerivedValue::latent("offset", params[1]),
         ];
         (values, Vec::new())
+    }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
+
+impl MotionHooks for Led {
+    /// The dimming rate γ.
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some(params[0].abs())
     }
 }
 

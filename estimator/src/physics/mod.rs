@@ -7,6 +7,7 @@ pub mod block;
 pub mod bounds;
 pub mod constant_acceleration;
 pub mod file;
+pub mod hooks;
 pub mod info;
 pub mod led;
 pub mod model;
@@ -20,8 +21,9 @@ pub mod torricelli;
 
 pub use block::{BlockOptions, Clips, Integrator, PhysicsBlock, RolloutStart};
 pub use bounds::Bounds;
+pub use hooks::Implausible;
 pub use info::{ModelInfo, ParamSpec, Picture, Settles};
-pub use model::{Derived, Implausible, Model, ModelRef};
+pub use model::{Derived, Model, ModelRef};
 
 /// Every model, in the order `--help` lists them.
 pub static MODELS: &[&dyn Model] = &[

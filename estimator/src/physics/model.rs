@@ -1,127 +1,132 @@
-//! `Model`: everything `estimate` knows about one physical model (its parameters, defaults,
-//! block, extra starts and SI answers), and `ModelRef`, a model of the registry as a value.
+//! `Model`: one physical model's law (its info, block and SI answers; the optional hooks in
+//! `hooks.rs`), and `ModelRef`, a model of the registry as a value.
 
-use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use super::block::Integrator;
+use super::block::{BlockOptions, PhysicsBlock};
+use super::hooks::{Implausible, MotionHooks, NoHooks, TrainingHooks};
 use super::info::{ModelInfo, ParamSpec};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::PeakDecay;
 use tch::{nn, Tensor};
 
-/// A value the model forbids (`forbidden`: no such system has it) or finds implausible, with
-/// the fix in words (the verdict's physics check).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Implausible {
-    pub forbidden: bool,
-    pub detail: String,
-}
-
 /// What the report shows of a trained block: values (SI or latent units) and warnings about
 /// answers left in latent units.
 pub type Derived = (Vec<DerivedValue>, Vec<String>);
 
-/// A physical model `estimate` can fit. One file of `physics/` per model, listed once in
-/// `physics::MODELS`: its [`ModelInfo`], how to build its block, the starts it reads off the
-/// data, and how its SI answers follow from the block's parameters.
+/// A physical model `estimate` can fit: its law. One file of `physics/` per model, listed once
+/// in `physics::MODELS`: its [`ModelInfo`] (name, parameters and units, latent size, what its
+/// footage, calibration and training need), how to build its block, and how its SI answers
+/// follow from the block's parameters. What else a law may say (starts read off the frames, a
+/// curriculum, the motion's rate for the verdict, …) are the optional traits of `hooks.rs`.
 pub trait Model: Sync {
     fn info(&self) -> &ModelInfo;
     /// Builds the block under `path`, starting from `init` (the model's parameter order).
     fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock>;
-    /// Starts read off the training clips [N, T, D] before training, beside `init`.
-    fn extra_starts(
-        &self,
-        _train: &Tensor,
-        _dt: f64,
-        _integrator: Integrator,
-        _init: &[f64],
-    ) -> Vec<Vec<f64>> {
-        Vec::new()
-    }
     /// The reported values from the block's parameters, the calibration and the latent read at
     /// its reference frames.
     fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived;
-    /// Frames of the first stage of a horizon curriculum when starting from `init` at `dt`, if
-    /// the model wants one: over many swings the loss has a minimum per basin of phase, so
-    /// training starts on the clips' first frames and doubles the horizon (`train::Trainer`).
-    fn first_horizon(&self, _init: &[f64], _dt: f64) -> Option<usize> {
+    /// Its training hooks, where it has any.
+    fn training_hooks(&self) -> Option<&dyn TrainingHooks> {
         None
     }
-    /// A classical measurement of one of the answers on a recording's encoded latent
-    /// (`latents`, one per recording frame, `dt` apart), to check the learned value against.
-    fn cross_check(&self, _params: &[f64], _latents: &[f64], _dt: f64) -> Option<PeakDecay> {
+    /// What it says of the motion its parameters describe, where it says anything.
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
         None
     }
-    /// The coordinates of latents `z` [B, T, D] the KL term holds near N(0, 1), one by one:
-    /// the latent itself unless the law has a degenerate solution that a transform of it
-    /// exposes (the spring's rigid pair).
-    fn kl_coordinates(&self, z: &Tensor) -> Tensor {
-        z.shallow_clone()
-    }
-    /// The fastest rate of the motion the parameters describe (rad/s for an oscillation, 1/s
-    /// for a decay), to judge the answer against the frames' dt; `None` for motions without one
-    /// (a constant acceleration, a draining tank).
-    fn rate(&self, _params: &[f64]) -> Option<f64> {
-        None
-    }
-    /// Whether the motion the parameters describe oscillates (swings and springs; a decay, a
-    /// drain or a fall does not): the verdict compares small and large motions for those,
-    /// low and high levels for the others.
-    fn oscillates(&self, _params: &[f64]) -> bool {
-        false
-    }
-    /// The parameters of the same law swinging at half the frequency of `params`' motion, for
-    /// a start there when the latent folds the picture (an even function of the motion swings
-    /// at twice its frequency); `None` where the law has no such rescaling.
-    fn subharmonic(&self, _params: &[f64]) -> Option<Vec<f64>> {
-        None
-    }
-    /// Values of the report (name, estimate, standard error; 0 where unknown) that the model
-    /// forbids or finds implausible.
-    fn implausible(&self, _values: &[(&str, f64, f64)]) -> Vec<Implausible> {
-        Vec::new()
-    }
-    /// Warnings about the data: `timed` says whether the clips' start times are known.
-    fn data_warnings(&self, _timed: bool) -> Vec<String> {
-        Vec::new()
-    }
+}
 
-    fn name(&self) -> &'static str {
+/// What every model's [`ModelInfo`] answers, read through it.
+impl<'a> dyn Model + 'a {
+    pub fn name(&self) -> &'static str {
         self.info().law.name
     }
-    fn help(&self) -> &'static str {
+    pub fn help(&self) -> &'static str {
         self.info().law.help
     }
-    fn parameters(&self) -> &'static [ParamSpec] {
+    pub fn parameters(&self) -> &'static [ParamSpec] {
         self.info().law.parameters
     }
-    fn encoder(&self) -> EncoderKind {
+    pub fn encoder(&self) -> EncoderKind {
         self.info().training.encoder
     }
-    fn patience(&self) -> usize {
+    pub fn patience(&self) -> usize {
         self.info().training.patience
     }
-    fn table5_clip(&self) -> (usize, f64) {
+    pub fn table5_clip(&self) -> (usize, f64) {
         self.info().footage.table5_clip
     }
-    fn released_from_rest(&self) -> bool {
+    pub fn released_from_rest(&self) -> bool {
         self.info().footage.released_from_rest
     }
-    fn calibrates_in_training(&self) -> bool {
+    pub fn calibrates_in_training(&self) -> bool {
         self.info().calibration.in_training
     }
-    fn supports_residual(&self) -> bool {
+    pub fn supports_residual(&self) -> bool {
         self.info().training.supports_residual
     }
-    fn latent_dims(&self) -> usize {
+    pub fn latent_dims(&self) -> usize {
         self.info().law.latent_dims
     }
     /// The parameters' names, in order.
-    fn parameter_names(&self) -> Vec<&'static str> {
+    pub fn parameter_names(&self) -> Vec<&'static str> {
         self.parameters().iter().map(|p| p.name).collect()
     }
     /// The default starts, in order.
-    fn default_init(&self) -> Vec<f64> {
+    pub fn default_init(&self) -> Vec<f64> {
         self.parameters().iter().map(|p| p.start).collect()
+    }
+}
+
+/// The hooks' answers, the defaults where a model has none.
+impl<'a> dyn Model + 'a {
+    fn training(&self) -> &dyn TrainingHooks {
+        self.training_hooks().unwrap_or(&NoHooks)
+    }
+    fn motion(&self) -> &dyn MotionHooks {
+        self.motion_hooks().unwrap_or(&NoHooks)
+    }
+    /// [`TrainingHooks::extra_starts`].
+    pub fn extra_starts(
+        &self,
+        train: &Tensor,
+        dt: f64,
+        integrator: Integrator,
+        init: &[f64],
+    ) -> Vec<Vec<f64>> {
+        self.training().extra_starts(train, dt, integrator, init)
+    }
+    /// [`TrainingHooks::first_horizon`].
+    pub fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        self.training().first_horizon(init, dt)
+    }
+    /// [`TrainingHooks::kl_coordinates`].
+    pub fn kl_coordinates(&self, z: &Tensor) -> Tensor {
+        self.training().kl_coordinates(z)
+    }
+    /// [`TrainingHooks::subharmonic`].
+    pub fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
+        self.training().subharmonic(params)
+    }
+    /// [`MotionHooks::rate`].
+    pub fn rate(&self, params: &[f64]) -> Option<f64> {
+        self.motion().rate(params)
+    }
+    /// [`MotionHooks::oscillates`].
+    pub fn oscillates(&self, params: &[f64]) -> bool {
+        self.motion().oscillates(params)
+    }
+    /// [`MotionHooks::cross_check`].
+    pub fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
+        self.motion().cross_check(params, latents, dt)
+    }
+    /// [`MotionHooks::implausible`].
+    pub fn implausible(&self, values: &[(&str, f64, f64)]) -> Vec<Implausible> {
+        self.motion().implausible(values)
+    }
+    /// [`MotionHooks::data_warnings`].
+    pub fn data_warnings(&self, timed: bool) -> Vec<String> {
+        self.motion().data_warnings(timed)
     }
 }
 

@@ -11,7 +11,7 @@ pub mod grade;
 mod harmonic;
 mod law;
 mod motion;
-mod physics;
+mod plausible;
 mod premise;
 mod release;
 mod sampling;
@@ -51,7 +51,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &release::Release,
     &uncertainty::Determined,
     &consistency::Halves,
-    &physics::Plausible,
+    &plausible::Plausible,
     &calibration::References,
 ];
 

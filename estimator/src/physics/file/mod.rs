@@ -18,6 +18,7 @@ use super::model::{Derived, Model};
 use super::{Bounds, ModelRef};
 use crate::calibration::{Calibration, CalibrationInput, Readings};
 use crate::encoder::EncoderKind;
+use crate::physics::hooks::{MotionHooks, TrainingHooks};
 use crate::physics::spectral::spectral_start;
 use block::FileBlock;
 use physvid_shared::model_file::symmetry::{symmetries, transformed, Transform};
@@ -182,7 +183,6 @@ impl Model for FileModel {
     fn info(&self) -> &ModelInfo {
         &self.info
     }
-
     fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock> {
         let learn = (
             self.symmetries.scale.is_none(),
@@ -198,7 +198,19 @@ impl Model for FileModel {
             learn,
         ))
     }
+    /// The file's parameters, and values derived from them (see `derive.rs`).
+    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
+        self.values(params, cal, readings)
+    }
+    fn training_hooks(&self) -> Option<&dyn TrainingHooks> {
+        Some(self)
+    }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
 
+impl TrainingHooks for FileModel {
     /// Where the frames oscillate (their most persistent mode) and so does the file's law, the
     /// start rescaled in time to the frames' frequency, and to half of it (a latent like |x|
     /// oscillates at twice the motion's frequency). Where the law pins the map's scale (it is
@@ -257,7 +269,6 @@ impl Model for FileModel {
         }
         starts
     }
-
     /// The file's `[observed] kl` combinations when it names them (the spring's relative
     /// position: KL on the raw coordinates would let a rigid pair through), else each coordinate.
     fn kl_coordinates(&self, z: &Tensor) -> Tensor {
@@ -266,7 +277,6 @@ impl Model for FileModel {
         }
         kl::kl_coordinates(&self.file.kl, &self.file.observed, z)
     }
-
     /// The same motion at half its frequency: the law rescaled in time, the map kept.
     fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
         let m = self.file.parameters.len();
@@ -279,6 +289,16 @@ impl Model for FileModel {
         p.extend_from_slice(&params[m..]);
         Some(p)
     }
+    /// One and a half periods of the start's motion, at least four frames.
+    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        let w = self
+            .system
+            .frequency(&init[..self.file.parameters.len()], dt)?;
+        Some((1.5 * std::f64::consts::TAU / (w * dt)).ceil().max(4.0) as usize)
+    }
+}
+
+impl MotionHooks for FileModel {
     /// When the file's motion has a frequency at these parameters.
     fn oscillates(&self, params: &[f64]) -> bool {
         self.rate(params).is_some()
@@ -288,18 +308,5 @@ impl Model for FileModel {
         // finer.
         self.system
             .frequency(&params[..self.file.parameters.len()], 0.01)
-    }
-
-    /// One and a half periods of the start's motion, at least four frames.
-    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
-        let w = self
-            .system
-            .frequency(&init[..self.file.parameters.len()], dt)?;
-        Some((1.5 * std::f64::consts::TAU / (w * dt)).ceil().max(4.0) as usize)
-    }
-
-    /// The file's parameters, and values derived from them (see `derive.rs`).
-    fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
-        self.values(params, cal, readings)
     }
 }

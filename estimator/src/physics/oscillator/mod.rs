@@ -11,11 +11,13 @@ pub(crate) mod two_step_solve;
 pub use block::{DampedOscillatorBlock, FORECAST_FIT_FRAMES};
 
 use super::block::{BlockOptions, Integrator, PhysicsBlock};
+use super::hooks::Implausible;
 use super::info::{Footage, ModelInfo, ParamSpec, Training, TruthKey};
-use super::model::{Derived, Implausible, Model};
+use super::model::{Derived, Model};
 use crate::calibration::{Calibration, DerivedValue, Readings};
 use crate::encoder::EncoderKind;
 use crate::peaks::{self, PeakDecay};
+use crate::physics::hooks::{MotionHooks, TrainingHooks};
 use crate::physics::spectral::spectral_start;
 use physvid_shared::cli::approx;
 use physvid_shared::systems;
@@ -67,6 +69,24 @@ impl Model for DampedOscillator {
             opts.start,
         ))
     }
+    fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
+        (
+            vec![
+                DerivedValue::si("gamma0", "1/s^2", params[0], Some("gamma0")),
+                DerivedValue::si("gamma1", "1/s", params[1], Some("gamma1")),
+            ],
+            Vec::new(),
+        )
+    }
+    fn training_hooks(&self) -> Option<&dyn TrainingHooks> {
+        Some(self)
+    }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
+
+impl TrainingHooks for DampedOscillator {
     /// γ0 and γ1 read off the frames' principal components (see `spectral.rs`).
     fn extra_starts(
         &self,
@@ -81,6 +101,9 @@ impl Model for DampedOscillator {
     fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
         Some(vec![params[0] / 4.0, params[1] / 2.0])
     }
+}
+
+impl MotionHooks for DampedOscillator {
     fn oscillates(&self, _params: &[f64]) -> bool {
         true
     }
@@ -107,14 +130,5 @@ impl Model for DampedOscillator {
                 ),
             })
             .collect()
-    }
-    fn derive(&self, params: &[f64], _cal: &Calibration, _readings: &Readings) -> Derived {
-        (
-            vec![
-                DerivedValue::si("gamma0", "1/s^2", params[0], Some("gamma0")),
-                DerivedValue::si("gamma1", "1/s", params[1], Some("gamma1")),
-            ],
-            Vec::new(),
-        )
     }
 }

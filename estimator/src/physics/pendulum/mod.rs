@@ -16,6 +16,7 @@ use super::info::{Calibrates, Footage, ModelInfo, ParamSpec, TruthKey};
 use super::model::{Derived, Model};
 use crate::calibration::{Calibration, CalibrationInput, DerivedValue, Readings};
 use crate::peaks::{self, PeakDecay};
+use crate::physics::hooks::{MotionHooks, TrainingHooks};
 use crate::physics::spectral::spectral_start;
 use physvid_shared::systems;
 use tch::nn;
@@ -61,6 +62,35 @@ impl Model for Pendulum {
     fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock> {
         Box::new(PendulumBlock::new(path, init, opts))
     }
+    fn derive(&self, params: &[f64], cal: &Calibration, _readings: &Readings) -> Derived {
+        let mut warnings = Vec::new();
+        if cal.reference.len() < 2 {
+            warnings.push(
+                "the pendulum's angle scale was learned, not calibrated: at finite amplitude \
+                 the period depends on the amplitude, so L depends on that scale, which the \
+                 video pins only weakly; give the angle in rad at two or more frames with \
+                 --reference CLIP:FRAME=ANGLE,... to calibrate it"
+                    .into(),
+            );
+        }
+        let values = vec![
+            DerivedValue::si("length", "m", cal.g / params[0], Some("length")),
+            DerivedValue::si("damping", "1/s", params[1], Some("damping")),
+            DerivedValue::si("g_over_l", "1/s^2", params[0], None),
+            DerivedValue::latent("angle_scale", params[2]),
+            DerivedValue::latent("angle_offset", params[3]),
+        ];
+        (values, warnings)
+    }
+    fn training_hooks(&self) -> Option<&dyn TrainingHooks> {
+        Some(self)
+    }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
+
+impl TrainingHooks for Pendulum {
     /// The oscillator's two-step recurrence gives the small-angle g/L and damping. The most
     /// persistent mode of a real swing is often the second harmonic (a latent like |x|
     /// oscillates at 2ω, so g/L 4× too large): its sub-harmonic is probed too, and the
@@ -81,7 +111,6 @@ impl Model for Pendulum {
             vec![g[0] / 4.0, damping / 2.0, init[2], init[3]],
         ]
     }
-    /// The small-angle frequency √(g/L), the fastest it swings.
     /// Half the frequency: g/L/4, the damping halved, the map kept.
     fn subharmonic(&self, params: &[f64]) -> Option<Vec<f64>> {
         let mut p = params.to_vec();
@@ -89,9 +118,18 @@ impl Model for Pendulum {
         p[1] /= 2.0;
         Some(p)
     }
+    /// One and a half swings at the start's g/L, at least four frames.
+    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        let frames_per_swing = std::f64::consts::TAU / (init[0].sqrt() * dt);
+        Some((1.5 * frames_per_swing).ceil().max(4.0) as usize)
+    }
+}
+
+impl MotionHooks for Pendulum {
     fn oscillates(&self, _params: &[f64]) -> bool {
         true
     }
+    /// The small-angle frequency √(g/L), the fastest it swings.
     fn rate(&self, params: &[f64]) -> Option<f64> {
         Some(params[0].max(0.0).sqrt())
     }
@@ -99,30 +137,5 @@ impl Model for Pendulum {
     /// angle offset.
     fn cross_check(&self, params: &[f64], latents: &[f64], dt: f64) -> Option<PeakDecay> {
         peaks::cross_check("damping", params[1], latents, dt, params[3])
-    }
-    /// One and a half swings at the start's g/L, at least four frames.
-    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
-        let frames_per_swing = std::f64::consts::TAU / (init[0].sqrt() * dt);
-        Some((1.5 * frames_per_swing).ceil().max(4.0) as usize)
-    }
-    fn derive(&self, params: &[f64], cal: &Calibration, _readings: &Readings) -> Derived {
-        let mut warnings = Vec::new();
-        if cal.reference.len() < 2 {
-            warnings.push(
-                "the pendulum's angle scale was learned, not calibrated: at finite amplitude \
-                 the period depends on the amplitude, so L depends on that scale, which the \
-                 video pins only weakly; give the angle in rad at two or more frames with \
-                 --reference CLIP:FRAME=ANGLE,... to calibrate it"
-                    .into(),
-            );
-        }
-        let values = vec![
-            DerivedValue::si("length", "m", cal.g / params[0], Some("length")),
-            DerivedValue::si("damping", "1/s", params[1], Some("damping")),
-            DerivedValue::si("g_over_l", "1/s^2", params[0], None),
-            DerivedValue::latent("angle_scale", params[2]),
-            DerivedValue::latent("angle_offset", params[3]),
-        ];
-        (values, warnings)
     }
 }

@@ -25,6 +25,7 @@ use crate::calibration::{
     position_scale, Calibration, CalibrationInput, DerivedValue, Readings, POSITION_FIT_R2,
 };
 use crate::encoder::EncoderKind;
+use crate::physics::hooks::{MotionHooks, TrainingHooks};
 use crate::physics::spectral::spectral_start;
 use physvid_shared::systems;
 use system::{SpringSystem, SUBSTEPS_PER_FRAME};
@@ -135,38 +136,6 @@ impl Model for Spring {
             dt: opts.dt,
         })
     }
-    /// The relative coordinate d = body two − body one only: the KL term on d rules out the
-    /// rigid pair (|d| = l fixed, both bodies riding on the centre of mass), which satisfies
-    /// the law for every k and which KL on the raw coordinates would let through; the centre of
-    /// mass carries no parameter, and pulling its spread to 1 would only distort the latent.
-    fn kl_coordinates(&self, z: &Tensor) -> Tensor {
-        z.narrow(-1, 2, 2) - z.narrow(-1, 0, 2)
-    }
-    /// The relative coordinate oscillates at √(2k): k from the frames' most persistent mode.
-    fn extra_starts(
-        &self,
-        train: &Tensor,
-        dt: f64,
-        integrator: Integrator,
-        init: &[f64],
-    ) -> Vec<Vec<f64>> {
-        spectral_start(train, dt, integrator)
-            .map(|g| vec![g[0] / 2.0, init[1]])
-            .into_iter()
-            .collect()
-    }
-    /// One and a half periods of the relative coordinate at the start's k, at least 4 frames.
-    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
-        let period = std::f64::consts::TAU / ((2.0 * init[0]).sqrt() * dt);
-        Some((1.5 * period).ceil().max(4.0) as usize)
-    }
-    /// The relative vector's oscillation √(2k) (two unit masses).
-    fn oscillates(&self, _params: &[f64]) -> bool {
-        true
-    }
-    fn rate(&self, params: &[f64]) -> Option<f64> {
-        Some((2.0 * params[0]).max(0.0).sqrt())
-    }
     /// k as learned; l in latent units, and in pixels with the similarity's scale from frames
     /// of known body positions.
     fn derive(&self, params: &[f64], cal: &Calibration, readings: &Readings) -> Derived {
@@ -197,6 +166,50 @@ impl Model for Spring {
             ),
         }
         (values, warnings)
+    }
+    fn training_hooks(&self) -> Option<&dyn TrainingHooks> {
+        Some(self)
+    }
+    fn motion_hooks(&self) -> Option<&dyn MotionHooks> {
+        Some(self)
+    }
+}
+
+impl TrainingHooks for Spring {
+    /// The relative coordinate d = body two − body one only: the KL term on d rules out the
+    /// rigid pair (|d| = l fixed, both bodies riding on the centre of mass), which satisfies
+    /// the law for every k and which KL on the raw coordinates would let through; the centre of
+    /// mass carries no parameter, and pulling its spread to 1 would only distort the latent.
+    fn kl_coordinates(&self, z: &Tensor) -> Tensor {
+        z.narrow(-1, 2, 2) - z.narrow(-1, 0, 2)
+    }
+    /// The relative coordinate oscillates at √(2k): k from the frames' most persistent mode.
+    fn extra_starts(
+        &self,
+        train: &Tensor,
+        dt: f64,
+        integrator: Integrator,
+        init: &[f64],
+    ) -> Vec<Vec<f64>> {
+        spectral_start(train, dt, integrator)
+            .map(|g| vec![g[0] / 2.0, init[1]])
+            .into_iter()
+            .collect()
+    }
+    /// One and a half periods of the relative coordinate at the start's k, at least 4 frames.
+    fn first_horizon(&self, init: &[f64], dt: f64) -> Option<usize> {
+        let period = std::f64::consts::TAU / ((2.0 * init[0]).sqrt() * dt);
+        Some((1.5 * period).ceil().max(4.0) as usize)
+    }
+}
+
+impl MotionHooks for Spring {
+    /// The relative vector's oscillation √(2k) (two unit masses).
+    fn oscillates(&self, _params: &[f64]) -> bool {
+        true
+    }
+    fn rate(&self, params: &[f64]) -> Option<f64> {
+        Some((2.0 * params[0]).max(0.0).sqrt())
     }
 }
 
