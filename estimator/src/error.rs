@@ -44,6 +44,9 @@ pub enum EstimateError {
     /// Training ran but gave no estimate (exit code 3); nothing is written.
     #[error("no estimate: {0}; nothing written")]
     NoEstimate(String),
+    /// A library caller stopped the run (`run::Watch::cancel`); nothing is written.
+    #[error("cancelled; nothing written")]
+    Cancelled,
 }
 
 impl EstimateError {

@@ -59,4 +59,4 @@ pub mod windows;
 pub use cli::EstimateArgs;
 pub use config::{Request, RunConfig};
 pub use error::EstimateError;
-pub use run::{chooses, estimate, estimation, run, Estimation};
+pub use run::{chooses, estimate, estimation, estimation_watched, run, Estimation, Watch};

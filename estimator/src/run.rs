@@ -13,10 +13,23 @@ use crate::output::{check_out, clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::Report;
-use crate::train::{fit, fit_best, StopReason};
+use crate::train::{fit, fit_best, Cancel, EpochRecord, StopReason};
 use crate::verdict::{self, Grade};
 use physvid_shared::term;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
+
+/// How a caller follows and stops a run: each epoch of the training kept, and a flag that stops
+/// it between epochs with [`EstimateError::Cancelled`]. The default is the command line's: the
+/// terminal's progress (a bar, lines, nothing with `quiet`) and no flag (Ctrl-C ends the
+/// process, `shared::interrupt`).
+#[derive(Clone, Copy, Default)]
+pub struct Watch<'a> {
+    /// Each epoch of a training kept (every candidate's in a model choice) instead of the
+    /// terminal's progress.
+    pub epoch: Option<&'a (dyn Fn(&EpochRecord) + Sync)>,
+    pub cancel: Option<&'a AtomicBool>,
+}
 
 /// An estimation's report with the clips it was trained on.
 pub struct Estimation {
@@ -72,10 +85,15 @@ pub fn run(req: &Request) -> anyhow::Result<()> {
 /// The model's choice where the request makes one ([`chooses`]), else one estimation; writes
 /// nothing.
 pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
+    estimation_watched(req, Watch::default())
+}
+
+/// [`estimation`], followed and stopped as `watch` says.
+pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     if chooses(req) {
-        choose(req)
+        choose(req, watch)
     } else {
-        estimate(req)
+        estimate(req, watch)
     }
 }
 
@@ -87,7 +105,7 @@ pub fn chooses(req: &Request) -> bool {
 
 /// Fits every candidate model and keeps the one the evidence favours (`choice`), with the
 /// ranking in its report; writes nothing.
-pub fn choose(req: &Request) -> anyhow::Result<Estimation> {
+pub fn choose(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let begun = Instant::now();
     let (models, cut) = choice::candidates(&ChoiceRequest::of(req))?;
     let tries: Vec<Request> = models
@@ -100,7 +118,7 @@ pub fn choose(req: &Request) -> anyhow::Result<Estimation> {
     for (i, a) in tries.iter().enumerate() {
         let model = a.load.model.expect("a candidate names its model");
         let start = Instant::now();
-        let fit = estimate(a);
+        let fit = estimate(a, watch);
         let summary = choice::summary(
             model,
             fit.as_ref()
@@ -143,7 +161,7 @@ pub fn choose(req: &Request) -> anyhow::Result<Estimation> {
         k => {
             let mut a = tries[i].clone();
             a.training.ensemble = k;
-            estimate(&a)?
+            estimate(&a, watch)?
         }
     };
     chosen.report.run.config.quiet = quiet;
@@ -156,7 +174,7 @@ pub fn choose(req: &Request) -> anyhow::Result<Estimation> {
 }
 
 /// Loads the data and trains (and the ensemble's further members); writes nothing.
-pub fn estimate(req: &Request) -> anyhow::Result<Estimation> {
+pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     tch::set_num_threads(req.training.threads as i32);
     // The shooting fits' pool (the first run of a process sizes it; later ones find it made).
@@ -196,19 +214,23 @@ pub fn estimate(req: &Request) -> anyhow::Result<Estimation> {
         }
     }
     let names = model.parameter_names();
-    let progress = Progress::new(cfg.epochs, cfg.quiet);
+    let progress = Progress::new(cfg.epochs, cfg.quiet || watch.epoch.is_some());
     let quiet = cfg.quiet;
     let (outcome, probes) = fit_best(
         cfg,
         &data,
         device,
         &starts,
-        &mut |rec| progress.epoch(rec, &names),
+        &mut |rec| match watch.epoch {
+            Some(f) => f(rec),
+            None => progress.epoch(rec, &names),
+        },
         &mut |msg| {
             if !quiet {
                 term::eprint(msg);
             }
         },
+        Cancel(watch.cancel),
     )?;
     progress.finish();
     let chosen = probes
@@ -244,7 +266,8 @@ pub fn estimate(req: &Request) -> anyhow::Result<Estimation> {
                 member.seed
             );
         }
-        let (o, _) = fit(&member, &data, device, &member_starts, &mut |_| {})?;
+        let cancel = Cancel(watch.cancel);
+        let (o, _) = fit(&member, &data, device, &member_starts, &mut |_| {}, cancel)?;
         let r = Run::new(&member, &data, info(start), &chosen, o);
         match failure(&r) {
             Some(why) => failed.push(format!("seed {}: {why}", member.seed)),

@@ -1,10 +1,11 @@
 //! The library API as a program calls it: a typed `Request` in, the fit with its verdict out,
-//! nothing written; the same answer as the `estimate` binary on the same data, and typed
-//! errors for bad input.
+//! nothing written; the same answer as the `estimate` binary on the same data, progress and
+//! cancellation passed in, and typed errors for bad input.
 
 mod util;
 
-use estimator::{estimation, EstimateError, Request};
+use estimator::{estimation, estimation_watched, EstimateError, Request, Watch};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use util::{estimate_of, gen_dataset, read_report, Estimate};
 
 #[test]
@@ -40,6 +41,31 @@ fn the_api_answers_as_the_command_line_does_and_writes_nothing() {
         cli["verdict"]["grade"].as_str().unwrap()
     );
     assert_eq!(run.epochs_run as u64, cli["epochs_run"].as_u64().unwrap());
+
+    // Followed epoch by epoch, then stopped from the caller's side at the fifth.
+    let (seen, stop) = (AtomicUsize::new(0), AtomicBool::new(false));
+    let epoch = |rec: &estimator::train::EpochRecord| {
+        if seen.fetch_add(1, Ordering::Relaxed) + 1 == 5 {
+            stop.store(true, Ordering::Relaxed);
+        }
+        assert!(rec.epoch >= 1);
+    };
+    let watch = Watch {
+        epoch: Some(&epoch),
+        cancel: Some(&stop),
+    };
+    let e = estimation_watched(&req, watch).err().expect("cancelled");
+    assert!(matches!(
+        e.downcast_ref::<EstimateError>(),
+        Some(EstimateError::Cancelled)
+    ));
+    let n = seen.load(Ordering::Relaxed);
+    assert!(
+        (5..run.epochs_run).contains(&n),
+        "stopped at the next epoch's start ({n} seen, {} in a whole run)",
+        run.epochs_run
+    );
+    assert!(!req.out.exists());
 }
 
 #[test]

@@ -15,6 +15,7 @@ use crate::data::ClipData;
 use crate::error::EstimateError;
 use crate::evidence::fold::MAYBE_FOLDED;
 use serde::Serialize;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use tch::Device;
 
@@ -34,16 +35,32 @@ pub struct StartProbe {
 /// Epochs each start trains before the best one (by validation metric) is kept.
 pub const PROBE_EPOCHS: usize = 8;
 
+/// A caller's way to stop a training between epochs: a flag it may set from anywhere (another
+/// thread, a signal handler); none for a run only the process's end stops (the CLI's).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Cancel<'a>(pub Option<&'a AtomicBool>);
+
+impl Cancel<'_> {
+    /// [`EstimateError::Cancelled`] once the flag is set.
+    pub fn check(self) -> Result<(), EstimateError> {
+        match self.0 {
+            Some(flag) if flag.load(Ordering::Relaxed) => Err(EstimateError::Cancelled),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Trains from each of `starts` for [`PROBE_EPOCHS`] epochs, keeps the start with the lowest
 /// validation metric (a start that locked onto a harmonic of the motion fits far worse) and
 /// trains it to the end. With one start this is plain training. `on_epoch` sees the kept
-/// start's epochs.
+/// start's epochs; `cancel` is asked before each epoch.
 pub fn fit(
     cfg: &RunConfig,
     data: &ClipData,
     device: Device,
     starts: &[Vec<f64>],
     on_epoch: &mut dyn FnMut(&EpochRecord),
+    cancel: Cancel,
 ) -> Result<(TrainOutcome, Vec<StartProbe>), EstimateError> {
     assert!(!starts.is_empty(), "at least one start");
     let mut probes = Vec::new();
@@ -58,6 +75,7 @@ pub fn fit(
         let mut t = Trainer::new(cfg, data, device, init, horizon, start)?;
         if starts.len() > 1 {
             while t.stop.is_none() && t.history.len() < PROBE_EPOCHS {
+                cancel.check()?;
                 t.epoch(&mut |_| {});
             }
         }
@@ -81,6 +99,7 @@ pub fn fit(
         on_epoch(rec);
     }
     while t.stop.is_none() {
+        cancel.check()?;
         t.epoch(on_epoch);
     }
     Ok((t.finish(), probes))
@@ -107,8 +126,9 @@ pub fn fit_best(
     starts: &[Vec<f64>],
     on_epoch: &mut dyn FnMut(&EpochRecord),
     announce: &mut dyn FnMut(&str),
+    cancel: Cancel,
 ) -> Result<(TrainOutcome, Vec<StartProbe>), EstimateError> {
-    let (first, mut probes) = fit(cfg, data, device, starts, on_epoch)?;
+    let (first, mut probes) = fit(cfg, data, device, starts, on_epoch, cancel)?;
     let folded = |o: &TrainOutcome| o.evidence.fold.as_ref().map_or(0.0, |f| f.folded_share);
     let mut others: Vec<(Vec<f64>, String)> = Vec::new();
     if !cfg.single_start
@@ -142,7 +162,14 @@ pub fn fit_best(
     let mut best = first;
     let mut best_probe = probes.iter().position(|p| p.chosen);
     for (init, note) in others {
-        let (o, _) = fit(cfg, data, device, std::slice::from_ref(&init), &mut |_| {})?;
+        let (o, _) = fit(
+            cfg,
+            data,
+            device,
+            std::slice::from_ref(&init),
+            &mut |_| {},
+            cancel,
+        )?;
         let k = probes.len();
         probes.push(StartProbe {
             initial: init,
@@ -196,5 +223,6 @@ pub fn train(
     device: Device,
     on_epoch: &mut dyn FnMut(&EpochRecord),
 ) -> Result<TrainOutcome, EstimateError> {
-    fit(cfg, data, device, std::slice::from_ref(&cfg.init), on_epoch).map(|(o, _)| o)
+    let starts = std::slice::from_ref(&cfg.init);
+    fit(cfg, data, device, starts, on_epoch, Cancel::default()).map(|(o, _)| o)
 }
