@@ -9,7 +9,9 @@
 #     where this machine lets us install them (root or password-less sudo with apt-get);
 #     otherwise a note, and the tests that need them skip;
 #  4. with --tests (what scripts/test.sh passes), Debian's `chromium` the same way, for the test
-#     that opens report.html in a browser: the main job does not need it.
+#     that opens report.html in a browser, and `slurmctld`, `slurmd` and `slurm-client`, for the
+#     test that runs a batch as a job array on a one-node cluster (scripts/slurm.sh): the main
+#     job needs neither.
 set -euo pipefail
 for_tests=""
 case "${1:-}" in
@@ -76,4 +78,13 @@ if ! command -v ffmpeg >/dev/null 2>&1 || ! command -v ffprobe >/dev/null 2>&1; 
 fi
 if [ -n "$for_tests" ] && ! command -v chromium >/dev/null 2>&1; then
     apt_install chromium "for the test that opens report.html in a headless browser"
+fi
+if [ -n "$for_tests" ]; then
+    for daemon in slurmctld slurmd sbatch; do
+        if ! command -v "$daemon" >/dev/null 2>&1; then
+            package="$daemon"
+            [ "$daemon" = sbatch ] && package=slurm-client
+            apt_install "$package" "for the test that runs a batch as a Slurm job array"
+        fi
+    done
 fi

@@ -6,7 +6,7 @@
 mod util;
 
 use std::path::Path;
-use util::{gen_dataset, real_video, stderr, Estimate};
+use util::{gen_dataset, real_video, stderr, without_wall, Estimate};
 
 /// A small synthetic set (100 clips of 32×32).
 fn small_set(dir: &Path, scenario: &str) -> String {
@@ -15,25 +15,6 @@ fn small_set(dir: &Path, scenario: &str) -> String {
         scenario,
         &["--samples", "100", "--size", "32", "--seed", "3"],
     )
-}
-
-/// summary.csv without its wall_s column (the one thing that differs between runs).
-fn without_wall(csv: &str) -> Vec<String> {
-    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    let wall = header.iter().position(|h| *h == "wall_s").unwrap();
-    let mut reader = csv::Reader::from_reader(csv.as_bytes());
-    let mut rows = vec![header.join(",")];
-    for r in reader.records() {
-        let r = r.unwrap();
-        let cells: Vec<&str> = r
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != wall)
-            .map(|(_, c)| c)
-            .collect();
-        rows.push(cells.join("\u{1f}"));
-    }
-    rows
 }
 
 fn batch(file: &Path, out: &Path, extra: &[&str]) -> std::process::Output {

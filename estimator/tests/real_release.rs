@@ -135,4 +135,7 @@ fn a_pipe_already_rolling_in_the_first_frame_is_released_before_it() {
     // a = 0.843 m/s² on the marks' scale.
     let a = estimate_of(&r, "acceleration");
     assert!((a / 0.843 - 1.0).abs() < 0.03, "a {a}: {err}");
+    // Right, and graded so: its halves in time are weighed with errors no smaller than the
+    // whole answer's.
+    assert_eq!(r["verdict"]["grade"], "ok", "{}", r["verdict"]);
 }

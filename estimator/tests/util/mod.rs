@@ -219,3 +219,22 @@ pub fn oscillator_run(video: &Path, out: &Path, extra: &[&str]) -> (serde_json::
     );
     (read_report(out), stderr(&o))
 }
+
+/// summary.csv without its wall_s column (the one thing that differs between runs).
+pub fn without_wall(csv: &str) -> Vec<String> {
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let wall = header.iter().position(|h| *h == "wall_s").unwrap();
+    let mut reader = csv::Reader::from_reader(csv.as_bytes());
+    let mut rows = vec![header.join(",")];
+    for r in reader.records() {
+        let r = r.unwrap();
+        let cells: Vec<&str> = r
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != wall)
+            .map(|(_, c)| c)
+            .collect();
+        rows.push(cells.join("\u{1f}"));
+    }
+    rows
+}
