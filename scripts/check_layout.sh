@@ -7,10 +7,10 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 status=0
-long=$(find shared generator estimator reproduce testkit -name '*.rs' -not -path '*/target/*' \
+long=$(find shared generator estimator reproduce testkit python -name '*.rs' -not -path '*/target/*' \
     -exec awk 'END { if (NR > 350) print FILENAME ": " NR " lines" }' {} \;)
 if [ -n "$long" ]; then echo "$long"; status=1; fi
-paths=$(grep -rln '#\[path' --include='*.rs' shared generator estimator reproduce testkit || true)
+paths=$(grep -rln '#\[path' --include='*.rs' shared generator estimator reproduce testkit python || true)
 if [ -n "$paths" ]; then echo "#[path] in: $paths"; status=1; fi
 # Import cycles: the graph of `crate::` and sibling `super::` paths outside tests, per crate.
 python3 - <<'PY' || status=1
@@ -21,7 +21,7 @@ def module_of(src, path):
         rel = rel[:-1]
     return "::".join(rel) or "crate"
 bad = 0
-for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
+for crate in ["shared", "generator", "estimator", "reproduce", "testkit", "python"]:
     src = os.path.join(crate, "src")
     files = [os.path.join(d, f) for d, _, fs in os.walk(src) for f in fs if f.endswith(".rs")]
     mods = {module_of(src, f): f for f in files}
@@ -79,7 +79,7 @@ def targets(text, pattern):
             n = re.match(r"[A-Za-z_][A-Za-z0-9_]*", text[m.end():])
             if n: found.add(n.group(0))
     return found
-for crate in ["shared", "generator", "estimator", "reproduce", "testkit"]:
+for crate in ["shared", "generator", "estimator", "reproduce", "testkit", "python"]:
     src = os.path.join(crate, "src")
     files = [os.path.join(d, f) for d, _, fs in os.walk(src) for f in fs if f.endswith(".rs")]
     def top(f):

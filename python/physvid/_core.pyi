@@ -1,0 +1,22 @@
+"""Type stubs of the compiled module (python/src/lib.rs)."""
+from typing import List, Optional
+
+class PhysvidError(Exception): ...
+class BadInputError(PhysvidError): ...
+class NoEstimateError(PhysvidError): ...
+class UnreliableError(PhysvidError): ...
+
+def generate(args: List[str], out: str) -> str: ...
+def estimate(
+    source: str,
+    model: Optional[str] = None,
+    dt: Optional[float] = None,
+    fps: Optional[float] = None,
+    references: Optional[str] = None,
+    epochs: Optional[int] = None,
+    seed: int = 0,
+    device: str = "auto",
+    threads: Optional[int] = None,
+    quiet: bool = False,
+    out: Optional[str] = None,
+) -> str: ...

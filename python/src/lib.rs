@@ -1,0 +1,192 @@
+//! `physvid._core`: the generator and the estimator called from Python, in process, on the
+//! workspace's typed library API (`generator::GenArgs` for a data set, `estimator::Request` and
+//! `estimator::estimation_watched` for an estimate). The Python package (`physvid/`) wraps
+//! these functions in typed objects; errors arrive as the exception classes below, which mirror
+//! `estimate`'s exit codes.
+
+use clap::ValueEnum;
+use estimator::cli::parse_reference;
+use estimator::config::request::DEFAULT_OUT;
+use estimator::physics::ModelRef;
+use estimator::{estimation_watched, EstimateError, Request, Watch};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+create_exception!(_core, PhysvidError, PyException, "Any error of physvid.");
+create_exception!(
+    _core,
+    BadInputError,
+    PhysvidError,
+    "The input or an option is unusable (estimate's exit code 2); the message names it and the fix."
+);
+create_exception!(
+    _core,
+    NoEstimateError,
+    PhysvidError,
+    "Training ran but gave no estimate (exit code 3)."
+);
+create_exception!(
+    _core,
+    UnreliableError,
+    PhysvidError,
+    "The answer's verdict is unreliable (exit code 4); args[1] is its report as JSON."
+);
+
+/// `anyhow` from the library as the Python exception of its kind.
+fn to_py(e: anyhow::Error) -> PyErr {
+    let text = format!("{e:#}");
+    match e.downcast_ref::<EstimateError>() {
+        Some(EstimateError::NoEstimate(_)) => NoEstimateError::new_err(text),
+        Some(inner) if inner.is_bad_input() => BadInputError::new_err(text),
+        _ => PhysvidError::new_err(text),
+    }
+}
+
+/// Writes a data set into `out` as `gen ARGS --out OUT` would (seeded, byte for byte), and
+/// returns its meta.json.
+#[pyfunction]
+fn generate(py: Python<'_>, args: Vec<String>, out: PathBuf) -> PyResult<String> {
+    let out_text = out.display().to_string();
+    let mut line: Vec<&str> = args.iter().map(String::as_str).collect();
+    line.extend(["--out", &out_text]);
+    let cfg = generator::GenArgs::config_from(&line)
+        .map_err(|e| BadInputError::new_err(e.to_string()))?;
+    py.allow_threads(|| generator::generate_to_disk(&cfg))
+        .map_err(|e| PhysvidError::new_err(format!("{e:#}")))?;
+    std::fs::read_to_string(out.join("meta.json")).map_err(|e| PhysvidError::new_err(e.to_string()))
+}
+
+/// The request for `source` with the options given (the command line's defaults otherwise).
+#[allow(clippy::too_many_arguments)]
+fn request(
+    source: PathBuf,
+    model: Option<&str>,
+    dt: Option<f64>,
+    fps: Option<f64>,
+    references: Option<&str>,
+    epochs: Option<usize>,
+    seed: u64,
+    device: &str,
+    threads: Option<usize>,
+    quiet: bool,
+    out: Option<PathBuf>,
+) -> PyResult<Request> {
+    let mut req = Request::new(source);
+    match model {
+        // As without --model: a data set's meta.json names it, else it is chosen.
+        None => {}
+        Some("auto") => req.choose = true,
+        Some(name) => req.load.model = Some(ModelRef::parse(name).map_err(BadInputError::new_err)?),
+    }
+    req.load.dt = dt;
+    req.load.recording.fps = fps;
+    if let Some(text) = references {
+        let r = parse_reference(text)
+            .map_err(|e| BadInputError::new_err(format!("references: {e}")))?;
+        req.load.recording.measured_at = r.times.iter().map(|t| t.0).collect();
+        req.calibration.values = r.values;
+        req.calibration.times = r.times;
+        req.calibration.positions = r.positions;
+    }
+    if let Some(e) = epochs {
+        if e == 0 {
+            return Err(BadInputError::new_err("epochs 0: must be at least 1"));
+        }
+        req.training.epochs = e;
+    }
+    req.training.seed = seed;
+    req.training.device = estimator::device::DeviceChoice::from_str(device, true)
+        .map_err(|_| BadInputError::new_err(format!("device '{device}': use auto, cpu or cuda")))?;
+    if let Some(t) = threads {
+        if t == 0 {
+            return Err(BadInputError::new_err("threads 0: must be at least 1"));
+        }
+        req.training.threads = t;
+    }
+    req.quiet = quiet;
+    req.out = out.unwrap_or_else(|| DEFAULT_OUT.into());
+    Ok(req)
+}
+
+/// Estimates on `source` (a data set folder, a `.npy`, a video or an image folder) and returns
+/// report.json's text; with `out`, writes what `estimate --out OUT` writes. The GIL is
+/// released while it trains; Ctrl-C stops it between epochs and raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (source, model=None, dt=None, fps=None, references=None, epochs=None, seed=0, device="auto", threads=None, quiet=false, out=None))]
+#[allow(clippy::too_many_arguments)]
+fn estimate(
+    py: Python<'_>,
+    source: PathBuf,
+    model: Option<&str>,
+    dt: Option<f64>,
+    fps: Option<f64>,
+    references: Option<&str>,
+    epochs: Option<usize>,
+    seed: u64,
+    device: &str,
+    threads: Option<usize>,
+    quiet: bool,
+    out: Option<PathBuf>,
+) -> PyResult<String> {
+    let writes = out.is_some();
+    let req = request(
+        source, model, dt, fps, references, epochs, seed, device, threads, quiet, out,
+    )?;
+    if writes {
+        estimator::output::check_out(&req.out, Some(req.input()), req.force)
+            .map_err(|e| to_py(e.into()))?;
+    }
+    let cancel = AtomicBool::new(false);
+    let watch = Watch {
+        epoch: None,
+        cancel: Some(&cancel),
+    };
+    let (result, interrupted) = std::thread::scope(|s| {
+        let run = s.spawn(|| estimation_watched(&req, watch));
+        let mut interrupted = None;
+        while !run.is_finished() {
+            py.allow_threads(|| std::thread::sleep(Duration::from_millis(50)));
+            if let Err(e) = py.check_signals() {
+                cancel.store(true, Ordering::Relaxed);
+                interrupted = Some(e);
+            }
+        }
+        (run.join(), interrupted)
+    });
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    let estimation = result
+        .map_err(|_| PhysvidError::new_err("the estimation panicked"))?
+        .map_err(to_py)?;
+    let json = serde_json::to_string_pretty(&estimation.report)
+        .map_err(|e| PhysvidError::new_err(e.to_string()))?;
+    if writes {
+        let (report, data) = (&estimation.report, &estimation.data);
+        estimator::output::write_outputs(&req.out, req.force, data, report)
+            .map_err(|e| to_py(e.into()))?;
+    }
+    if estimation.report.verdict.grade == estimator::verdict::Grade::Unreliable {
+        return Err(UnreliableError::new_err((
+            "the answer is unreliable (the verdict's reasons are in the report)",
+            json,
+        )));
+    }
+    Ok(json)
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(generate, m)?)?;
+    m.add_function(wrap_pyfunction!(estimate, m)?)?;
+    let py = m.py();
+    m.add("PhysvidError", py.get_type::<PhysvidError>())?;
+    m.add("BadInputError", py.get_type::<BadInputError>())?;
+    m.add("NoEstimateError", py.get_type::<NoEstimateError>())?;
+    m.add("UnreliableError", py.get_type::<UnreliableError>())?;
+    Ok(())
+}

@@ -1,0 +1,136 @@
+"""pytest tests of the Python package (python/): generate and estimate in process, the same
+answers and files as the `gen` and `estimate` binaries, typed errors, and docs/python.md's
+example. Run by scripts/test.sh after `cargo test` has built the binaries."""
+import json
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+import physvid
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = ROOT / "target" / "release"
+
+
+def cli(program, *args):
+    return subprocess.run([str(BIN / program), *map(str, args)], capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def small():
+    # The estimator's own small set (estimator/tests/estimate_cli.rs).
+    return physvid.generate("intensity", samples=200, size=32, seed=5)
+
+
+def test_generate_then_estimate_recovers_gamma0_and_gamma1(small):
+    assert small.frames.shape == (200, 20, 1, 32, 32) and small.frames.dtype == np.float32
+    assert small.truth["gamma0"] == pytest.approx(4.0016)
+    r = physvid.estimate(small, threads=2, progress=False)
+    assert r.model == "damped-oscillator" and "model_choice" not in r.report, "meta.json names it"
+    g0, g1 = r.parameters["gamma0"], r.parameters["gamma1"]
+    assert abs(g0.value / 4.0016 - 1) < 0.01, g0
+    assert abs(g1.value / 0.08 - 1) < 0.10, g1
+    assert g0.units == "SI" and g0.truth == pytest.approx(4.0016)
+    assert r.verdict.grade == "ok", r.verdict
+    assert len(r.history) == r.report["epochs_run"]
+
+
+def test_the_same_answer_as_the_command_line_on_a_path_an_array_and_a_tensor(tmp_path, small):
+    out = tmp_path / "cli"
+    done = cli("estimate", small.path, "--threads", "2", "--epochs", "30", "--out", out, "--quiet")
+    assert done.returncode == 0, done.stderr
+    want = {p["name"]: p["estimate"] for p in json.loads((out / "report.json").read_text())["parameters"]}
+    r = physvid.estimate(small.path, threads=2, epochs=30, progress=False)
+    assert {n: p.value for n, p in r.parameters.items()} == want
+
+    # A bare array: the CLI on the same values saved as .npy, with --dt.
+    frames = small.frames[:120]
+    npy = tmp_path / "clips.npy"
+    np.save(npy, frames)
+    flags = ["--model", "damped-oscillator", "--dt", small.dt, "--threads", "2", "--epochs", "30"]
+    out = tmp_path / "cli-npy"
+    done = cli("estimate", npy, *flags, "--out", out, "--quiet")
+    assert done.returncode in (0, 4), done.stderr
+    want = {p["name"]: p["estimate"] for p in json.loads((out / "report.json").read_text())["parameters"]}
+    kw = dict(model="damped-oscillator", dt=small.dt, threads=2, epochs=30, progress=False)
+    for source in (frames, torch.from_numpy(frames.copy())):
+        try:
+            got = physvid.estimate(source, **kw).report
+        except physvid.UnreliableError as e:
+            got = json.loads(e.args[1])
+        assert {p["name"]: p["estimate"] for p in got["parameters"]} == want
+
+
+def test_save_writes_what_gen_writes(tmp_path):
+    done = cli("gen", "--scenario", "pendulum", "--samples", "12", "--size", "32", "--seed", "2",
+               "--out", tmp_path / "gen")
+    assert done.returncode == 0, done.stderr
+    saved = physvid.generate("pendulum", samples=12, size=32, seed=2).save(tmp_path / "py")
+    for name in ["frames.npy", "meta.json", "preview.png"]:
+        assert (saved / name).read_bytes() == (tmp_path / "gen" / name).read_bytes(), name
+
+
+def test_out_writes_what_estimate_writes(tmp_path, small):
+    out = tmp_path / "run"
+    physvid.estimate(small, threads=2, epochs=5, progress=False, out=out)
+    for name in ["report.json", "report.html", "metrics.csv", "parameters.png", "latents.png"]:
+        assert (out / name).is_file(), name
+
+
+def test_errors_are_typed_and_name_the_input(tmp_path):
+    with pytest.raises(physvid.BadInputError, match="missing.npy"):
+        physvid.estimate(tmp_path / "missing.npy", dt=0.1, progress=False)
+    with pytest.raises(physvid.BadInputError, match="wobble"):
+        physvid.estimate(tmp_path, model="wobble", progress=False)
+    with pytest.raises(physvid.BadInputError, match="scenario"):
+        physvid.generate("wobble")
+    with pytest.raises(physvid.BadInputError, match="N, T, C, H, W"):
+        physvid.estimate(np.zeros((4, 4), np.float32), dt=0.1, progress=False)
+    # Frames shuffled within each clip: the verdict calls the answer unreliable.
+    frames = physvid.generate("intensity", samples=80, size=32, seed=1).frames.copy()
+    rng = np.random.default_rng(0)
+    for clip in frames:
+        rng.shuffle(clip)
+    with pytest.raises(physvid.UnreliableError) as e:
+        physvid.estimate(frames, model="damped-oscillator", dt=0.2, threads=2, epochs=20, progress=False)
+    assert json.loads(e.value.args[1])["verdict"]["grade"] == "unreliable"
+    assert issubclass(physvid.UnreliableError, physvid.PhysvidError)
+
+
+def test_the_documented_example_runs():
+    text = (ROOT / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert blocks, "docs/python.md has a python example"
+    exec(compile(blocks[0], "docs/python.md", "exec"), {})
+
+
+def test_ctrl_c_stops_training_promptly_and_writes_nothing(tmp_path):
+    import signal
+    import sys
+    import time
+
+    data = physvid.generate("intensity", samples=1000, size=64, seed=2).save(tmp_path / "set")
+    out = tmp_path / "run"
+    script = (
+        "import physvid, sys\n"
+        "try:\n"
+        f"    physvid.estimate({str(data)!r}, threads=1, out={str(out)!r})\n"
+        "except KeyboardInterrupt:\n"
+        "    sys.exit(130)\n"
+    )
+    child = subprocess.Popen([sys.executable, "-c", script], stderr=subprocess.PIPE, text=True)
+    # The first progress line comes after the first epoch of the training kept.
+    for line in child.stderr:
+        if line.startswith("epoch"):
+            break
+    assert child.poll() is None, "still training"
+    sent = time.time()
+    child.send_signal(signal.SIGINT)
+    code = child.wait(timeout=60)
+    assert code == 130, child.stderr.read()
+    assert time.time() - sent < 5, "stopped within an epoch or two"
+    assert not (out / "report.json").exists()
