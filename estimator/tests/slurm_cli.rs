@@ -1,76 +1,19 @@
 //! `estimate --batch` under a real Slurm: `examples/batch.sbatch` (the recipe of
 //! docs/recordings.md) submitted as a job array to a one-node cluster started here
-//! (`scripts/slurm.sh`), its shards merged, equal to the batch run whole. Needs Debian's
+//! (`physvid_testkit::slurm`), its shards merged, equal to the batch run whole. Needs Debian's
 //! slurmctld, slurmd and slurm-client and root (skipped with a message otherwise; failing
 //! under CI=true).
 
 mod util;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::time::{Duration, Instant};
+use physvid_testkit::slurm::{available, Cluster};
+use std::path::Path;
+use std::time::Duration;
 use util::{bin, gen_dataset, stderr, without_wall, Estimate};
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn found(program: &str) -> bool {
-    Command::new("sh")
-        .args(["-c", &format!("command -v {program}")])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
-
-/// A cluster started in `dir`, stopped when dropped.
-struct Cluster {
-    dir: PathBuf,
-}
-
-impl Cluster {
-    fn start(dir: &Path) -> Cluster {
-        let o = Command::new(repo().join("scripts/slurm.sh"))
-            .arg("start")
-            .arg(dir)
-            .output()
-            .unwrap();
-        let cluster = Cluster {
-            dir: dir.to_path_buf(),
-        };
-        assert!(o.status.success(), "slurm.sh start: {}", stderr(&o));
-        cluster
-    }
-
-    fn command(&self, program: &str) -> Command {
-        let mut c = Command::new(program);
-        c.env("SLURM_CONF", self.dir.join("slurm.conf"));
-        c
-    }
-}
-
-impl Drop for Cluster {
-    fn drop(&mut self) {
-        let _ = Command::new(repo().join("scripts/slurm.sh"))
-            .arg("stop")
-            .arg(&self.dir)
-            .output();
-    }
-}
 
 #[test]
 fn a_job_array_of_shards_merges_to_the_batch_run_whole() {
-    let root = Command::new("id")
-        .arg("-u")
-        .output()
-        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0");
-    let have = ["slurmctld", "slurmd", "sbatch", "squeue"]
-        .iter()
-        .all(|p| found(p));
-    if !physvid_testkit::require(
-        "Slurm (slurmctld, slurmd, sbatch) run as root",
-        have && root,
-        "a one-node cluster for the job-array batch",
-    ) {
+    if !available() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();
@@ -92,34 +35,11 @@ fn a_job_array_of_shards_merges_to_the_batch_run_whole() {
         bin().parent().unwrap().display(),
         std::env::var("PATH").unwrap_or_default()
     );
-    let o = cluster
-        .command("sbatch")
-        .env("PATH", &path)
-        .current_dir(tmp.path())
-        .args(["--parsable", "--array=1-2", "--output=job-%a.txt"])
-        .arg(repo().join("examples/batch.sbatch"))
-        .args(["runs.csv", "lab"])
-        .args(flags)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "sbatch: {}", stderr(&o));
-    let job = String::from_utf8_lossy(&o.stdout).trim().to_string();
-    let begun = Instant::now();
-    loop {
-        let q = cluster
-            .command("squeue")
-            .args(["-h", "-j", &job])
-            .output()
-            .unwrap();
-        if q.status.success() && q.stdout.iter().all(|b| b.is_ascii_whitespace()) {
-            break;
-        }
-        assert!(
-            begun.elapsed() < Duration::from_secs(300),
-            "job {job} still queued"
-        );
-        std::thread::sleep(Duration::from_millis(250));
-    }
+    let script = Cluster::repo().join("examples/batch.sbatch");
+    let mut args = vec!["runs.csv", "lab"];
+    args.extend(flags);
+    let job = cluster.submit_array(tmp.path(), 2, &path, &script, &args);
+    cluster.wait(&job, Duration::from_secs(300));
     drop(cluster);
     let log = |i: usize| std::fs::read_to_string(tmp.path().join(format!("job-{i}.txt")));
     for i in 1..=2 {

@@ -11,6 +11,7 @@ mod noise;
 mod real;
 mod robustness;
 mod runner;
+mod shard;
 mod spring;
 mod table;
 mod table3;
@@ -19,13 +20,14 @@ mod verdict;
 mod worker;
 
 use clap::Parser;
-use estimator::cli::DeviceChoice;
+use estimator::cli::{parse_shard, DeviceChoice, Shard};
 use estimator::error::{exit_with, input_error};
 use estimator::EstimateError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use physvid_shared::interrupt::{Kind, Registered};
 use physvid_shared::write_atomic;
 use runner::Runner;
+use shard::{Sharded, Sharding};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -158,6 +160,16 @@ struct Cli {
     /// left out and named).
     #[arg(long, default_value = "../shared/real-videos", value_name = "DIR")]
     recordings: PathBuf,
+    /// For a cluster's job array: run only this shard's estimations of each table (those whose
+    /// index i in the table's job list has i mod N = I − 1; a table of estimations that follow
+    /// one another, verdict and real, whole in shard 1) and record them in
+    /// OUT/TABLE.shard-I-of-N.cbor instead of writing the table.
+    #[arg(long, value_parser = parse_shard, value_name = "I/N", conflicts_with = "merge")]
+    shard: Option<Shard>,
+    /// Make the tables from the records of every shard, found in these folders (their --out),
+    /// running nothing: the same tables as one run makes, wall times aside.
+    #[arg(long, num_args = 1.., value_name = "DIR")]
+    merge: Vec<PathBuf>,
 }
 
 impl Cli {
@@ -233,6 +245,14 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         bar,
         lines: !cfg.quiet && !terminal,
         keep: cfg.scratch.is_some(),
+        sharding: match (cfg.shard, cfg.merge.is_empty()) {
+            (Some(s), _) => Some(shard::State::new(Sharding::Shard(s), cfg.quick)),
+            (None, false) => Some(shard::State::new(
+                Sharding::Merge(cfg.merge.clone()),
+                cfg.quick,
+            )),
+            (None, true) => None,
+        },
     };
     let kinds: Vec<TableKind> = match cfg.table {
         TableKind::All => TableKind::EACH.to_vec(),
@@ -241,7 +261,26 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
     let mut tables = Vec::new();
     for kind in kinds {
         let start = Instant::now();
-        let mut table = kind.make(&runner)?;
+        let made = kind.make(&runner);
+        if let (Some(s), Some(shard)) = (runner.sharding.as_ref(), cfg.shard) {
+            match made {
+                Err(e) if e.downcast_ref::<Sharded>().is_none() => return Err(e),
+                _ => {}
+            }
+            let (path, n) = s.write(&cfg.out)?;
+            runner.bar.suspend(|| {
+                eprintln!(
+                    "{}: shard {}/{}: {n} estimations, {:.0} s → {}",
+                    kind.name(),
+                    shard.index,
+                    shard.count,
+                    start.elapsed().as_secs_f64(),
+                    path.display()
+                )
+            });
+            continue;
+        }
+        let mut table = made?;
         table.wall_s = start.elapsed().as_secs_f64();
         // The flags its numbers depend on (threads per estimation) and how it ran (jobs).
         table.command = format!("reproduce {}", kind.name());
@@ -253,6 +292,10 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         }
         if let Some(t) = cfg.threads {
             table.command += &format!(" --threads {t}");
+        }
+        if !cfg.merge.is_empty() {
+            table.command +=
+                " (run in shards, --shard I/N, and merged: the wall time is the merge's)";
         }
         let files = table.write(&cfg.out)?;
         runner.bar.suspend(|| {
@@ -270,7 +313,7 @@ fn run(cfg: &Cli) -> anyhow::Result<()> {
         tables.push(table);
     }
     runner.bar.finish_and_clear();
-    if cfg.table == TableKind::All {
+    if cfg.table == TableKind::All && cfg.shard.is_none() {
         let mut s = String::from("# Reproduced tables\n\n");
         for t in &tables {
             s += &t.markdown();

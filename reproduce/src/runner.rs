@@ -2,6 +2,7 @@
 //! renders datasets into a scratch directory and runs estimations as `estimate` would, with one
 //! progress bar over a table's runs.
 
+use crate::shard::{Call, Sharded, Sharding, State};
 use crate::worker::{estimate_apart, estimate_here, Run};
 use clap::ValueEnum;
 use estimator::cli::DeviceChoice;
@@ -96,6 +97,8 @@ pub struct Runner {
     pub(crate) lines: bool,
     /// `--scratch` was given: keep every dataset there.
     pub(crate) keep: bool,
+    /// `--shard I/N` or `--merge DIR...`.
+    pub(crate) sharding: Option<State>,
 }
 
 impl Runner {
@@ -109,6 +112,9 @@ impl Runner {
         self.bar.set_position(0);
         self.bar.set_prefix(table.to_string());
         self.bar.reset_elapsed();
+        if let Some(s) = &self.sharding {
+            s.begin(table);
+        }
     }
 
     /// Where `spec` is rendered.
@@ -143,8 +149,27 @@ impl Runner {
     }
 
     /// Trains on `data` as `estimate DATA FLAGS...` would, in this process (quietly, outputs
-    /// discarded; every candidate with `--model auto`).
+    /// discarded; every candidate with `--model auto`). Sharded, shard 1 runs and records it,
+    /// the others stop the table ([`Sharded`]), a merge reads it from the records.
     pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
+        let Some(s) = &self.sharding else {
+            return self.estimate_here(data, flags);
+        };
+        let what = format!("estimate {} {}", named(data), flags.join(" "));
+        let (call, mine) = s.next_one();
+        match &s.mode {
+            Sharding::Shard(_) if mine => {
+                let run = self.estimate_here(data, flags)?;
+                s.record(call, what, &run);
+                Ok(run)
+            }
+            Sharding::Shard(_) => Err(Sharded.into()),
+            Sharding::Merge(_) => s.recorded(call, &what),
+        }
+    }
+
+    /// [`Runner::estimate`] here and now.
+    fn estimate_here(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
         self.bar
             .set_message(format!("estimate {} {}", named(data), flags.join(" ")));
         let flags: Vec<String> = flags.iter().map(|f| f.to_string()).collect();
@@ -194,10 +219,38 @@ impl Runner {
         }
     }
 
+    /// Every job's run, in the jobs' order. Sharded, this shard's jobs run and are recorded and
+    /// the table stops ([`Sharded`]); a merge reads every job's run from the records.
+    pub fn estimate_all(&self, jobs: &[Job]) -> anyhow::Result<Vec<Run>> {
+        let Some(s) = &self.sharding else {
+            return self.run_all(jobs);
+        };
+        let what = |j: &Job| {
+            let file = j.file.map_or(String::new(), |f| format!("/{f}"));
+            format!(
+                "{}{file} · estimate {}",
+                j.data.command(),
+                j.flags.join(" ")
+            )
+        };
+        if !s.records() {
+            return (0..jobs.len())
+                .map(|i| s.recorded(Call::Job(i), &what(&jobs[i])))
+                .collect();
+        }
+        let mine: Vec<usize> = (0..jobs.len()).filter(|&i| s.holds_job(i)).collect();
+        let subset: Vec<Job> = mine.iter().map(|&i| jobs[i].clone()).collect();
+        let runs = self.run_all(&subset)?;
+        for (i, run) in mine.into_iter().zip(&runs) {
+            s.record(Call::Job(i), what(&jobs[i]), run);
+        }
+        Err(Sharded.into())
+    }
+
     /// Every job's run, in the jobs' order: `--jobs` of them side by side, each in a process
     /// of its own (one at a time in this process with `--jobs 1`). Each dataset is rendered
     /// before its first job and deleted after its last.
-    pub fn estimate_all(&self, jobs: &[Job]) -> anyhow::Result<Vec<Run>> {
+    fn run_all(&self, jobs: &[Job]) -> anyhow::Result<Vec<Run>> {
         let dirs: Vec<PathBuf> = jobs.iter().map(|j| self.dataset_dir(&j.data)).collect();
         let uses = Mutex::new(dirs.iter().fold(HashMap::new(), |mut m, d| {
             *m.entry(d.clone()).or_insert(0usize) += 1;
@@ -224,7 +277,7 @@ impl Runner {
                 run
             } else {
                 let flags: Vec<&str> = jobs[i].flags.iter().map(String::as_str).collect();
-                self.estimate(&data, &flags)?
+                self.estimate_here(&data, &flags)?
             };
             let mut uses = uses.lock().expect("no job panicked");
             let left = uses.get_mut(&dirs[i]).expect("every job's dataset counted");

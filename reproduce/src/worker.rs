@@ -16,7 +16,7 @@ use estimator::report::Report;
 use estimator::train::outcome::EpochRecord;
 use estimator::verdict::Verdict;
 use estimator::{estimation, EstimateArgs, Request};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};
 
@@ -30,7 +30,7 @@ fn request_path(report: &Path) -> std::path::PathBuf {
 }
 
 /// What the tables read of one estimation: report.json's fields of the same names.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Run {
     pub parameters: Vec<ParameterResult>,
     pub verdict: Verdict,

@@ -2,9 +2,11 @@
 //! `TestCommand`, a small builder for running a real binary and asserting on its outcome (as
 //! ripgrep's tests/util.rs does). Each crate's tests find their binary with
 //! `env!("CARGO_BIN_EXE_…")` and add their own helpers. `failures` holds the verdict's
-//! constructed failures, which `reproduce verdict` draws too.
+//! constructed failures, which `reproduce verdict` draws too; `slurm` a one-node Slurm cluster
+//! for the job-array tests.
 
 pub mod failures;
+pub mod slurm;
 
 use std::ffi::{OsStr, OsString};
 use std::path::{Path, PathBuf};
