@@ -21,6 +21,21 @@ def module_of(src, path):
         rel = rel[:-1]
     return "::".join(rel) or "crate"
 bad = 0
+def on_cycles(g, label):
+    """Prints each module of graph g that reaches itself (it lies on a cycle); their count."""
+    found = 0
+    for start in sorted(g):
+        seen, todo = set(), list(g[start])
+        while todo:
+            v = todo.pop()
+            if v == start:
+                print(f"{label}{start} is on an import cycle")
+                found += 1
+                break
+            if v not in seen:
+                seen.add(v)
+                todo.extend(g[v])
+    return found
 for crate in ["shared", "generator", "estimator", "reproduce", "testkit", "python"]:
     src = os.path.join(crate, "src")
     files = [os.path.join(d, f) for d, _, fs in os.walk(src) for f in fs if f.endswith(".rs")]
@@ -43,18 +58,7 @@ for crate in ["shared", "generator", "estimator", "reproduce", "testkit", "pytho
                 cand = parent + "::" + hit
                 if cand in mods and cand != m:
                     g[m].add(cand)
-    # Any module that reaches itself lies on a cycle.
-    for start in g:
-        seen, todo = set(), list(g[start])
-        while todo:
-            v = todo.pop()
-            if v == start:
-                print(f"{crate}: {start} is on an import cycle")
-                bad += 1
-                break
-            if v not in seen:
-                seen.add(v)
-                todo.extend(g[v])
+    bad += on_cycles(g, f"{crate}: ")
 # Between top-level modules (every file under src/a/ counts as module a), counting `use
 # crate::{a, b}` groups and `super::` paths that climb to the crate root: no cycle either.
 def heads(group):
@@ -101,17 +105,7 @@ for crate in ["shared", "generator", "estimator", "reproduce", "testkit", "pytho
             if m.group(1).count("super::") >= depth:
                 found |= targets(text[m.start():], r"^(?:super::)+(\{)?")
         g[t] |= {x for x in found if x in tops and x != t}
-    for start in sorted(g):
-        seen, todo = set(), list(g[start])
-        while todo:
-            v = todo.pop()
-            if v == start:
-                print(f"{crate}: top-level module {start} is on an import cycle")
-                bad += 1
-                break
-            if v not in seen:
-                seen.add(v)
-                todo.extend(g[v])
+    bad += on_cycles(g, f"{crate}: top-level module ")
 # Below the command line, no module names the CLI's types.
 cli_layer = ("cli", "batch", "main", "lib")
 src = os.path.join("estimator", "src")

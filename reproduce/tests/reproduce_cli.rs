@@ -6,8 +6,9 @@
 mod util;
 
 use physvid_testkit::stderr;
-use std::path::Path;
-use util::{markdown, num, read_csv, reproduce, reproduce_quick, reproduce_quick_with};
+use util::{
+    markdown, num, read_csv, reproduce, reproduce_quick, reproduce_quick_with, rows_without_wall,
+};
 
 #[test]
 fn table3_mse_only_collapses_and_mse_kl_recovers_gamma0() {
@@ -123,17 +124,7 @@ fn the_other_tables_write_their_rows() {
 #[test]
 fn same_command_gives_the_same_table_one_run_at_a_time_or_side_by_side() {
     let tmp = tempfile::tempdir().unwrap();
-    let strip = |out: &Path, table: &str| -> Vec<Vec<String>> {
-        read_csv(out, table)
-            .into_iter()
-            .map(|mut r| {
-                r.remove("wall_s");
-                let mut v: Vec<String> = r.into_iter().map(|(k, v)| format!("{k}={v}")).collect();
-                v.sort();
-                v
-            })
-            .collect()
-    };
+    let strip = rows_without_wall;
     for table in ["losses", "spring"] {
         reproduce_quick(table, &tmp.path().join("a"));
         reproduce_quick_with(table, &tmp.path().join("b"), &["--jobs", "2"]);

@@ -9,7 +9,7 @@ use physvid_testkit::slurm::{available, Cluster};
 use physvid_testkit::stderr;
 use std::path::Path;
 use std::time::Duration;
-use util::{read_csv, reproduce};
+use util::{reproduce, rows_without_wall};
 
 #[test]
 fn a_table_run_in_shards_of_a_job_array_merges_to_the_table_run_whole() {
@@ -20,15 +20,10 @@ fn a_table_run_in_shards_of_a_job_array_merges_to_the_table_run_whole() {
     let flags = ["--quick", "--quiet", "--device", "cpu"];
     let cluster = Cluster::start(&tmp.path().join("slurm"));
     let bin = Path::new(env!("CARGO_BIN_EXE_reproduce"));
-    let path = format!(
-        "{}:{}",
-        bin.parent().unwrap().display(),
-        std::env::var("PATH").unwrap_or_default()
-    );
     let script = Cluster::repo().join("examples/reproduce.sbatch");
     let mut args = vec!["losses", "shards"];
     args.extend(flags);
-    let job = cluster.submit_array(tmp.path(), 2, &path, &script, &args);
+    let job = cluster.submit_array(tmp.path(), 2, bin, &script, &args);
     cluster.wait(&job, Duration::from_secs(600));
     drop(cluster);
     for i in 1..=2 {
@@ -56,17 +51,7 @@ fn a_table_run_in_shards_of_a_job_array_merges_to_the_table_run_whole() {
         .out(&whole)
         .output();
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows = |dir: &Path| -> Vec<Vec<String>> {
-        read_csv(dir, "losses")
-            .into_iter()
-            .map(|mut r| {
-                r.remove("wall_s");
-                let mut v: Vec<String> = r.into_iter().map(|(k, v)| format!("{k}={v}")).collect();
-                v.sort();
-                v
-            })
-            .collect()
-    };
+    let rows = |dir: &Path| rows_without_wall(dir, "losses");
     assert_eq!(rows(&whole).len(), 6);
     assert_eq!(rows(&merged), rows(&whole));
     // One shard's folder is not the table.

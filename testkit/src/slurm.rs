@@ -61,16 +61,23 @@ impl Cluster {
         c
     }
 
-    /// Submits `script ARGS...` as a job array of tasks 1..=`tasks` from `cwd`, with `path` as
-    /// the job's PATH, each task's output in `cwd/job-TASK.txt`; returns the job's id.
+    /// Submits `script ARGS...` as a job array of tasks 1..=`tasks` from `cwd`, with `bin`'s
+    /// folder first on the job's PATH (the scripts call the binaries by name), each task's
+    /// output in `cwd/job-TASK.txt`; returns the job's id.
     pub fn submit_array(
         &self,
         cwd: &Path,
         tasks: usize,
-        path: &str,
+        bin: &Path,
         script: &Path,
         args: &[&str],
     ) -> String {
+        let folder = bin.parent().expect("a binary's folder");
+        let path = format!(
+            "{}:{}",
+            folder.display(),
+            std::env::var("PATH").unwrap_or_default()
+        );
         let o = self
             .command("sbatch")
             .env("PATH", path)

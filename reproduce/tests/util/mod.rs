@@ -59,3 +59,17 @@ pub fn num(row: &HashMap<String, String>, col: &str) -> f64 {
 pub fn markdown(out: &Path, table: &str) -> String {
     std::fs::read_to_string(out.join(format!("{table}.md"))).expect("md written")
 }
+
+/// The rows of `<out>/<table>.csv` without their wall time, each as sorted `column=value` cells
+/// (what two runs of one table share).
+pub fn rows_without_wall(out: &Path, table: &str) -> Vec<Vec<String>> {
+    read_csv(out, table)
+        .into_iter()
+        .map(|mut r| {
+            r.remove("wall_s");
+            let mut v: Vec<String> = r.into_iter().map(|(k, v)| format!("{k}={v}")).collect();
+            v.sort();
+            v
+        })
+        .collect()
+}
