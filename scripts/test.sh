@@ -15,5 +15,6 @@ cargo clippy --release --workspace --all-targets -- -D warnings
 cargo test --release --workspace
 # The Python package (python/, maturin): built into .venv, then its pytest tests, which compare
 # it with the binaries just built.
-.venv/bin/python -m pip install --quiet --disable-pip-version-check ./python
+PATH="$root/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+    --no-build-isolation ./python
 .venv/bin/python -m pytest -q python/tests
