@@ -1,9 +1,11 @@
 //! The library API as a program calls it: a typed `Request` in, the fit with its verdict out,
-//! nothing written; the same answer as the `estimate` binary on the same data, progress and
-//! cancellation passed in, and typed errors for bad input.
+//! nothing written; the same answer as the `estimate` binary on the same data (and on clips
+//! held in memory as on their `.npy`), progress and cancellation passed in, and typed errors
+//! for bad input.
 
 mod util;
 
+use estimator::data::Frames;
 use estimator::{estimation, estimation_watched, EstimateError, Request, Watch};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use util::{estimate_of, gen_dataset, read_report, Estimate};
@@ -66,6 +68,24 @@ fn the_api_answers_as_the_command_line_does_and_writes_nothing() {
         run.epochs_run
     );
     assert!(!req.out.exists());
+
+    // The same clips held in memory read as their bare .npy: the same answer.
+    let npy = std::path::Path::new(&data).join("frames.npy");
+    let array = physvid_shared::npy::read_npy(&npy).unwrap();
+    let shape: [usize; 5] = array.shape.try_into().unwrap();
+    let ask = |input: &str, frames: Option<Frames>| {
+        let mut r = Request::new(input);
+        r.load.model = Some(estimator::physics::ModelRef::by_name("damped-oscillator").unwrap());
+        r.load.dt = Some(0.2);
+        r.load.frames = frames.map(std::sync::Arc::new);
+        (r.training.threads, r.training.epochs, r.quiet) = (2, 20, true);
+        estimation(&r).unwrap().report.run.parameters
+    };
+    let from_file = ask(npy.to_str().unwrap(), None);
+    let in_memory = ask("clips", Some(Frames::new(array.data, shape).unwrap()));
+    for (a, b) in from_file.iter().zip(&in_memory) {
+        assert_eq!((&a.name, a.estimate), (&b.name, b.estimate));
+    }
 }
 
 #[test]

@@ -194,40 +194,29 @@ def estimate(
     one a data set's meta.json names, else chosen by the evidence; ``"auto"``: chosen always)
     from ``source``: a path (data set
     folder, ``.npy``, video, image folder), a ``Dataset``, or an array / tensor
-    ``[N, T, C, H, W]`` (then ``dt`` is needed; it is written to a temporary ``.npy`` first).
+    ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy`` would be: ``dt`` is needed).
     ``references`` is ``estimate --reference``'s text. With ``out``, writes what
     ``estimate --out`` writes. Raises ``BadInputError``, ``NoEstimateError`` or
     ``UnreliableError`` (its ``args[1]`` the report) as ``estimate`` exits 2, 3 or 4."""
-    keep = None
     if isinstance(source, Dataset):
-        path = source.path
+        read: Any = str(source.path)
     elif isinstance(source, (str, os.PathLike)):
-        path = Path(source)
+        read = str(Path(source))
     else:
+        # Read in memory (a CPU tensor's numpy view costs no copy; the module copies once).
         array = source.detach().cpu().numpy() if isinstance(source, torch.Tensor) else source
-        array = np.ascontiguousarray(array, dtype=np.float32)
-        if array.ndim != 5:
-            raise BadInputError(
-                f"an array of shape {array.shape}: clips are [N, T, C, H, W]; reshape it"
-            )
-        keep = tempfile.TemporaryDirectory(prefix="physvid-")
-        path = Path(keep.name) / "clips.npy"
-        np.save(path, array)
-    try:
-        text = _core.estimate(
-            str(path),
-            model=model,
-            dt=dt,
-            fps=fps,
-            references=references,
-            epochs=epochs,
-            seed=seed,
-            device=device,
-            threads=threads,
-            quiet=not progress,
-            out=None if out is None else str(out),
-        )
-    finally:
-        if keep is not None:
-            keep.cleanup()
+        read = np.ascontiguousarray(array, dtype=np.float32)
+    text = _core.estimate(
+        read,
+        model=model,
+        dt=dt,
+        fps=fps,
+        references=references,
+        epochs=epochs,
+        seed=seed,
+        device=device,
+        threads=threads,
+        quiet=not progress,
+        out=None if out is None else str(out),
+    )
     return Result(json.loads(text))

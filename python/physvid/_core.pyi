@@ -1,5 +1,7 @@
 """Type stubs of the compiled module (python/src/lib.rs)."""
-from typing import List, Optional
+from typing import List, Optional, Union
+
+import numpy as np
 
 class PhysvidError(Exception): ...
 class BadInputError(PhysvidError): ...
@@ -8,7 +10,7 @@ class UnreliableError(PhysvidError): ...
 
 def generate(args: List[str], out: str) -> str: ...
 def estimate(
-    source: str,
+    source: Union[str, np.ndarray],
     model: Optional[str] = None,
     dt: Optional[float] = None,
     fps: Optional[float] = None,

@@ -7,8 +7,10 @@
 use clap::ValueEnum;
 use estimator::cli::parse_reference;
 use estimator::config::request::DEFAULT_OUT;
+use estimator::data::Frames;
 use estimator::physics::ModelRef;
 use estimator::{estimation_watched, EstimateError, Request, Watch};
+use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -60,10 +62,38 @@ fn generate(py: Python<'_>, args: Vec<String>, out: PathBuf) -> PyResult<String>
     std::fs::read_to_string(out.join("meta.json")).map_err(|e| PhysvidError::new_err(e.to_string()))
 }
 
+/// What an estimate reads: a path, or clips `[N, T, C, H, W]` of float32 in memory.
+#[derive(FromPyObject)]
+enum Source<'py> {
+    Array(PyReadonlyArrayDyn<'py, f32>),
+    Path(PathBuf),
+}
+
+impl Source<'_> {
+    /// The request's input and, for an array, its clips (copied once, in memory).
+    fn load(self) -> PyResult<(PathBuf, Option<Frames>)> {
+        match self {
+            Source::Path(p) => Ok((p, None)),
+            Source::Array(a) => {
+                let shape: [usize; 5] = a.shape().try_into().map_err(|_| {
+                    BadInputError::new_err(format!(
+                        "an array of shape {:?}: clips are [N, T, C, H, W]; reshape it",
+                        a.shape()
+                    ))
+                })?;
+                let data = a.as_array().iter().copied().collect();
+                let frames = Frames::new(data, shape).map_err(BadInputError::new_err)?;
+                let [n, t, c, h, w] = shape;
+                Ok((format!("<array {n}×{t}×{c}×{h}×{w}>").into(), Some(frames)))
+            }
+        }
+    }
+}
+
 /// The request for `source` with the options given (the command line's defaults otherwise).
 #[allow(clippy::too_many_arguments)]
 fn request(
-    source: PathBuf,
+    source: Source,
     model: Option<&str>,
     dt: Option<f64>,
     fps: Option<f64>,
@@ -75,7 +105,9 @@ fn request(
     quiet: bool,
     out: Option<PathBuf>,
 ) -> PyResult<Request> {
-    let mut req = Request::new(source);
+    let (input, frames) = source.load()?;
+    let mut req = Request::new(input);
+    req.load.frames = frames.map(std::sync::Arc::new);
     match model {
         // As without --model: a data set's meta.json names it, else it is chosen.
         None => {}
@@ -112,15 +144,15 @@ fn request(
     Ok(req)
 }
 
-/// Estimates on `source` (a data set folder, a `.npy`, a video or an image folder) and returns
-/// report.json's text; with `out`, writes what `estimate --out OUT` writes. The GIL is
+/// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
+/// array `[N, T, C, H, W]` read in memory) and returns report.json's text; with `out`, writes what `estimate --out OUT` writes. The GIL is
 /// released while it trains; Ctrl-C stops it between epochs and raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (source, model=None, dt=None, fps=None, references=None, epochs=None, seed=0, device="auto", threads=None, quiet=false, out=None))]
 #[allow(clippy::too_many_arguments)]
 fn estimate(
     py: Python<'_>,
-    source: PathBuf,
+    source: Source,
     model: Option<&str>,
     dt: Option<f64>,
     fps: Option<f64>,

@@ -42,6 +42,8 @@ pub struct ChoiceRequest {
     pub incline: bool,
     /// The model files named as candidates (`--candidate`).
     pub files: Vec<ModelRef>,
+    /// The clips are in memory (`LoadRequest::frames`): `input` only names them.
+    pub in_memory: bool,
 }
 
 /// `req` for trying `model` in a choice (on the `cut` shared by all, unless it is
@@ -79,6 +81,7 @@ impl ChoiceRequest {
             positions: !req.calibration.positions.is_empty(),
             incline: req.calibration.incline_deg.is_some(),
             files: req.candidates.clone(),
+            in_memory: req.load.frames.is_some(),
         }
     }
 }
@@ -95,8 +98,14 @@ pub fn chosen_without_model(input: &Path) -> bool {
 pub fn candidates(
     req: &ChoiceRequest,
 ) -> Result<(Vec<ModelRef>, Option<CommonCut>), EstimateError> {
-    physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
-    let meta = meta_of(&req.input);
+    // Clips in memory are a bare array's: no meta.json, no recording to cut.
+    let meta = match req.in_memory {
+        true => None,
+        false => {
+            physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
+            meta_of(&req.input)
+        }
+    };
     let calibration = meta.as_ref().map(|m| &m.calibration);
     let positions = req.positions || calibration.is_some_and(|c| !c.reference_positions.is_empty());
     let incline = req.incline || calibration.is_some_and(|c| c.incline_deg.is_some());
@@ -116,7 +125,11 @@ pub fn candidates(
             "--model auto: no candidate reads bodies' positions but the built-in spring; pass --model",
         ));
     }
-    Ok((models, cut::common_cut(&req.input, &req.recording)?))
+    let cut = match req.in_memory {
+        true => None,
+        false => cut::common_cut(&req.input, &req.recording)?,
+    };
+    Ok((models, cut))
 }
 
 /// Whether `input` is a data set directory (whose meta.json names its model), not a

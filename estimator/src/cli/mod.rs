@@ -140,6 +140,7 @@ impl EstimateArgs {
             trying: false,
             dt: self.model.dt,
             recording,
+            frames: None,
         }
     }
 

@@ -2,6 +2,7 @@
 //! meta.json settle dt and the model; flags must agree with meta.json), then read.
 
 use super::probe::{Plan, Probe};
+use super::request::Frames;
 use super::{LoadRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -19,7 +20,14 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
             req.input.display()
         )));
     }
-    let header = read_dataset_header(&req.input)?;
+    let header = match &req.frames {
+        Some(f) => DatasetHeader {
+            shape: f.shape,
+            meta: None,
+            frames_path: req.input.clone(),
+        },
+        None => read_dataset_header(&req.input)?,
+    };
     let DatasetHeader {
         shape,
         ref meta,
@@ -105,8 +113,24 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
     })
 }
 
-/// The frames of a probed dataset directory or bare `.npy` (its `header`), read in full.
-pub(crate) fn dataset_source(header: &DatasetHeader) -> Result<Source, EstimateError> {
+/// The frames of a probed dataset directory or bare `.npy` (its `header`), read in full, or
+/// those held in memory (`frames`).
+pub(crate) fn dataset_source(
+    header: &DatasetHeader,
+    frames: Option<&Frames>,
+) -> Result<Source, EstimateError> {
+    if let Some(f) = frames {
+        return Ok(Source {
+            frames: f.data.clone(),
+            shape: f.shape,
+            meta: None,
+            start_times: None,
+            clip_index: None,
+            recording: None,
+            warnings: Vec::new(),
+            preview_png: None,
+        });
+    }
     let ds = header.read_frames()?;
     let start_times = ds.meta.as_ref().and_then(|m| m.clip_start_times.clone());
     Ok(Source {

@@ -21,7 +21,7 @@ mod timing;
 
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};
-pub use request::{LoadRequest, RecordingRequest};
+pub use request::{Frames, LoadRequest, RecordingRequest};
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -169,7 +169,7 @@ pub fn load_clips(
 ) -> Result<ClipData, EstimateError> {
     let src = match plan {
         Plan::Recording(p) => recording::recording_source(req, p, model)?,
-        Plan::Dataset(header) => dataset::dataset_source(header)?,
+        Plan::Dataset(header) => dataset::dataset_source(header, req.frames.as_deref())?,
     };
     let [n, t, c, h, w] = src.shape;
     // A recording's frames are one sequence; a dataset's, one per clip.

@@ -54,8 +54,12 @@ pub struct RecordingPlan {
     pub warnings: Vec<String>,
 }
 
-/// Probes `req.input` (its kind checked first) for the model, dt and the load's plan.
+/// Probes `req.input` (its kind checked first) for the model, dt and the load's plan; clips in
+/// memory (`req.frames`) as a bare `.npy`.
 pub fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
+    if req.frames.is_some() {
+        return dataset::probe(req);
+    }
     physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
     if is_recording(&req.input) {
         recording(req)

@@ -22,6 +22,33 @@ pub struct LoadRequest {
     /// `--dt`, when given.
     pub dt: Option<f64>,
     pub recording: RecordingRequest,
+    /// Clips held in memory by a library caller (a Python array): read instead of `input`,
+    /// which then only names them in messages, like a bare `.npy` (no meta.json: `dt` and the
+    /// model given, or the model chosen). Never serialised.
+    #[serde(skip)]
+    pub frames: Option<std::sync::Arc<Frames>>,
+}
+
+/// Clips `[N, T, C, H, W]` of float32 in memory.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Frames {
+    pub data: Vec<f32>,
+    pub shape: [usize; 5],
+}
+
+impl Frames {
+    /// `data` as clips of `shape`, where their lengths agree.
+    pub fn new(data: Vec<f32>, shape: [usize; 5]) -> Result<Frames, String> {
+        let want = shape.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
+        if want != Some(data.len()) {
+            return Err(format!(
+                "clips of shape {shape:?} hold {} values, not {}",
+                want.map_or("too many".into(), |w| w.to_string()),
+                data.len()
+            ));
+        }
+        Ok(Frames { data, shape })
+    }
 }
 
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
