@@ -25,9 +25,9 @@ use std::time::Instant;
 /// process, `shared::interrupt`).
 #[derive(Clone, Copy, Default)]
 pub struct Watch<'a> {
-    /// Each epoch of a training kept (every candidate's in a model choice) instead of the
-    /// terminal's progress.
-    pub epoch: Option<&'a (dyn Fn(&EpochRecord) + Sync)>,
+    /// Each epoch of a training kept (every candidate's in a model choice), with the model's
+    /// parameter names, instead of the terminal's progress.
+    pub epoch: Option<&'a (dyn Fn(&EpochRecord, &[&str]) + Sync)>,
     pub cancel: Option<&'a AtomicBool>,
 }
 
@@ -222,7 +222,7 @@ pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
         device,
         &starts,
         &mut |rec| match watch.epoch {
-            Some(f) => f(rec),
+            Some(f) => f(rec, &names),
             None => progress.epoch(rec, &names),
         },
         &mut |msg| {

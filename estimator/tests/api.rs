@@ -46,7 +46,7 @@ fn the_api_answers_as_the_command_line_does_and_writes_nothing() {
 
     // Followed epoch by epoch, then stopped from the caller's side at the fifth.
     let (seen, stop) = (AtomicUsize::new(0), AtomicBool::new(false));
-    let epoch = |rec: &estimator::train::EpochRecord| {
+    let epoch = |rec: &estimator::train::EpochRecord, _: &[&str]| {
         if seen.fetch_add(1, Ordering::Relaxed) + 1 == 5 {
             stop.store(true, Ordering::Relaxed);
         }

@@ -21,7 +21,7 @@ import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Union
 
 import numpy as np
 
@@ -35,6 +35,7 @@ __all__ = [
     "Result",
     "Parameter",
     "Verdict",
+    "Epoch",
     "PhysvidError",
     "BadInputError",
     "NoEstimateError",
@@ -124,6 +125,16 @@ class Parameter:
 
 
 @dataclass(frozen=True)
+class Epoch:
+    """One epoch of the training kept, as ``progress`` sees it."""
+
+    epoch: int
+    most: int
+    validation_error: float
+    parameters: Dict[str, float]
+
+
+@dataclass(frozen=True)
 class Reason:
     check: str
     grade: str
@@ -140,9 +151,11 @@ class Verdict:
 
 class Result:
     """An estimate: its parameters, verdict, model, training history and the whole report
-    (report.json as a dict)."""
+    (report.json as a dict); ``save`` writes what ``estimate --out`` writes."""
 
-    def __init__(self, report: Dict[str, Any]):
+    def __init__(self, fitted: "_core.Fitted"):
+        self._fitted = fitted
+        report: Dict[str, Any] = json.loads(fitted.report())
         self.report = report
         self.model: str = report["model"]
         self.parameters: Dict[str, Parameter] = {
@@ -162,6 +175,13 @@ class Result:
             v["grade"], [Reason(r["check"], r["grade"], r["detail"]) for r in v["reasons"]]
         )
         self.history: List[Dict[str, Any]] = report["history"]
+
+    def save(self, folder: Union[str, os.PathLike], force: bool = False) -> Path:
+        """Writes report.json, report.html, metrics.csv and the plots into ``folder``, as
+        ``estimate --out FOLDER`` does (a folder this tool did not make is refused unless it is
+        empty or ``force``)."""
+        self._fitted.save(str(folder), force)
+        return Path(folder)
 
     def to_pandas(self):
         """The parameters as a pandas DataFrame (pandas must be installed)."""
@@ -187,7 +207,7 @@ def estimate(
     seed: int = 0,
     device: str = "auto",
     threads: Optional[int] = None,
-    progress: bool = True,
+    progress: Union[bool, Callable[[Epoch], None]] = True,
     out: Union[str, os.PathLike, None] = None,
 ) -> Result:
     """Estimates the parameters of ``model`` (a built-in's name or a model file; ``None``: the
@@ -195,9 +215,11 @@ def estimate(
     from ``source``: a path (data set
     folder, ``.npy``, video, image folder), a ``Dataset``, or an array / tensor
     ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy`` would be: ``dt`` is needed).
-    ``references`` is ``estimate --reference``'s text. With ``out``, writes what
+    ``references`` is ``estimate --reference``'s text. ``progress``: ``True`` shows a tqdm bar
+    (``tqdm.auto``: a widget in notebooks) where tqdm is installed, else the command line's
+    lines; ``False`` nothing; a function is called with each ``Epoch``. With ``out``, writes what
     ``estimate --out`` writes. Raises ``BadInputError``, ``NoEstimateError`` or
-    ``UnreliableError`` (its ``args[1]`` the report) as ``estimate`` exits 2, 3 or 4."""
+    ``UnreliableError`` (its ``result`` the graded estimate) as ``estimate`` exits 2, 3 or 4."""
     if isinstance(source, Dataset):
         read: Any = str(source.path)
     elif isinstance(source, (str, os.PathLike)):
@@ -206,17 +228,40 @@ def estimate(
         # Read in memory (a CPU tensor's numpy view costs no copy; the module copies once).
         array = source.detach().cpu().numpy() if isinstance(source, torch.Tensor) else source
         read = np.ascontiguousarray(array, dtype=np.float32)
-    text = _core.estimate(
-        read,
-        model=model,
-        dt=dt,
-        fps=fps,
-        references=references,
-        epochs=epochs,
-        seed=seed,
-        device=device,
-        threads=threads,
-        quiet=not progress,
-        out=None if out is None else str(out),
-    )
-    return Result(json.loads(text))
+    on_epoch, bar = None, None
+    if callable(progress):
+        on_epoch = lambda e, most, err, values: progress(Epoch(e, most, err, dict(values)))  # noqa: E731
+    elif progress:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            tqdm = None
+        if tqdm is not None:
+            bar = tqdm(total=epochs or 300, unit="epoch", desc="physvid")
+
+            def on_epoch(e, most, err, values):
+                bar.update(e - bar.n)
+                bar.set_postfix_str(f"val {err:.2e} " + " ".join(f"{k} {v:.5g}" for k, v in values))
+
+    try:
+        fitted = _core.estimate(
+            read,
+            model=model,
+            dt=dt,
+            fps=fps,
+            references=references,
+            epochs=epochs,
+            seed=seed,
+            device=device,
+            threads=threads,
+            quiet=not progress,
+            out=None if out is None else str(out),
+            on_epoch=on_epoch,
+        )
+    except UnreliableError as e:
+        e.result = Result(e.args[2])
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+    return Result(fitted)

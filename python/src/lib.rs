@@ -35,7 +35,7 @@ create_exception!(
     _core,
     UnreliableError,
     PhysvidError,
-    "The answer's verdict is unreliable (exit code 4); args[1] is its report as JSON."
+    "The answer's verdict is unreliable (exit code 4); args[1] is its report as JSON, args[2] the estimation."
 );
 
 /// `anyhow` from the library as the Python exception of its kind.
@@ -144,11 +144,38 @@ fn request(
     Ok(req)
 }
 
+/// A finished estimation: its report, and its clips for writing the files `estimate --out`
+/// writes (held until the object goes).
+#[pyclass(unsendable)]
+struct Fitted {
+    estimation: estimator::Estimation,
+}
+
+#[pymethods]
+impl Fitted {
+    /// report.json's text.
+    fn report(&self) -> PyResult<String> {
+        serde_json::to_string_pretty(&self.estimation.report)
+            .map_err(|e| PhysvidError::new_err(e.to_string()))
+    }
+
+    /// Writes what `estimate --out OUT [--force]` writes into `out`.
+    #[pyo3(signature = (out, force=false))]
+    fn save(&self, out: PathBuf, force: bool) -> PyResult<()> {
+        let e = &self.estimation;
+        let input = &e.report.run.config.input;
+        estimator::output::check_out(&out, Some(input), force).map_err(|e| to_py(e.into()))?;
+        estimator::output::write_outputs(&out, force, &e.data, &e.report)
+            .map_err(|e| to_py(e.into()))
+    }
+}
+
 /// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
-/// array `[N, T, C, H, W]` read in memory) and returns report.json's text; with `out`, writes what `estimate --out OUT` writes. The GIL is
-/// released while it trains; Ctrl-C stops it between epochs and raises KeyboardInterrupt.
+/// array `[N, T, C, H, W]` read in memory) and returns the `Fitted` estimation; with `out`,
+/// writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C stops
+/// it between epochs and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (source, model=None, dt=None, fps=None, references=None, epochs=None, seed=0, device="auto", threads=None, quiet=false, out=None))]
+#[pyo3(signature = (source, model=None, dt=None, fps=None, references=None, epochs=None, seed=0, device="auto", threads=None, quiet=false, out=None, on_epoch=None))]
 #[allow(clippy::too_many_arguments)]
 fn estimate(
     py: Python<'_>,
@@ -163,7 +190,8 @@ fn estimate(
     threads: Option<usize>,
     quiet: bool,
     out: Option<PathBuf>,
-) -> PyResult<String> {
+    on_epoch: Option<Py<PyAny>>,
+) -> PyResult<Fitted> {
     let writes = out.is_some();
     let req = request(
         source, model, dt, fps, references, epochs, seed, device, threads, quiet, out,
@@ -173,8 +201,26 @@ fn estimate(
             .map_err(|e| to_py(e.into()))?;
     }
     let cancel = AtomicBool::new(false);
+    // Each epoch to the caller's function (epoch, its most, validation error, parameters by
+    // name), called on the training's thread with the GIL taken while this one waits.
+    let most = req.training.epochs;
+    let report_epoch = |rec: &estimator::train::EpochRecord, names: &[&str]| {
+        if let Some(f) = &on_epoch {
+            Python::with_gil(|py| {
+                let values: Vec<(&str, f64)> = names
+                    .iter()
+                    .copied()
+                    .zip(rec.parameters.iter().copied())
+                    .collect();
+                let args = (rec.epoch, most, rec.val_rel_mse, values);
+                if let Err(e) = f.call1(py, args) {
+                    e.print(py);
+                }
+            });
+        }
+    };
     let watch = Watch {
-        epoch: None,
+        epoch: on_epoch.as_ref().map(|_| &report_epoch as _),
         cancel: Some(&cancel),
     };
     let (result, interrupted) = std::thread::scope(|s| {
@@ -195,26 +241,24 @@ fn estimate(
     let estimation = result
         .map_err(|_| PhysvidError::new_err("the estimation panicked"))?
         .map_err(to_py)?;
-    let json = serde_json::to_string_pretty(&estimation.report)
-        .map_err(|e| PhysvidError::new_err(e.to_string()))?;
+    let fitted = Fitted { estimation };
     if writes {
-        let (report, data) = (&estimation.report, &estimation.data);
-        estimator::output::write_outputs(&req.out, req.force, data, report)
-            .map_err(|e| to_py(e.into()))?;
+        fitted.save(req.out.clone(), req.force)?;
     }
-    if estimation.report.verdict.grade == estimator::verdict::Grade::Unreliable {
-        return Err(UnreliableError::new_err((
-            "the answer is unreliable (the verdict's reasons are in the report)",
-            json,
-        )));
+    if fitted.estimation.report.verdict.grade == estimator::verdict::Grade::Unreliable {
+        let json = fitted.report()?;
+        let message = "the answer is unreliable (the verdict's reasons are in the report)";
+        let fitted = Py::new(py, fitted)?;
+        return Err(UnreliableError::new_err((message, json, fitted)));
     }
-    Ok(json)
+    Ok(fitted)
 }
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
+    m.add_class::<Fitted>()?;
     let py = m.py();
     m.add("PhysvidError", py.get_type::<PhysvidError>())?;
     m.add("BadInputError", py.get_type::<BadInputError>())?;

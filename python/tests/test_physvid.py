@@ -29,7 +29,11 @@ def small():
 def test_generate_then_estimate_recovers_gamma0_and_gamma1(small):
     assert small.frames.shape == (200, 20, 1, 32, 32) and small.frames.dtype == np.float32
     assert small.truth["gamma0"] == pytest.approx(4.0016)
-    r = physvid.estimate(small, threads=2, progress=False)
+    seen = []
+    r = physvid.estimate(small, threads=2, progress=seen.append)
+    # Each epoch of the training kept, in order, with the parameters by name.
+    assert [e.epoch for e in seen] == list(range(1, r.report["epochs_run"] + 1))
+    assert seen[-1].parameters.keys() == {"gamma0", "gamma1"} and seen[-1].most == 300
     assert r.model == "damped-oscillator" and "model_choice" not in r.report, "meta.json names it"
     g0, g1 = r.parameters["gamma0"], r.parameters["gamma1"]
     assert abs(g0.value / 4.0016 - 1) < 0.01, g0
@@ -61,7 +65,7 @@ def test_the_same_answer_as_the_command_line_on_a_path_an_array_and_a_tensor(tmp
         try:
             got = physvid.estimate(source, **kw).report
         except physvid.UnreliableError as e:
-            got = json.loads(e.args[1])
+            got = e.result.report
         assert {p["name"]: p["estimate"] for p in got["parameters"]} == want
 
 
@@ -74,11 +78,24 @@ def test_save_writes_what_gen_writes(tmp_path):
         assert (saved / name).read_bytes() == (tmp_path / "gen" / name).read_bytes(), name
 
 
-def test_out_writes_what_estimate_writes(tmp_path, small):
+def test_out_and_save_write_what_estimate_writes(tmp_path, small):
     out = tmp_path / "run"
-    physvid.estimate(small, threads=2, epochs=5, progress=False, out=out)
+    r = physvid.estimate(small, threads=2, epochs=5, progress=False, out=out)
+    saved = r.save(tmp_path / "saved")
+    done = cli("estimate", small.path, "--threads", "2", "--epochs", "5", "--out", tmp_path / "cli", "--quiet")
+    assert done.returncode == 0, done.stderr
     for name in ["report.json", "report.html", "metrics.csv", "parameters.png", "latents.png"]:
-        assert (out / name).is_file(), name
+        assert (out / name).is_file() and (saved / name).is_file(), name
+    for folder in (out, saved):
+        mine = json.loads((folder / "report.json").read_text())
+        theirs = json.loads((tmp_path / "cli" / "report.json").read_text())
+        assert [p["estimate"] for p in mine["parameters"]] == [p["estimate"] for p in theirs["parameters"]]
+    assert (saved / "metrics.csv").read_text().splitlines()[0] == (tmp_path / "cli" / "metrics.csv").read_text().splitlines()[0]
+    # A folder this tool did not make, not empty: refused, as by the command line.
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("mine")
+    with pytest.raises(physvid.BadInputError, match="force"):
+        r.save(tmp_path / "mine")
 
 
 def test_errors_are_typed_and_name_the_input(tmp_path):
@@ -98,6 +115,7 @@ def test_errors_are_typed_and_name_the_input(tmp_path):
     with pytest.raises(physvid.UnreliableError) as e:
         physvid.estimate(frames, model="damped-oscillator", dt=0.2, threads=2, epochs=20, progress=False)
     assert json.loads(e.value.args[1])["verdict"]["grade"] == "unreliable"
+    assert e.value.result.verdict.grade == "unreliable"
     assert issubclass(physvid.UnreliableError, physvid.PhysvidError)
 
 
@@ -121,12 +139,13 @@ def test_ctrl_c_stops_training_promptly_and_writes_nothing(tmp_path):
         "import physvid, signal, sys\n"
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "try:\n"
-        f"    physvid.estimate({str(data)!r}, threads=1, out={str(out)!r})\n"
+        "    say = lambda e: print('epoch', e.epoch, file=sys.stderr, flush=True)\n"
+        f"    physvid.estimate({str(data)!r}, threads=1, out={str(out)!r}, progress=say)\n"
         "except KeyboardInterrupt:\n"
         "    sys.exit(130)\n"
     )
     child = subprocess.Popen([sys.executable, "-c", script], stderr=subprocess.PIPE, text=True)
-    # The first progress line comes after the first epoch of the training kept.
+    # The first line comes after the first epoch of the training kept.
     for line in child.stderr:
         if line.startswith("epoch"):
             break
