@@ -19,6 +19,9 @@ use physvid_shared::term;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+/// A caller's function told each epoch, with the model's parameter names.
+pub type EpochFn = dyn Fn(&EpochRecord, &[&str]) + Sync;
+
 /// How a caller follows and stops a run: each epoch of the training kept, and a flag that stops
 /// it between epochs with [`EstimateError::Cancelled`]. The default is the command line's: the
 /// terminal's progress (a bar, lines, nothing with `quiet`) and no flag (Ctrl-C ends the
@@ -27,7 +30,7 @@ use std::time::Instant;
 pub struct Watch<'a> {
     /// Each epoch of a training kept (every candidate's in a model choice), with the model's
     /// parameter names, instead of the terminal's progress.
-    pub epoch: Option<&'a (dyn Fn(&EpochRecord, &[&str]) + Sync)>,
+    pub epoch: Option<&'a EpochFn>,
     pub cancel: Option<&'a AtomicBool>,
 }
 
