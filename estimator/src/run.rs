@@ -20,7 +20,7 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// A caller's function told each epoch, with the model's parameter names.
-pub type EpochFn = dyn Fn(&EpochRecord, &[&str]) + Sync;
+pub type EpochFn<'a> = dyn Fn(&EpochRecord, &[&str]) + Sync + 'a;
 
 /// How a caller follows and stops a run: each epoch of the training kept, and a flag that stops
 /// it between epochs with [`EstimateError::Cancelled`]. The default is the command line's: the
@@ -30,7 +30,7 @@ pub type EpochFn = dyn Fn(&EpochRecord, &[&str]) + Sync;
 pub struct Watch<'a> {
     /// Each epoch of a training kept (every candidate's in a model choice), with the model's
     /// parameter names, instead of the terminal's progress.
-    pub epoch: Option<&'a EpochFn>,
+    pub epoch: Option<&'a EpochFn<'a>>,
     pub cancel: Option<&'a AtomicBool>,
 }
 
