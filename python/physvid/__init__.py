@@ -237,9 +237,10 @@ def estimate(
         except ImportError:
             tqdm = None
         if tqdm is not None:
-            bar = tqdm(total=epochs or 300, unit="epoch", desc="physvid")
+            bar = tqdm(unit="epoch", desc="physvid")
 
             def on_epoch(e, most, err, values):
+                bar.total = most  # the run's --epochs, its default included
                 bar.update(e - bar.n)
                 bar.set_postfix_str(f"val {err:.2e} " + " ".join(f"{k} {v:.5g}" for k, v in values))
 
