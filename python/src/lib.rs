@@ -90,60 +90,6 @@ impl Source<'_> {
     }
 }
 
-/// The request for `source` with the options given (the command line's defaults otherwise).
-#[allow(clippy::too_many_arguments)]
-fn request(
-    source: Source,
-    model: Option<&str>,
-    dt: Option<f64>,
-    fps: Option<f64>,
-    references: Option<&str>,
-    epochs: Option<usize>,
-    seed: u64,
-    device: &str,
-    threads: Option<usize>,
-    quiet: bool,
-    out: Option<PathBuf>,
-) -> PyResult<Request> {
-    let (input, frames) = source.load()?;
-    let mut req = Request::new(input);
-    req.load.frames = frames.map(std::sync::Arc::new);
-    match model {
-        // As without --model: a data set's meta.json names it, else it is chosen.
-        None => {}
-        Some("auto") => req.choose = true,
-        Some(name) => req.load.model = Some(ModelRef::parse(name).map_err(BadInputError::new_err)?),
-    }
-    req.load.dt = dt;
-    req.load.recording.fps = fps;
-    if let Some(text) = references {
-        let r = parse_reference(text)
-            .map_err(|e| BadInputError::new_err(format!("references: {e}")))?;
-        req.load.recording.measured_at = r.times.iter().map(|t| t.0).collect();
-        req.calibration.values = r.values;
-        req.calibration.times = r.times;
-        req.calibration.positions = r.positions;
-    }
-    if let Some(e) = epochs {
-        if e == 0 {
-            return Err(BadInputError::new_err("epochs 0: must be at least 1"));
-        }
-        req.training.epochs = e;
-    }
-    req.training.seed = seed;
-    req.training.device = estimator::device::DeviceChoice::from_str(device, true)
-        .map_err(|_| BadInputError::new_err(format!("device '{device}': use auto, cpu or cuda")))?;
-    if let Some(t) = threads {
-        if t == 0 {
-            return Err(BadInputError::new_err("threads 0: must be at least 1"));
-        }
-        req.training.threads = t;
-    }
-    req.quiet = quiet;
-    req.out = out.unwrap_or_else(|| DEFAULT_OUT.into());
-    Ok(req)
-}
-
 /// A finished estimation: its report, and its clips for writing the files `estimate --out`
 /// writes (held until the object goes).
 #[pyclass(unsendable)]
@@ -193,9 +139,43 @@ fn estimate(
     on_epoch: Option<Py<PyAny>>,
 ) -> PyResult<Fitted> {
     let writes = out.is_some();
-    let req = request(
-        source, model, dt, fps, references, epochs, seed, device, threads, quiet, out,
-    )?;
+    let (input, frames) = source.load()?;
+    // The request, the command line's defaults where an option is not given.
+    let mut req = Request::new(input);
+    req.load.frames = frames.map(std::sync::Arc::new);
+    match model {
+        // As without --model: a data set's meta.json names it, else it is chosen.
+        None => {}
+        Some("auto") => req.choose = true,
+        Some(name) => req.load.model = Some(ModelRef::parse(name).map_err(BadInputError::new_err)?),
+    }
+    req.load.dt = dt;
+    req.load.recording.fps = fps;
+    if let Some(text) = references {
+        let r = parse_reference(text)
+            .map_err(|e| BadInputError::new_err(format!("references: {e}")))?;
+        req.load.recording.measured_at = r.times.iter().map(|t| t.0).collect();
+        req.calibration.values = r.values;
+        req.calibration.times = r.times;
+        req.calibration.positions = r.positions;
+    }
+    if let Some(e) = epochs {
+        if e == 0 {
+            return Err(BadInputError::new_err("epochs 0: must be at least 1"));
+        }
+        req.training.epochs = e;
+    }
+    req.training.seed = seed;
+    req.training.device = estimator::device::DeviceChoice::from_str(device, true)
+        .map_err(|_| BadInputError::new_err(format!("device '{device}': use auto, cpu or cuda")))?;
+    if let Some(t) = threads {
+        if t == 0 {
+            return Err(BadInputError::new_err("threads 0: must be at least 1"));
+        }
+        req.training.threads = t;
+    }
+    req.quiet = quiet;
+    req.out = out.unwrap_or_else(|| DEFAULT_OUT.into());
     if writes {
         estimator::output::check_out(&req.out, Some(req.input()), req.force)
             .map_err(|e| to_py(e.into()))?;
