@@ -1,19 +1,19 @@
 //! The one place that writes a run's outputs into `--out`: report.json, report.html,
-//! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv and clips.png, in a
-//! folder this tool owns (`physvid_shared::outdir`): each file written whole under a temporary
-//! name and renamed, only the tool's own files ever removed or replaced.
+//! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv, change.png and
+//! clips.png, in a folder this tool owns (`physvid_shared::outdir`): each file written whole
+//! under a temporary name and renamed, only the tool's own files ever removed or replaced.
 
 use crate::data::ClipData;
 use crate::error::{input_error, EstimateError};
 use crate::html::{report_page, Figure};
-use crate::plots::{latents_png, parameters_png, timeline_png};
+use crate::plots::{change_png, latents_png, parameters_png, timeline_png};
 use crate::report::Report;
 use physvid_shared::outdir::{self, OutputDir, Wait, MANIFEST};
 use std::path::Path;
 
 /// Every file a run may write, report.json first: an earlier run's (this tool's) are removed
 /// before a run writes its own.
-pub const OUTPUTS: [&str; 8] = [
+pub const OUTPUTS: [&str; 9] = [
     "report.json",
     "report.html",
     "metrics.csv",
@@ -21,6 +21,7 @@ pub const OUTPUTS: [&str; 8] = [
     "latents.png",
     "timeline.png",
     "timeline.csv",
+    "change.png",
     "clips.png",
 ];
 
@@ -98,7 +99,7 @@ pub fn clear_earlier(out: &Path, force: bool) -> Result<(), EstimateError> {
 }
 
 /// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
-/// timeline.csv and clips.png for a recording) into `out`, report.json last.
+/// timeline.csv, change.png and clips.png for a recording) into `out`, report.json last.
 pub fn write_outputs(
     out: &Path,
     force: bool,
@@ -135,6 +136,12 @@ pub fn write_outputs(
             plot(&mut dir, "timeline.png", timeline_png(t))?,
         ));
         dir.write("timeline.csv", t.csv(dims).as_bytes())?;
+    }
+    if let Some(png) = report.run.recording.as_ref().and_then(change_png) {
+        figures.push(plot_figure(
+            "The picture's change over the recording, and the span fitted (shaded)",
+            plot(&mut dir, "change.png", png)?,
+        ));
     }
     if let Some(png) = &data.preview_png {
         if report.run.recording.as_ref().is_some_and(|r| r.preview) {

@@ -99,6 +99,11 @@ fn a_spring_held_by_hand_is_read_once_the_hand_has_left() {
     // The hand holds the mass until about 3 s.
     let start = r["recording"]["start"].as_f64().unwrap_or(0.0);
     assert!((2.8..3.6).contains(&start), "kept from {start} s: {err}");
+    // The figure of the picture's change with the span fitted, written and in the page.
+    let run = tmp.path().join("run");
+    assert!(run.join("change.png").exists(), "change.png: {err}");
+    let page = std::fs::read_to_string(run.join("report.html")).unwrap();
+    assert!(page.contains("the span fitted (shaded)"), "report.html");
     // The table's k and m give γ0 = 136.9 s⁻² (the tracked period 134.4–136.9).
     let g0 = rate(&r);
     assert!(

@@ -39,7 +39,7 @@ use std::path::PathBuf;
 /// ones need --reference. Ends with a table of estimates (and ground truth with relative errors
 /// when meta.json gives them) and writes report.html (a page to open: estimates, warnings,
 /// plots, the command), report.json, metrics.csv, parameters.png and latents.png (and
-/// timeline.png and timeline.csv for a recording) into --out. With --batch, many inputs in one
+/// timeline.png, timeline.csv and change.png for a recording) into --out. With --batch, many inputs in one
 /// command, each row into its own directory, with summary.csv, summary.md and index.html.
 #[derive(Debug, Clone, Parser)]
 // A flag given twice is refused (clap's default); a batch row's flags replace the command

@@ -37,9 +37,26 @@ pub struct FreeSpan {
     pub object_share: f64,
 }
 
+/// How far each frame of a survey departs from the recording's background: the share of the
+/// frame that differs from each pixel's median (the frame's level taken out), what the object
+/// alone usually makes differ, and the share above which a frame is intruded on (a hand). The
+/// report draws it over time with the span fitted (`change.png`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Departures {
+    pub shares: Vec<f64>,
+    pub object: f64,
+    pub limit: f64,
+}
+
 /// The free motion in `frames` (`n` grey frames of `w`·`h` bytes): `None` where nothing beside
 /// the object intrudes at the start.
-pub fn free_span(frames: &[u8], (w, h): (usize, usize)) -> Option<FreeSpan> {
+pub fn free_span(frames: &[u8], size: (usize, usize)) -> Option<FreeSpan> {
+    departures(frames, size).and_then(|d| free_in(&d))
+}
+
+/// The departures of `frames` (`n` grey frames of `w`·`h` bytes) from their background; `None`
+/// for fewer than 16 frames.
+pub fn departures(frames: &[u8], (w, h): (usize, usize)) -> Option<Departures> {
     let px = w * h;
     let n = frames.len() / px.max(1);
     if n < 16 || px == 0 {
@@ -89,6 +106,18 @@ pub fn free_span(frames: &[u8], (w, h): (usize, usize)) -> Option<FreeSpan> {
     later.sort_by(f64::total_cmp);
     let object = later[later.len() / 2];
     let limit = (TIMES_THE_OBJECT * object).max(object + MORE_THAN);
+    Some(Departures {
+        shares,
+        object,
+        limit,
+    })
+}
+
+/// The free motion in the frames whose `departures` these are: `None` where nothing beside the
+/// object intrudes at the start.
+pub fn free_in(d: &Departures) -> Option<FreeSpan> {
+    let (shares, object, limit) = (&d.shares, d.object, d.limit);
+    let n = shares.len();
     let intruded: Vec<bool> = shares.iter().map(|&s| s > limit).collect();
     // A run at the start: the last intrusion in the first half, with most frames before it
     // intruded on; at the end, the first in the last half, the same after it.
@@ -155,6 +184,12 @@ mod tests {
         let held = free_span(&scene(120, |t| t < 30), (40, 30)).expect("a hand found");
         assert_eq!((held.first, held.last), (32, 119), "{held:?}");
         assert!(held.intrusion_share > 5.0 * held.object_share, "{held:?}");
+        // The departures the report draws: the arm's frames beyond the limit, the rest below.
+        let d = departures(&scene(120, |t| t < 30), (40, 30)).expect("departures");
+        assert_eq!(d.shares.len(), 120);
+        assert!(d.shares[..30].iter().all(|&s| s > d.limit), "{d:?}");
+        assert!(d.shares[32..].iter().all(|&s| s < d.limit), "{d:?}");
+        assert!(d.object > 0.0 && d.object < d.limit, "{d:?}");
         assert_eq!(free_span(&scene(120, |_| false), (40, 30)), None);
         // A passer-by in the middle of the first half cuts nothing.
         assert_eq!(

@@ -7,7 +7,7 @@
 //! of its own), widened by a margin. Where motion fills most of the frame, the whole frame is
 //! kept.
 
-use super::free::{free_span, FreeSpan};
+use super::free::{departures, free_in, Departures, FreeSpan};
 use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
 use super::tools::{gray_frames, read_full, tool};
@@ -55,6 +55,13 @@ pub struct Survey {
     /// hand) takes the picture at the start or the end: the map, the region and the period
     /// are measured on it alone.
     pub free: Option<FreeSpan>,
+    /// Each surveyed frame's departure from the background (`free::Departures`), for the
+    /// report's figure of the picture's change over time; `None` for fewer than 16 frames.
+    #[serde(skip)]
+    pub change: Option<Departures>,
+    /// The time of the first surveyed frame on the file's timeline (`--start`, else 0).
+    #[serde(skip)]
+    pub first_s: f64,
 }
 
 /// Surveys `input` (trimmed to `start`..`end` seconds, as the decode will be) for where it
@@ -101,7 +108,8 @@ pub fn survey(
         frames.extend_from_slice(&buf);
     }
     let _ = child.wait();
-    let free = free_span(&frames, (w, h));
+    let change = departures(&frames, (w, h));
+    let free = change.as_ref().and_then(free_in);
     let span = free.map_or(0..frames.len() / (w * h), |f| f.first..f.last + 1);
     let mut stats = MotionStats::new(w * h);
     let mut thumbnails = period.then(|| Thumbnails::new((w, h)));
@@ -121,6 +129,8 @@ pub fn survey(
     Ok(Survey {
         period_frames: thumbnails.and_then(|t| t.period(region)),
         free,
+        change,
+        first_s: start.unwrap_or(0.0),
         ..found
     })
 }
@@ -227,6 +237,8 @@ impl MotionStats {
             frames: self.n,
             period_frames: None,
             free: None,
+            change: None,
+            first_s: 0.0,
         };
         if self.n < 3 || top <= 0.0 {
             return empty;

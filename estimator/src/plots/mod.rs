@@ -1,7 +1,12 @@
 //! PNG plots drawn with plotters, returned as bytes (`output.rs` writes them): the parameters
 //! over epochs (ground truth dashed), the encoded latent against the physics rollout for a few
 //! validation clips (the bodies' paths in the latent plane for a vector latent), and a
-//! recording's timeline. One chart set-up serves all three.
+//! recording's timeline, and its picture's change with the span fitted (`change.rs`). One
+//! chart set-up serves them all.
+
+mod change;
+
+pub use change::change_png;
 
 use crate::analysis::Run;
 use crate::timeline::Timeline;
