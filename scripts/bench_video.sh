@@ -5,35 +5,68 @@
 #     the same file to nothing, and the answers against the tracked period (g/L = 9.15 s⁻²);
 #  2. a 30-s 60-fps 640×360 pendulum video drawn here (L = 0.9 m, ζ = 0.02 s⁻¹, 20°), the size
 #     of a typical lab recording.
+# With REF=REV (a git revision), that revision's `estimate` is built in a worktree beside this
+# one (sharing the target folder's dependencies) and every recording is run by both, in turn,
+# RUNS times each (default 2): the best wall time and the peak memory of each, and their ratios
+# (this tree / REV).
 # Needs ffmpeg (scripts/setup.sh installs it where it can).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 VIDEO="${VIDEO:-../shared/real-videos/pendulum-redapple.mov}"
+REF="${REF:-}"
+RUNS="${RUNS:-2}"
 scripts/setup.sh
 cargo build --release --quiet --bin estimate
 tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+cleanup() {
+  [ -n "$REF" ] && git worktree remove --force "$tmp/ref" > /dev/null 2>&1 || true
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+bins=("$root/target/release/estimate")
+if [ -n "$REF" ]; then
+  git worktree add --detach "$tmp/ref" "$REF" > /dev/null
+  (cd "$tmp/ref" && cp -r "$root/.cargo" . 2> /dev/null || true
+   ln -s "$root/.venv" .venv
+   CARGO_TARGET_DIR="$tmp/ref-target" cargo build --release --quiet --bin estimate)
+  bins+=("$tmp/ref-target/release/estimate")
+fi
 
-# Runs estimate on a recording; prints decode and total timing and the answers.
+# Runs each binary on a recording RUNS times in turn; prints the best wall time, the peak
+# memory, decode timing and the answers of each, and with REF their ratios.
 measure() {
-  local video=$1 label=$2 start end
-  start=$(date +%s.%N)
-  ./target/release/estimate "$video" --model pendulum --threads 2 --out "$tmp/run" --quiet > /dev/null 2>&1
-  end=$(date +%s.%N)
-  .venv/bin/python - "$tmp/run/report.json" "$start" "$end" "$label" <<'PY'
+  local video=$1 label=$2 i b
+  : > "$tmp/times"
+  for i in $(seq "$RUNS"); do
+    for b in "${!bins[@]}"; do
+      /usr/bin/time -f "$b %e %M" -a -o "$tmp/times" "${bins[$b]}" "$video" --model pendulum \
+        --threads 2 --out "$tmp/run$b" --force --quiet > /dev/null 2>&1
+    done
+  done
+  .venv/bin/python - "$tmp" "${#bins[@]}" "$label" "${REF:-}" <<'PY'
 import json, sys
-r = json.load(open(sys.argv[1]))
-rec = r["recording"]
-total = float(sys.argv[3]) - float(sys.argv[2])
-v = {p["name"]: p["estimate"] for p in r["parameters"]}
-print(f"{sys.argv[4]}: decode + estimate {total:.1f} s wall (decode {rec['decode_s']:.1f} s, "
-      f"{rec['frames_decoded']} frames at {rec['decode_fps']:.0f} frames/s; {r['epochs_run']} epochs, "
-      f"{rec['clips']} clips); g/L {v['g_over_l']:.3f} s^-2, damping {v['damping']:.4f} s^-1")
-c = r.get("cross_check")
-if c:
-    print(f"  damping from the swing amplitudes' decay (appendix A.6): {c['estimate']:.4f} ± {c['std_error']:.4f} s^-1 "
-          f"from {len(c['peaks'])} swings")
+tmp, n, label, ref = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
+best = {}
+for line in open(f"{tmp}/times"):
+    b, wall, kb = line.split()
+    w, m = best.get(int(b), (float("inf"), 0))
+    best[int(b)] = (min(w, float(wall)), max(m, int(kb)))
+print(f"{label}:")
+for b in range(n):
+    r = json.load(open(f"{tmp}/run{b}/report.json"))
+    rec = r["recording"]
+    v = {p["name"]: p["estimate"] for p in r["parameters"]}
+    who = "this tree" if b == 0 else f"REF {ref}"
+    print(f"  {who}: decode + estimate {best[b][0]:.1f} s wall (best of runs), peak {best[b][1] / 1024:.0f} MiB "
+          f"(decode {rec['decode_s']:.1f} s, {rec['frames_decoded']} frames at {rec['decode_fps']:.0f} frames/s; "
+          f"{r['epochs_run']} epochs, {rec['clips']} clips); g/L {v['g_over_l']:.3f} s^-2, damping {v['damping']:.4f} s^-1")
+    c = r.get("cross_check")
+    if c:
+        print(f"    damping from the swing amplitudes' decay (appendix A.6): {c['estimate']:.4f} ± {c['std_error']:.4f} s^-1 "
+              f"from {len(c['peaks'])} swings")
+if n == 2:
+    print(f"  ratio this tree / REF: wall {best[0][0] / best[1][0]:.2f}, peak memory {best[0][1] / best[1][1]:.2f}")
 PY
 }
 

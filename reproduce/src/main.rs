@@ -8,6 +8,7 @@ mod init;
 mod losses;
 mod model_choice;
 mod noise;
+mod others;
 mod real;
 mod robustness;
 mod runner;
@@ -63,12 +64,16 @@ enum TableKind {
     /// The verdict on the shared real recordings (--recordings) with their README's readings:
     /// every candidate's answer right or wrong, the detection and false-alarm rates.
     Real,
+    /// The verdict on footage rendered by others (`scripts/others_suite.py`: a rod and bob
+    /// under clutter, shake, light, occlusion, noise; levels 1–5), no model given: right or
+    /// wrong, the detection and false-alarm rates.
+    Others,
     /// Every table above, one after another.
     All,
 }
 
 impl TableKind {
-    const EACH: [TableKind; 11] = [
+    const EACH: [TableKind; 12] = [
         TableKind::Table3,
         TableKind::Table6,
         TableKind::Init,
@@ -80,6 +85,7 @@ impl TableKind {
         TableKind::Robustness,
         TableKind::ModelChoice,
         TableKind::Real,
+        TableKind::Others,
     ];
 
     fn name(self) -> &'static str {
@@ -95,6 +101,7 @@ impl TableKind {
             TableKind::Robustness => "robustness",
             TableKind::ModelChoice => "model-choice",
             TableKind::Real => "real",
+            TableKind::Others => "others",
             TableKind::All => "all",
         }
     }
@@ -112,6 +119,7 @@ impl TableKind {
             TableKind::Robustness => robustness::make(r),
             TableKind::ModelChoice => model_choice::make(r),
             TableKind::Real => real::make(r),
+            TableKind::Others => others::make(r),
             TableKind::All => unreachable!("expanded before"),
         }
     }
@@ -162,7 +170,7 @@ struct Cli {
     recordings: PathBuf,
     /// For a cluster's job array: run only this shard's estimations of each table (those whose
     /// index i in the table's job list has i mod N = I − 1; a table of estimations that follow
-    /// one another, verdict and real, whole in shard 1) and record them in
+    /// one another, verdict, real and others, whole in shard 1) and record them in
     /// OUT/TABLE.shard-I-of-N.cbor instead of writing the table.
     #[arg(long, value_parser = parse_shard, value_name = "I/N", conflicts_with = "merge")]
     shard: Option<Shard>,

@@ -8,7 +8,7 @@
 //! the share of right answers not graded ok, over the chosen answers and over every candidate.
 
 use crate::runner::Runner;
-use crate::table::{Cell, Table};
+use crate::table::{self, Cell, Table};
 use estimator::verdict::Grade;
 
 /// A value known for a recording: the model whose law is the system's, its parameter, the
@@ -228,22 +228,10 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
 fn rates(what: &str, answers: &[&Answer]) -> String {
     let (right, wrong): (Vec<&&Answer>, Vec<&&Answer>) = answers.iter().partition(|a| a.right);
     let not_ok = |set: &[&&Answer]| set.iter().filter(|a| a.grade != Grade::Ok).count();
-    let share = |n: usize, of: usize| {
-        if of == 0 {
-            "–".to_string()
-        } else {
-            format!("{:.0} %", 100.0 * n as f64 / of as f64)
-        }
-    };
-    format!(
-        "Over the {what}: {} right, {} of them not graded ok (false alarms {}); {} wrong, {} of \
-         them not graded ok (detection {}).",
-        right.len(),
-        not_ok(&right),
-        share(not_ok(&right), right.len()),
-        wrong.len(),
-        not_ok(&wrong),
-        share(not_ok(&wrong), wrong.len()),
+    table::rates(
+        what,
+        (right.len(), not_ok(&right)),
+        (wrong.len(), not_ok(&wrong)),
     )
 }
 

@@ -3,8 +3,8 @@
 //! their runs in `OUT/TABLE.shard-I-of-N.cbor` instead of writing the table; `--merge DIR...`
 //! makes the table from the shards' records, running nothing, and checks that they come from
 //! the same table, options and shard count, each estimation once. Tables whose estimations
-//! follow one another (`verdict`, `real`: `Runner::estimate` one at a time) run whole in shard
-//! 1; the other shards skip them. The merged table equals the table made whole, wall times
+//! follow one another (`verdict`, `real`, `others`: `Runner::estimate` one at a time) run
+//! whole in shard 1; the other shards skip them. The merged table equals the table made whole, wall times
 //! aside (CPU runs are deterministic).
 
 use crate::worker::Run;

@@ -4,6 +4,28 @@
 use physvid_shared::write_atomic;
 use std::path::{Path, PathBuf};
 
+/// The detection and false-alarm rates in a sentence about `what`: how many answers were
+/// right and how many of them were not graded ok, the same for the wrong ones.
+pub fn rates(what: &str, right: (usize, usize), wrong: (usize, usize)) -> String {
+    let share = |n: usize, of: usize| {
+        if of == 0 {
+            "–".to_string()
+        } else {
+            format!("{:.0} %", 100.0 * n as f64 / of as f64)
+        }
+    };
+    format!(
+        "Over the {what}: {} right, {} of them not graded ok (false alarms {}); {} wrong, {} of \
+         them not graded ok (detection {}).",
+        right.0,
+        right.1,
+        share(right.1, right.0),
+        wrong.0,
+        wrong.1,
+        share(wrong.1, wrong.0),
+    )
+}
+
 /// One cell: text, a number shown with fixed decimals, or a relative error shown in percent.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Cell {
