@@ -5,10 +5,10 @@
 #     the same file to nothing, and the answers against the tracked period (g/L = 9.15 s⁻²);
 #  2. a 30-s 60-fps 640×360 pendulum video drawn here (L = 0.9 m, ζ = 0.02 s⁻¹, 20°), the size
 #     of a typical lab recording.
-# With REF=REV (a git revision), that revision's `estimate` is built in a worktree beside this
-# one (sharing the target folder's dependencies) and every recording is run by both, in turn,
-# RUNS times each (default 2): the best wall time and the peak memory of each, and their ratios
-# (this tree / REV).
+# With REF=REV (a git revision), that revision's `estimate` is built in a worktree (into
+# target/bench-ref) and every recording is run by both, in turn, RUNS times each (default 2):
+# the best wall time and the least and largest peak memory of each, and their ratios (this
+# tree / REV).
 # Needs ffmpeg (scripts/setup.sh installs it where it can).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -24,13 +24,18 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
-bins=("$root/target/release/estimate")
+cp target/release/estimate "$tmp/estimate"
+bins=("$tmp/estimate")
 if [ -n "$REF" ]; then
+  # Built in a target folder of its own, kept between runs (target/bench-ref): a workspace's
+  # crates are hashed alike wherever they lie, so a shared folder would mix the two trees.
   git worktree add --detach "$tmp/ref" "$REF" > /dev/null
-  (cd "$tmp/ref" && cp -r "$root/.cargo" . 2> /dev/null || true
-   ln -s "$root/.venv" .venv
-   CARGO_TARGET_DIR="$tmp/ref-target" cargo build --release --quiet --bin estimate)
-  bins+=("$tmp/ref-target/release/estimate")
+  cp -r .cargo "$tmp/ref/" 2> /dev/null || true
+  ln -s "$root/.venv" "$tmp/ref/.venv"
+  echo "building $REF's estimate in target/bench-ref (the first time: minutes)" >&2
+  (cd "$tmp/ref" && CARGO_TARGET_DIR="$root/target/bench-ref" cargo build --release --quiet --bin estimate)
+  cp target/bench-ref/release/estimate "$tmp/estimate.ref"
+  bins+=("$tmp/estimate.ref")
 fi
 
 # Runs each binary on a recording RUNS times in turn; prints the best wall time, the peak
@@ -47,18 +52,20 @@ measure() {
   .venv/bin/python - "$tmp" "${#bins[@]}" "$label" "${REF:-}" <<'PY'
 import json, sys
 tmp, n, label, ref = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
+# Per binary: the best wall time, and the least and the largest peak memory of its runs (the
+# peak varies from run to run by up to half on the same input: the allocator's arenas).
 best = {}
 for line in open(f"{tmp}/times"):
     b, wall, kb = line.split()
-    w, m = best.get(int(b), (float("inf"), 0))
-    best[int(b)] = (min(w, float(wall)), max(m, int(kb)))
+    w, lo, hi = best.get(int(b), (float("inf"), float("inf"), 0))
+    best[int(b)] = (min(w, float(wall)), min(lo, int(kb)), max(hi, int(kb)))
 print(f"{label}:")
 for b in range(n):
     r = json.load(open(f"{tmp}/run{b}/report.json"))
     rec = r["recording"]
     v = {p["name"]: p["estimate"] for p in r["parameters"]}
     who = "this tree" if b == 0 else f"REF {ref}"
-    print(f"  {who}: decode + estimate {best[b][0]:.1f} s wall (best of runs), peak {best[b][1] / 1024:.0f} MiB "
+    print(f"  {who}: decode + estimate {best[b][0]:.1f} s wall (best of runs), peak {best[b][1] / 1024:.0f}–{best[b][2] / 1024:.0f} MiB "
           f"(decode {rec['decode_s']:.1f} s, {rec['frames_decoded']} frames at {rec['decode_fps']:.0f} frames/s; "
           f"{r['epochs_run']} epochs, {rec['clips']} clips); g/L {v['g_over_l']:.3f} s^-2, damping {v['damping']:.4f} s^-1")
     c = r.get("cross_check")
@@ -66,7 +73,8 @@ for b in range(n):
         print(f"    damping from the swing amplitudes' decay (appendix A.6): {c['estimate']:.4f} ± {c['std_error']:.4f} s^-1 "
               f"from {len(c['peaks'])} swings")
 if n == 2:
-    print(f"  ratio this tree / REF: wall {best[0][0] / best[1][0]:.2f}, peak memory {best[0][1] / best[1][1]:.2f}")
+    print(f"  ratio this tree / REF: wall {best[0][0] / best[1][0]:.2f}, peak memory {best[0][1] / best[1][1]:.2f} "
+          f"(least of runs; largest {best[0][2] / best[1][2]:.2f})")
 PY
 }
 
