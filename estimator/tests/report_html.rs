@@ -172,8 +172,13 @@ fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
             "3.93300 s to 6.72000 s",
         ],
     );
-    // Parameters, latents, the timeline and the clips.
-    assert_eq!(dom.matches("<img ").count(), 4);
+    // Parameters, latents, the timeline, the picture's change with the span fitted, the clips.
+    assert_eq!(dom.matches("<img ").count(), 5);
+    assert!(
+        dom.contains("the span fitted (shaded)"),
+        "the change figure's caption"
+    );
+    assert!(run.join("change.png").exists());
     assert!(
         !run.join("clips.png").exists(),
         "clips.png only with --preview"
