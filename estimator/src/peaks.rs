@@ -104,7 +104,7 @@ fn sinusoid_amplitude(samples: &[f64], first: usize, dt: f64, omega: f64) -> Opt
 }
 
 /// ζ = −2·slope of ln(peak) against time, with its standard error; `None` with fewer than
-/// [`MIN_PEAKS`] peaks.
+/// `MIN_PEAKS` peaks.
 pub fn decay_rate(peaks: &[(f64, f64)]) -> Option<(f64, f64)> {
     let pts: Vec<(f64, f64)> = peaks
         .iter()

@@ -21,7 +21,7 @@ pub struct Windows {
     pub z: Tensor,
     /// Each window's first time since the release (s), for blocks that need it.
     pub starts: Option<Tensor>,
-    /// The recording frame of every sample, [W][L].
+    /// The recording frame of every sample, \[W\]\[L\].
     pub frames: Vec<Vec<usize>>,
     /// Recording frames between a window's samples.
     pub stride: usize,

@@ -36,7 +36,7 @@ pub struct GenArgs {
     pub scenario: SceneRef,
     /// A model file (see README, "Your own model") drawn on the intensity, position or scale
     /// scene instead of the damped oscillator: its parameters' starts (changed with --set), each
-    /// clip's initial state from its [initial] ranges, its first observed variable mapped onto the
+    /// clip's initial state from its \[initial\] ranges, its first observed variable mapped onto the
     /// scene's z in [-1, 1] (the map and reference frames of known value go to meta.json).
     #[arg(long, value_name = "FILE.toml")]
     pub model: Option<PathBuf>,

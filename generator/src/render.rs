@@ -72,7 +72,7 @@ impl Canvas {
         }
     }
 
-    /// Vertices of the regular [`CIRCLE_VERTICES`]-gon inscribed in a circle.
+    /// Vertices of the regular `CIRCLE_VERTICES`-gon inscribed in a circle.
     pub fn circle_points(&self, cx: f32, cy: f32, r: f32) -> Vec<(f32, f32)> {
         self.unit_circle
             .iter()

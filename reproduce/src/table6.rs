@@ -40,7 +40,7 @@ const ROWS: [(&str, &str, &str, PaperValues); 4] = [
     ),
 ];
 
-/// (γ0, γ1) that the Euler step z[t+1] = (2 − γ1·dt − γ0·dt²)·z[t] + (γ1·dt − 1)·z[t−1] must
+/// (γ0, γ1) that the Euler step z[t+1] = (2 − γ1·dt − γ0·dt²)·z\[t\] + (γ1·dt − 1)·z[t−1] must
 /// take to match the exact two-step recurrence of z'' + 2ζz' + (ω² + ζ²)z = 0 at `dt`.
 pub fn euler_fixed_point(omega: f64, zeta: f64, dt: f64) -> (f64, f64) {
     let a = 2.0 * (-zeta * dt).exp() * (omega * dt).cos();

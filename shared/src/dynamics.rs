@@ -36,7 +36,7 @@ impl DampedOscillator {
         a * (-self.zeta * t).exp() * (self.omega * t + phi).cos()
     }
 
-    /// Coefficients (a, b) of the exact two-step recurrence z[t+1] = a·z[t] + b·z[t−1] at step `dt`.
+    /// Coefficients (a, b) of the exact two-step recurrence z[t+1] = a·z\[t\] + b·z[t−1] at step `dt`.
     pub fn recurrence(&self, dt: f64) -> (f64, f64) {
         two_step_coefficients(self.gamma0(), self.gamma1(), dt)
     }

@@ -1,5 +1,5 @@
 //! Label-free check: fit the exact two-step recurrence of a damped cosine,
-//! s[t+1] − c = a·(s[t] − c) + b·(s[t−1] − c), by least squares over many series.
+//! s[t+1] − c = a·(s\[t\] − c) + b·(s[t−1] − c), by least squares over many series.
 
 use crate::dynamics::gammas_from_recurrence;
 
@@ -47,7 +47,7 @@ fn solve3(mut m: [[f64; 3]; 3], mut v: [f64; 3]) -> Option<[f64; 3]> {
     Some(x)
 }
 
-/// Fits s[t+1] = a·s[t] + b·s[t−1] + d over every window of every series (one shared a, b, d),
+/// Fits s[t+1] = a·s\[t\] + b·s[t−1] + d over every window of every series (one shared a, b, d),
 /// with d = c·(1 − a − b). Returns `None` when the system is degenerate (e.g. constant series).
 pub fn fit_two_step_recurrence<'a, I>(series: I) -> Option<RecurrenceFit>
 where

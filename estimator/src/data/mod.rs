@@ -38,7 +38,7 @@ pub struct ClipData {
     pub train: Tensor,
     /// Validation clips [N_val, T, D]: the last 20 % of the file, no shuffling.
     pub val: Tensor,
-    /// Each training / validation clip's start time since the release (s) [N], when meta.json
+    /// Each training / validation clip's start time since the release (s) \[N\], when meta.json
     /// gives `clip_start_times` (systems released from rest at the start of the recording).
     pub train_start: Option<Tensor>,
     pub val_start: Option<Tensor>,
@@ -97,7 +97,7 @@ impl ClipData {
         }
     }
 
-    /// The start time since the release of clip `clip` [1], when known.
+    /// The start time since the release of clip `clip` \[1\], when known.
     pub fn clip_start(&self, clip: usize) -> Option<Tensor> {
         let n_train = self.n_train() as usize;
         let (times, i) = if clip < n_train {

@@ -95,7 +95,7 @@ fn best(
 /// The release and the bend of `path` (frame, pixels along the path, from its first frame that
 /// moves to the end of the descent), released at or before frame `first_moving`; `None` where
 /// the path is too short to fit whole. The bend is kept where it fits the path
-/// [`MIN_GAIN`] times better than a plain parabola; the release is the bent fit's either way
+/// `MIN_GAIN` times better than a plain parabola; the release is the bent fit's either way
 /// (a whole path places it better than its first part: on a level 60-fps fall drawn here with
 /// a hand's wobble before the release, 1.2 frames nearer).
 pub fn fit(path: &[(f64, f64)], first_moving: f64) -> Option<Fitted> {

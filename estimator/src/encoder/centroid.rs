@@ -146,7 +146,7 @@ pub fn positions(x: &Tensor, frame: (i64, i64, i64), polarity: f64, window: f64)
 }
 
 /// As [`positions`] on frames `d` [F, C·H·W], with the polarity and the window read off them
-/// blurred, and the object located there ([`smoothed`]).
+/// blurred, and the object located there (`smoothed`).
 pub fn positions_smoothed(d: &Tensor, frame: (i64, i64, i64)) -> Tensor {
     let by = smoothed(d, frame);
     let polarity = super::keypoints::polarity(&by);
@@ -173,7 +173,7 @@ fn positions_on(
 
 /// As [`positions`], the object found where `by` [F, C·H·W] is largest in its direction (a
 /// difference from an earlier frame: what moves) and measured on `x`; with how far what was
-/// measured spreads about its centroid [F] (the object's own size, or more where something
+/// measured spreads about its centroid \[F\] (the object's own size, or more where something
 /// else differs beside it).
 pub fn located(
     by: &Tensor,

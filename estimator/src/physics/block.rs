@@ -72,7 +72,7 @@ pub struct BlockOptions {
 /// What is known about the clips of a batch besides their frames.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Clips<'a> {
-    /// Each clip's start time since the release (s) [B], where the data gives it.
+    /// Each clip's start time since the release (s) \[B\], where the data gives it.
     pub start: Option<&'a Tensor>,
     /// Each clip's index in the data (training clips first), when the batch holds the data's
     /// clips: a block may keep state per clip across epochs (the shooting fit's warm start).
@@ -95,7 +95,7 @@ pub trait PhysicsBlock {
     /// choose how the coming steps compute (the oscillator's closed form).
     fn prepare(&self) {}
     /// Blocks that read a physical quantity off the latent during training (the pendulum's
-    /// angle) take the map from reference frames of known value: `latents` and `values` [R].
+    /// angle) take the map from reference frames of known value: `latents` and `values` \[R\].
     /// Called before every forward pass when the block was built with `calibrated`.
     fn calibrate(&self, _latents: &Tensor, _values: &Tensor) {}
     /// Solves parameters that gradient descent only creeps towards, on the encoded training

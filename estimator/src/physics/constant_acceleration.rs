@@ -168,9 +168,9 @@ impl MotionHooks for ConstantAcceleration {
 /// z = β·s + γ·√s + c is a parabola in time, so the encoder may bend the latent (γ ≠ 0,
 /// z'' = 0 at the extreme) and the calibrated acceleration comes out wrong. Known start times
 /// since the release pin it: the velocity at a clip's first frame is then a·t0, so the block
-/// rolls out from one frame, z[k] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only the latent affine
+/// rolls out from one frame, z\[k\] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only the latent affine
 /// in s fits (times before the release, t0 + k·dt < 0, count as at rest). Without start times
-/// it rolls out from two frames, z[k] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler
+/// it rolls out from two frames, z\[k\] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler
 /// step gives the same sequence).
 /// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
 pub struct ConstantAccelerationBlock {

@@ -114,7 +114,7 @@ const UNFOLDED_PREFERENCE: f64 = 2.0;
 /// [`fit`], then, when the answer oscillates and its latent folds the picture (an even function
 /// of the motion swings at twice its frequency: `evidence::fold`), a start at half its
 /// frequency trained to the end too; the answer kept is the unfolded one unless the folded one
-/// fits [`UNFOLDED_PREFERENCE`] times better. (Training the other probed starts to the end
+/// fits `UNFOLDED_PREFERENCE` times better. (Training the other probed starts to the end
 /// whenever an answer followed little of the picture was tried and dropped: among moving
 /// distractors the validation error then preferred a distractor's straight path, γ0 0.3
 /// instead of 4.) `--single-start` trains the one start alone. `announce` is told before the

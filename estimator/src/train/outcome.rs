@@ -69,12 +69,12 @@ pub struct TrainOutcome {
     /// (`train::jitter`); `None` where none was added.
     pub training_noise: Option<f64>,
     pub history: Vec<EpochRecord>,
-    /// Encoded latents and their physics rollout for up to four validation clips, [clip][frame].
+    /// Encoded latents and their physics rollout for up to four validation clips, \[clip\]\[frame\].
     #[serde(skip)]
     pub example_latents: Vec<Vec<f32>>,
     #[serde(skip)]
     pub example_rollouts: Vec<Vec<f32>>,
-    /// Encoded latents of every validation clip, [clip][frame].
+    /// Encoded latents of every validation clip, \[clip\]\[frame\].
     #[serde(skip)]
     pub val_latents: Vec<Vec<f32>>,
     /// The latent at the calibration's reference frames, read through the physics.

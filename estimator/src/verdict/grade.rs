@@ -73,7 +73,7 @@ impl Reason {
     }
 }
 
-/// A check's name. Named so that serde's derive reads it with [`check_name`] instead of
+/// A check's name. Named so that serde's derive reads it with `check_name` instead of
 /// borrowing a `&str` from the input, which a `'static` one cannot.
 pub type CheckName = &'static str;
 

@@ -132,7 +132,7 @@ impl ShootingBlock {
         }
     }
 
-    /// The physical parameters p [m] (from their raw values), differentiable.
+    /// The physical parameters p \[m\] (from their raw values), differentiable.
     pub fn physical(&self) -> Tensor {
         let p: Vec<Tensor> = self
             .raw
@@ -321,7 +321,7 @@ impl ShootingBlock {
     }
 
     /// Fits s and c of a calibrated map (one latent coordinate) to reference frames: latents
-    /// and known values [R], z = s·x + c by least squares.
+    /// and known values \[R\], z = s·x + c by least squares.
     pub fn calibrate(&self, latents: &Tensor, values: &Tensor) {
         let ObservationMap::Calibrated { scale, offset } = &self.map else {
             return;

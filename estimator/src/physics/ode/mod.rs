@@ -22,7 +22,7 @@ pub trait OdeSystem: Send + Sync {
     fn states(&self) -> usize;
     /// Parameter count m (the block's physics parameters, in their order).
     fn params(&self) -> usize;
-    /// f(x, p, t) into `f` [n]; with `jac`, also ∂f/∂x [n×n] and ∂f/∂p [n×m], row-major.
+    /// f(x, p, t) into `f` \[n\]; with `jac`, also ∂f/∂x [n×n] and ∂f/∂p [n×m], row-major.
     fn eval(
         &self,
         x: &[f64],

@@ -17,7 +17,7 @@ const COST_TOLERANCE: f64 = 1e-6;
 #[derive(Debug, Clone)]
 pub struct ClipFit {
     pub x0: Vec<f64>,
-    /// The fitted observed values [R] (R = frames × observed, frame-major).
+    /// The fitted observed values \[R\] (R = frames × observed, frame-major).
     pub y: Vec<f64>,
     /// ∂y/∂x0 [R × n].
     pub jx: Vec<f64>,
@@ -41,7 +41,7 @@ pub const POOR_FIT: f64 = 1e-2;
 /// when that leaves a misfit above `poor_cost`, by a horizon continuation from the guess too,
 /// keeping the better. Over a long clip (several
 /// swings) the cost has a minimum per basin of phase, and a guess from finite differences may
-/// sit in the wrong one; the continuation fits a horizon that doubles from [`FIRST_HORIZON`]
+/// sit in the wrong one; the continuation fits a horizon that doubles from `FIRST_HORIZON`
 /// frames to the whole clip, each stage starting where the last ended: a short horizon has one
 /// basin, and each longer one starts inside the right one.
 pub fn fit_clip(

@@ -56,7 +56,7 @@ impl DampedOscillatorBlock {
         }
     }
 
-    /// The two-step coefficients (a, b) of z[t+1] = a·z[t] + b·z[t−1], differentiable in γ.
+    /// The two-step coefficients (a, b) of z[t+1] = a·z\[t\] + b·z[t−1], differentiable in γ.
     pub fn coefficients(&self) -> (Tensor, Tensor) {
         let g0 = self.log_gamma0.exp();
         let g1 = &self.gamma1;
@@ -86,7 +86,7 @@ impl DampedOscillatorBlock {
     }
 
     /// The ODE residual z'' + γ1·z' + γ0·z at the inner frames of `z` [B, T ≥ 3], [B, T − 2],
-    /// with central differences z' ≈ (z[t+1] − z[t−1])/2dt and z'' ≈ (z[t+1] − 2z[t] + z[t−1])/dt²
+    /// with central differences z' ≈ (z[t+1] − z[t−1])/2dt and z'' ≈ (z[t+1] − 2z\[t\] + z[t−1])/dt²
     /// (the ICML 2026 peer's loss; independent of the integrator).
     pub fn ode_residual(&self, z: &Tensor) -> Tensor {
         let t = z.size()[1];
@@ -120,7 +120,7 @@ impl DampedOscillatorBlock {
         z.mse_loss(&forecast, tch::Reduction::Mean)
     }
 
-    /// Autoregressive rollout over `steps` frames of `z` [B, steps]: z_hat[t] = p[t]·z0 + q[t]·z1,
+    /// Autoregressive rollout over `steps` frames of `z` [B, steps]: z_hat\[t\] = p\[t\]·z0 + q\[t\]·z1,
     /// where p and q are the block's impulse responses and (z0, z1) the first two latents or
     /// the least-squares start (see [`RolloutStart`]).
     pub fn roll(&self, z: &Tensor, steps: i64) -> Tensor {

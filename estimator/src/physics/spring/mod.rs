@@ -98,7 +98,7 @@ impl PhysicsBlock for SpringBlock {
         self.shooting.values()
     }
     /// A scan of k over a log grid up to the frames' Nyquist limit first (on up to
-    /// [`SCAN_CLIPS`] clips): the misfit has a minimum per basin of frequency, and training
+    /// `SCAN_CLIPS` clips): the misfit has a minimum per basin of frequency, and training
     /// from a k several times off can settle in the wrong one while the encoder is right.
     fn refine(&self, z: &Tensor, clips: Clips) -> bool {
         let current = self.shooting.values();
