@@ -53,7 +53,7 @@ struct Answer {
     spread: Option<f64>,
     right: bool,
     grade: Grade,
-    checks: String,
+    checks: Cell,
 }
 
 fn judged(render: String, run: &Run) -> Answer {
@@ -68,8 +68,6 @@ fn judged(render: String, run: &Run) -> Answer {
     let pair = run.value(rate).zip(run.value(damping));
     let errors = pair.map(|(a, b)| (a.estimate / GAMMA0 - 1.0, b.estimate / GAMMA1 - 1.0));
     let spread = pair.and_then(|(_, b)| b.standard_error.map(|s| s / b.estimate.abs()));
-    let mut checks: Vec<&str> = run.verdict.reasons.iter().map(|x| x.check).collect();
-    checks.dedup();
     Answer {
         render,
         right: errors.is_some_and(|(e0, e1)| e0.abs() <= BAR0 && e1.abs() <= BAR1),
@@ -77,7 +75,7 @@ fn judged(render: String, run: &Run) -> Answer {
         errors,
         spread,
         grade: run.verdict.grade,
-        checks: checks.join(", "),
+        checks: table::checks(&run.verdict),
     }
 }
 
@@ -139,7 +137,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             Cell::num(a.spread, 2),
             Cell::text(if a.right { "yes" } else { "no" }),
             Cell::text(a.grade.name()),
-            Cell::text(&a.checks),
+            a.checks.clone(),
         ]);
     }
     t.note(rates(&answers));

@@ -4,7 +4,7 @@
 //! pendulum's L 2 %).
 
 use crate::runner::{DataSpec, Job, Runner};
-use crate::table::{Cell, Table};
+use crate::table::{self, Cell, Table};
 use estimator::verdict::Grade;
 use generator::perturb::{MAX_LEVEL, PERTURBATIONS};
 
@@ -87,8 +87,6 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 }
             })
             .collect();
-        let mut checks: Vec<&str> = rep.verdict.reasons.iter().map(|x| x.check).collect();
-        checks.dedup();
         t.push(vec![
             Cell::text(p.name()),
             Cell::num(Some(*level as f64), 0),
@@ -96,7 +94,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             Cell::text(values.join("; ")),
             Cell::text(if ok { "yes" } else { "no" }),
             Cell::text(grade.name()),
-            Cell::text(checks.join(", ")),
+            table::checks(&rep.verdict),
             Cell::num(Some(rep.wall_time_s), 1),
         ]);
     }

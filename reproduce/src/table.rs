@@ -4,6 +4,14 @@
 use physvid_shared::write_atomic;
 use std::path::{Path, PathBuf};
 
+/// The "checks with reasons" cell of a verdict: the checks that gave a reason, worst first,
+/// one name for a check's consecutive reasons.
+pub fn checks(v: &estimator::verdict::Verdict) -> Cell {
+    let mut names: Vec<&str> = v.reasons.iter().map(|r| r.check).collect();
+    names.dedup();
+    Cell::text(names.join(", "))
+}
+
 /// The detection and false-alarm rates in a sentence about `what`: how many answers were
 /// right and how many of them were not graded ok, the same for the wrong ones.
 pub fn rates(what: &str, right: (usize, usize), wrong: (usize, usize)) -> String {

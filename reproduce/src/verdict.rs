@@ -5,7 +5,7 @@
 //! not graded `ok`; a constructed failure must never be graded `ok`.
 
 use crate::runner::{DataSpec, Runner};
-use crate::table::{Cell, Table};
+use crate::table::{self, Cell, Table};
 use crate::worker::Run;
 use physvid_testkit::failures::Failure;
 use std::path::{Path, PathBuf};
@@ -57,8 +57,6 @@ impl Row {
             })
             .collect();
         let v = &self.report.verdict;
-        let mut checks: Vec<&str> = v.reasons.iter().map(|r| r.check).collect();
-        checks.dedup();
         vec![
             Cell::text(&self.case),
             Cell::text(if self.constructed { "failure" } else { "right" }),
@@ -70,7 +68,7 @@ impl Row {
                 None => "–",
             }),
             Cell::text(v.grade.name()),
-            Cell::text(checks.join(", ")),
+            table::checks(v),
         ]
     }
 }

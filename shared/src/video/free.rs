@@ -48,12 +48,6 @@ pub struct Departures {
     pub limit: f64,
 }
 
-/// The free motion in `frames` (`n` grey frames of `w`·`h` bytes): `None` where nothing beside
-/// the object intrudes at the start.
-pub fn free_span(frames: &[u8], size: (usize, usize)) -> Option<FreeSpan> {
-    departures(frames, size).and_then(|d| free_in(&d))
-}
-
 /// The departures of `frames` (`n` grey frames of `w`·`h` bytes) from their background; `None`
 /// for fewer than 16 frames.
 pub fn departures(frames: &[u8], (w, h): (usize, usize)) -> Option<Departures> {
@@ -153,6 +147,11 @@ pub fn free_in(d: &Departures) -> Option<FreeSpan> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The free motion in `frames`, as the survey finds it.
+    fn free_span(frames: &[u8], size: (usize, usize)) -> Option<FreeSpan> {
+        departures(frames, size).and_then(|d| free_in(&d))
+    }
 
     /// `n` frames of 40×30: a 3×3 bright mass bobbing up and down at rows 14 ± 3 on a grey
     /// wall with a little noise, and an "arm" (a dark 16×6 bar from the left edge to the mass)
