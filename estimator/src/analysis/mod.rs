@@ -14,7 +14,7 @@ use crate::data::summary::RecordingSummary;
 use crate::data::ClipData;
 use crate::evidence::Evidence;
 use crate::peaks::PeakDecay;
-use crate::train::{EpochRecord, StartProbe, StopReason, TrainOutcome};
+use crate::train::{EarlierAnswer, EpochRecord, StartProbe, StopReason, TrainOutcome};
 use ensemble::Ensemble;
 use parameters::ParameterResult;
 use serde::Serialize;
@@ -66,6 +66,10 @@ pub struct Run {
     pub best_epoch: usize,
     pub best_val_rel_mse: f64,
     pub stop: StopReason,
+    /// Stopped by `--epochs`: the answer of an earlier checkpoint, to see whether it had
+    /// settled (`train::EarlierAnswer`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub earlier: Option<EarlierAnswer>,
     pub latent_std: f64,
     pub latent_collapsed: bool,
     /// The fresh noise added to the training frames (`train::jitter`), where some was.
@@ -173,6 +177,7 @@ impl Run {
             best_epoch: outcome.best_epoch,
             best_val_rel_mse: outcome.best_val_rel_mse,
             stop: outcome.stop.clone(),
+            earlier: outcome.earlier.clone(),
             latent_std: outcome.latent_std,
             latent_collapsed: collapsed,
             training_noise: outcome.training_noise,

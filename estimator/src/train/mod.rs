@@ -5,9 +5,10 @@ mod jitter;
 pub mod outcome;
 mod readings;
 mod refine;
+mod settled;
 mod trainer;
 
-pub use outcome::{EpochRecord, StopReason, TrainOutcome};
+pub use outcome::{EarlierAnswer, EpochRecord, StopReason, TrainOutcome};
 pub use trainer::Trainer;
 
 use crate::config::RunConfig;

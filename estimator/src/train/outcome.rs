@@ -55,6 +55,18 @@ pub enum StopReason {
     },
 }
 
+/// The answer of an earlier checkpoint of a run stopped by `--epochs` while still improving:
+/// the best as of three quarters of the epochs, refined and read as the kept one is. Where the
+/// two agree, the answer had settled although the validation error still fell (a slow
+/// encoder polishing its last digits); where they differ, more epochs would move it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EarlierAnswer {
+    /// The earlier checkpoint's epoch.
+    pub epoch: usize,
+    /// Its block parameters, in the model's order (as `parameters`).
+    pub parameters: Vec<f64>,
+}
+
 /// The result of a training run (parameters from the best-validation epoch).
 #[derive(Debug, Clone, Serialize)]
 pub struct TrainOutcome {
@@ -63,6 +75,8 @@ pub struct TrainOutcome {
     pub best_val_rel_mse: f64,
     pub epochs_run: usize,
     pub stop: StopReason,
+    /// Stopped by `--epochs`: the answer of the best checkpoint as of three quarters of them.
+    pub earlier: Option<EarlierAnswer>,
     pub latent_std: f64,
     /// The standard deviation of the fresh noise added to every training batch (in the
     /// standardised frames' units), twice the frames' own where the encoder is dense

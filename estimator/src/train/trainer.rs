@@ -4,14 +4,14 @@
 //! the kept checkpoint.
 
 use super::outcome::{EpochRecord, StopReason, TrainOutcome};
-use super::{jitter, readings, refine};
+use super::{jitter, readings, refine, settled};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
 use crate::evidence;
 use crate::loss::{loss, LossKind};
 use crate::network::{to_rows, Network};
-use crate::physics::{Clips, Settles};
+use crate::physics::Clips;
 use crate::timeline::{encode_recording, timeline};
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
@@ -36,6 +36,9 @@ pub struct Trainer<'a> {
     pub history: Vec<EpochRecord>,
     /// (best validation metric, its epoch, the variables then).
     best: (f64, usize, Vec<Tensor>),
+    /// The best checkpoint as of three quarters of `--epochs` (its epoch and variables): what
+    /// a run stopped by the epoch limit is compared with (`EarlierAnswer`).
+    earlier: Option<(usize, Vec<Tensor>)>,
     since_best: usize,
     pub stop: Option<StopReason>,
     start: Instant,
@@ -84,6 +87,7 @@ impl<'a> Trainer<'a> {
             lr_phys: cfg.lr_phys,
             history: Vec::new(),
             best: (f64::INFINITY, 0, snapshot),
+            earlier: None,
             since_best: 0,
             stop: None,
             start,
@@ -206,6 +210,9 @@ impl<'a> Trainer<'a> {
         } else {
             self.since_best += 1;
         }
+        if epoch == (3 * cfg.epochs).div_ceil(4) && self.best.1 > 0 {
+            self.earlier = Some((self.best.1, self.best.2.iter().map(Tensor::copy).collect()));
+        }
         if self.horizon < data.frames_per_clip {
             self.advance(epoch);
         } else {
@@ -246,7 +253,7 @@ impl<'a> Trainer<'a> {
                 self.opt_phys.set_lr(self.lr_phys);
             }
         }
-        if let Some(window) = self.converged() {
+        if let Some(window) = settled::converged(cfg, &self.history, self.stage_start) {
             self.stop = Some(StopReason::Converged {
                 window,
                 spread: self.cfg.model.info().training.converged_spread,
@@ -256,42 +263,17 @@ impl<'a> Trainer<'a> {
         }
     }
 
-    /// The window over which every parameter has stayed within the model's `converged_spread`
-    /// of its mean, if it has: the answer is known, and more epochs would only polish the last
-    /// digits (the kept checkpoint is still the best validation epoch).
-    fn converged(&self) -> Option<usize> {
-        let w = (self.cfg.patience / 2).max(5);
-        let n = self.history.len();
-        if n + 1 < self.stage_start + 2 * w {
-            return None;
-        }
-        let window = &self.history[n - w..];
-        let params = window[0].parameters.len();
-        let specs = self.cfg.model.parameters();
-        let settles = |i: usize| specs.get(i).map_or(Settles::Relative, |s| s.settles);
-        (0..params)
-            .filter(|&i| settles(i) != Settles::Map)
-            .all(|i| {
-                let v = window.iter().map(|r| r.parameters[i]);
-                let (lo, hi) = v
-                    .clone()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                        (a.min(x), b.max(x))
-                    });
-                let mean = v.sum::<f64>() / w as f64;
-                let scale = match settles(i) {
-                    Settles::LatentOffset => mean.abs().max(1.0),
-                    _ => mean.abs(),
-                };
-                hi - lo <= self.cfg.model.info().training.converged_spread * scale
-            })
-            .then_some(w)
-    }
-
     /// Restores the best epoch's state (the starting state if no epoch was finite: never NaN)
     /// and reads off what the report needs.
     pub fn finish(self) -> TrainOutcome {
         let network = &self.network;
+        let stopped_by_limit = matches!(self.stop, None | Some(StopReason::MaxEpochs));
+        let earlier = match &self.earlier {
+            Some((epoch, vars)) if stopped_by_limit && *epoch != self.best.1 => Some(
+                settled::answer_of(network, self.cfg, self.data, *epoch, vars),
+            ),
+            _ => None,
+        };
         network.restore(&self.best.2);
         // The encoder is held from here on: the recording's latent serves the refinement and
         // the timeline.
@@ -337,6 +319,7 @@ impl<'a> Trainer<'a> {
             best_val_rel_mse: self.best.0,
             epochs_run: self.history.len(),
             stop: self.stop.unwrap_or(StopReason::MaxEpochs),
+            earlier,
             latent_std,
             training_noise: self.jitter,
             history: self.history,

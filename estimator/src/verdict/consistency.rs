@@ -34,6 +34,19 @@ pub const MATERIAL: f64 = 0.02;
 pub const DISAGREE_LARGE: f64 = 3.5;
 pub const LARGE: f64 = 0.4;
 
+/// Halves that differ by at least [`VAST`] of the value (most of it: one half a damping, the
+/// other next to none) are doubtful from this many standard errors on: the value is then not
+/// what the data say alike over the recording. Set on the others' suite
+/// (`scripts/others_suite.py`, seed 7), where a camera shaken by a pixel or two let the small
+/// MLP read the damping 56 % and 79 % high, both graded ok: earlier and later halves 90 % and
+/// 98 % apart at 2.6 and 3.0 errors (the later half near zero); no right answer there came
+/// within reach (the furthest, 135 % apart at 1.3 errors), none of the shared recordings, and
+/// none of the 162 model-choice runs (every right answer within 29 % or 2.3 errors). Held out
+/// (the suite drawn with seed 11): it caught a damping read 31 % low under moving clutter
+/// (123 % apart at 2.8 errors), and no right answer (the furthest 97 % apart at 1.5 errors).
+pub const DISAGREE_VAST: f64 = 2.5;
+pub const VAST: f64 = 0.8;
+
 impl Check for Halves {
     fn name(&self) -> &'static str {
         "consistency"
@@ -83,7 +96,8 @@ impl Check for Halves {
 
 /// How many standard errors halves `values` with `errors` lie apart, and the limit they
 /// crossed, where they disagree: beyond [`DISAGREE`] errors and [`MATERIAL`] of the value, or
-/// beyond [`DISAGREE_LARGE`] errors and [`LARGE`] of it.
+/// beyond [`DISAGREE_LARGE`] errors and [`LARGE`] of it, or beyond [`DISAGREE_VAST`] errors
+/// and [`VAST`] of it.
 fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
     let [a, b] = values;
     let z = (a - b).abs() / errors[0].hypot(errors[1]).max(1e-300);
@@ -94,6 +108,8 @@ fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
         Some((z, DISAGREE))
     } else if z > DISAGREE_LARGE && rel >= LARGE {
         Some((z, DISAGREE_LARGE))
+    } else if z > DISAGREE_VAST && rel >= VAST {
+        Some((z, DISAGREE_VAST))
     } else {
         None
     }
@@ -113,6 +129,15 @@ mod tests {
         assert_eq!(apart([1.00, 1.04], [0.006, 0.006]), None);
         // 29 % apart at 2.3 errors (a right pendulum damping at level 2).
         assert_eq!(apart([0.071, 0.1], [0.009, 0.009]), None);
+        // One half a damping, the other next to none, at 2.6 errors (the shaken rod and bob
+        // read by the small MLP, γ1 +56 %); opposite signs 135 % apart at 1.3 errors (a right
+        // answer under a moving light) stay.
+        let (z, limit) = apart([0.1683, 0.0166], [0.0174, 0.0566]).expect("disagree");
+        assert!(
+            (z - 2.56).abs() < 0.02 && limit == super::DISAGREE_VAST,
+            "{z}"
+        );
+        assert_eq!(apart([0.0834, -0.0292], [0.0701, 0.0490]), None);
         // Many errors apart and material: the first rule, as before.
         assert_eq!(
             apart([1.0, 1.1], [0.01, 0.01]).map(|a| a.1),
