@@ -32,6 +32,18 @@ pub enum Settles {
     Map,
 }
 
+impl Settles {
+    /// What a change of a parameter whose value is about `v` is measured against: its own
+    /// size, the latent's spread (1) for an offset smaller than it, nothing for a map.
+    pub fn scale(self, v: f64) -> Option<f64> {
+        match self {
+            Settles::Relative => Some(v.abs()),
+            Settles::LatentOffset => Some(v.abs().max(1.0)),
+            Settles::Map => None,
+        }
+    }
+}
+
 impl ParamSpec {
     /// A parameter `name` starting at `start`, learned as a logarithm when `positive`.
     pub const fn new(name: &'static str, start: f64, positive: bool) -> ParamSpec {

@@ -7,10 +7,8 @@ use super::outcome::{EarlierAnswer, EpochRecord};
 use super::refine;
 use crate::config::RunConfig;
 use crate::data::ClipData;
-use crate::loss::LossKind;
 use crate::network::Network;
-use crate::physics::{Clips, Settles};
-use crate::timeline::encode_recording;
+use crate::physics::Settles;
 use tch::Tensor;
 
 /// The window over which every parameter has stayed within the model's `converged_spread` of
@@ -32,7 +30,6 @@ pub(super) fn converged(
     let specs = cfg.model.parameters();
     let settles = |i: usize| specs.get(i).map_or(Settles::Relative, |s| s.settles);
     (0..params)
-        .filter(|&i| settles(i) != Settles::Map)
         .all(|i| {
             let v = window.iter().map(|r| r.parameters[i]);
             let (lo, hi) = v
@@ -41,17 +38,15 @@ pub(super) fn converged(
                     (a.min(x), b.max(x))
                 });
             let mean = v.sum::<f64>() / w as f64;
-            let scale = match settles(i) {
-                Settles::LatentOffset => mean.abs().max(1.0),
-                _ => mean.abs(),
-            };
-            hi - lo <= cfg.model.info().training.converged_spread * scale
+            settles(i)
+                .scale(mean)
+                .is_none_or(|scale| hi - lo <= cfg.model.info().training.converged_spread * scale)
         })
         .then_some(w)
 }
 
 /// The answer of the checkpoint `vars` (of `epoch`), refined and read as the kept one is
-/// (`Trainer::finish`); the network is left in that state.
+/// (`refine::held`); the network is left in that state.
 pub(super) fn answer_of(
     network: &Network,
     cfg: &RunConfig,
@@ -60,21 +55,7 @@ pub(super) fn answer_of(
     vars: &[Tensor],
 ) -> EarlierAnswer {
     network.restore(vars);
-    if cfg.loss == LossKind::MseKl {
-        let latents = data
-            .recording
-            .as_ref()
-            .map(|(_, frames)| encode_recording(network, frames));
-        refine::refine(network, data, latents.as_deref());
-    }
-    let val_ids: Vec<usize> = (data.n_train() as usize..data.shape[0]).collect();
-    let clips = Clips {
-        start: data.val_start.as_ref(),
-        ids: Some(&val_ids),
-    };
-    let parameters = tch::no_grad(|| {
-        let (z, _) = network.forward(&data.val, clips, data.frames_per_clip);
-        network.values(&z)
-    });
+    let held = refine::held(network, cfg, data);
+    let parameters = tch::no_grad(|| network.values(&held.z));
     EarlierAnswer { epoch, parameters }
 }

@@ -12,7 +12,7 @@ use crate::evidence;
 use crate::loss::{loss, LossKind};
 use crate::network::{to_rows, Network};
 use crate::physics::Clips;
-use crate::timeline::{encode_recording, timeline};
+use crate::timeline::timeline;
 use std::time::Instant;
 use tch::nn::{self, OptimizerConfig};
 use tch::{Device, Kind, Tensor};
@@ -277,24 +277,12 @@ impl<'a> Trainer<'a> {
         network.restore(&self.best.2);
         // The encoder is held from here on: the recording's latent serves the refinement and
         // the timeline.
-        let recording_latents = self
-            .data
-            .recording
-            .as_ref()
-            .map(|(_, frames)| encode_recording(network, frames));
-        // The refinement solves the rollout's fit with a latent the KL term keeps spread: not
-        // the residual loss's objective, nor the MSE-only ablation's (whose latent collapses).
-        if self.cfg.loss == LossKind::MseKl {
-            refine::refine(network, self.data, recording_latents.as_deref());
-        }
+        let refine::Held {
+            recording_latents,
+            z,
+            z_hat,
+        } = refine::held(network, self.cfg, self.data);
         let data = self.data;
-        let steps = data.frames_per_clip;
-        let val_ids: Vec<usize> = (data.n_train() as usize..data.shape[0]).collect();
-        let clips = Clips {
-            start: data.val_start.as_ref(),
-            ids: Some(&val_ids),
-        };
-        let (z, z_hat) = tch::no_grad(|| network.forward(&data.val, clips, steps));
         let (examples, rollouts, latent_std, val_latents, parameters) = tch::no_grad(|| {
             let k = data.n_val().min(4);
             (

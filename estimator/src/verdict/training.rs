@@ -42,11 +42,11 @@ fn in_bands(values: &[f64], earlier: &[f64], settles: &[Settles], band: f64) -> 
         .zip(earlier)
         .enumerate()
         .filter_map(|(i, (v, w))| {
-            let scale = match settles.get(i).copied().unwrap_or(Settles::Relative) {
-                Settles::Map => return None,
-                Settles::LatentOffset => v.abs().max(1.0),
-                Settles::Relative => v.abs(),
-            };
+            let scale = settles
+                .get(i)
+                .copied()
+                .unwrap_or(Settles::Relative)
+                .scale(*v)?;
             let c = (v - w).abs() / (band * scale).max(1e-300);
             Some(if c.is_finite() { c } else { f64::INFINITY })
         })
