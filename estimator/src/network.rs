@@ -4,7 +4,7 @@
 
 use crate::config::RunConfig;
 use crate::data::ClipData;
-use crate::encoder::Encoder;
+use crate::encoder::{centroid, Encoder};
 use crate::loss::LossKind;
 use crate::physics::{BlockOptions, Clips, ModelRef, PhysicsBlock};
 use tch::nn;
@@ -71,8 +71,11 @@ impl Network {
             cfg.encoder,
             cfg.model.latent_dims() as i64,
             &data.train,
-            data.line(),
-            data.object_located_smoothed(),
+            centroid::Where {
+                line: data.line(),
+                located: data.object_located(),
+                background: &data.background,
+            },
         );
         let block = cfg.model.build(
             &(phys_vs.root() / "physics"),

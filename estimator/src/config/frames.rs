@@ -4,6 +4,7 @@
 
 use super::{check_references, RunConfig};
 use crate::data::ClipData;
+use crate::encoder::centroid::Located;
 use crate::encoder::EncoderKind;
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
@@ -88,10 +89,17 @@ fn read_by_position(model: ModelRef, data: &ClipData) -> Option<String> {
     let o = rec
         .object
         .filter(|_| model.encoder() == EncoderKind::Small && built_in)?;
+    let how = match o.located {
+        Located::Matched => {
+            ", located by matching its picture (where it differs from the background, other \
+             things moving differ as much, and that path jumped between them)"
+        }
+        Located::Frames | Located::Blurred => "",
+    };
     Some(format!(
-        "an object moves about {:.0} % of the frame: it is read by its position (--encoder \
-         centroid: an MLP on pixels compresses large swings more than small ones, which lowers \
-         a damping); --encoder chooses",
+        "an object moves about {:.0} % of the frame: it is read by its position{how} \
+         (--encoder centroid: an MLP on pixels compresses large swings more than small ones, \
+         which lowers a damping); --encoder chooses",
         100.0 * o.travel
     ))
 }

@@ -58,6 +58,9 @@ pub struct ClipData {
     pub preview_png: Option<Vec<u8>>,
     /// The light's drift divided out of the frames, where it was (see `photometric`).
     pub photometric: Option<photometric::Photometric>,
+    /// The mean training frame [D] in the clips' standardised units (its mean divided by the
+    /// spread): a clip frame plus it is the frame as loaded, up to one scale.
+    pub background: Tensor,
 }
 
 impl ClipData {
@@ -69,13 +72,13 @@ impl ClipData {
             .map(|d| d.line)
     }
 
-    /// Whether a recording's moving object was found only on the frames blurred
-    /// (`data::object`), and the centroid encoder locates it there too.
-    pub fn object_located_smoothed(&self) -> bool {
+    /// How a recording's moving object was found (`data::object`), and the centroid encoder
+    /// locates it too (on the frames themselves where none was found).
+    pub fn object_located(&self) -> crate::encoder::centroid::Located {
         self.recording
             .as_ref()
             .and_then(|(s, _)| s.object)
-            .is_some_and(|o| o.smoothed)
+            .map_or_else(Default::default, |o| o.located)
     }
 
     pub fn n_train(&self) -> i64 {
@@ -248,7 +251,9 @@ pub fn load_clips(
         .recording
         .zip(frames)
         .map(|(summary, f)| (summary, f.unsqueeze(0)));
+    let background = &mean / &std;
     Ok(ClipData {
+        background,
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),
         train_start: start.as_ref().map(|t| t.narrow(0, 0, n_train)),

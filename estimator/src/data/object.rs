@@ -7,7 +7,8 @@
 //! rendered pendulums and a disc, where the centroid is within 1 %).
 
 use super::descent::MIN_TRAVEL;
-use crate::encoder::centroid;
+use crate::encoder::centroid::{self, Located};
+use crate::encoder::template::Template;
 use serde::Serialize;
 use tch::Tensor;
 
@@ -28,22 +29,26 @@ pub struct MovingObject {
     pub travel: f64,
     /// Its path's second differences over its first ones (rms).
     pub roughness: f64,
-    /// Found only where located on the frames blurred (`encoder::blur::SMOOTH_PX`): on the frames
-    /// themselves the locator jumped between it and something else (a rod's ghost).
-    pub smoothed: bool,
+    /// How it was located: on the frames themselves, where that path jumped between it and
+    /// something else (a rod's ghost) on the frames blurred (`encoder::blur::SMOOTH_PX`), and
+    /// where that jumped too by matching its picture (`encoder::template`).
+    pub located: Located,
 }
 
 /// The object moving about frames `[F, H·W]` of `size` = (W, H), or `None` when nothing
 /// travels [`MIN_TRAVEL`] of the frame smoothly (a brightness or a size that changes in
 /// place, several things moving), located on the frames as they are or, where that path
-/// jumps, on the frames blurred.
+/// jumps, on the frames blurred, or where that jumps too by a template of its picture.
 pub fn find(frames: &[f32], size: (usize, usize)) -> Option<MovingObject> {
-    find_located(frames, size, &[false, true])
+    find_located(
+        frames,
+        size,
+        &[Located::Frames, Located::Blurred, Located::Matched],
+    )
 }
 
-/// [`find`], the object located in turn on the frames as they are (`false`) and blurred
-/// (`true`), as `ways` lists; the background is taken once for all.
-fn find_located(frames: &[f32], size: (usize, usize), ways: &[bool]) -> Option<MovingObject> {
+/// [`find`], the object located in turn as `ways` lists; the background is taken once for all.
+fn find_located(frames: &[f32], size: (usize, usize), ways: &[Located]) -> Option<MovingObject> {
     let per = size.0 * size.1;
     let n = frames.len() / per.max(1);
     if n < 8 {
@@ -60,20 +65,20 @@ fn find_located(frames: &[f32], size: (usize, usize), ways: &[bool]) -> Option<M
     tch::no_grad(|| {
         let x = Tensor::from_slice(&sampled).view([-1, per as i64]);
         let (d, polarity, window) = centroid::from_background(&x, frame);
-        ways.iter().find_map(|&smoothed| {
-            let path = if smoothed {
-                centroid::positions_smoothed(&d, frame)
-            } else {
-                centroid::positions(&d, frame, polarity, window)
+        ways.iter().find_map(|&located| {
+            let path = match located {
+                Located::Frames => centroid::positions(&d, frame, polarity, window),
+                Located::Blurred => centroid::positions_smoothed(&d, frame),
+                Located::Matched => Template::new(&x, frame)?.positions(&x, frame),
             };
-            judged(&path, smoothed)
+            judged(&path, located)
         })
     })
 }
 
 /// The object whose positions `path` [F, 2] trace, where they travel [`MIN_TRAVEL`] of the
 /// frame smoothly.
-fn judged(path: &Tensor, smoothed: bool) -> Option<MovingObject> {
+fn judged(path: &Tensor, located: Located) -> Option<MovingObject> {
     let p: Vec<f32> = Vec::try_from(path.reshape([-1])).ok()?;
     let p: Vec<[f64; 2]> = p
         .chunks(2)
@@ -108,7 +113,7 @@ fn judged(path: &Tensor, smoothed: bool) -> Option<MovingObject> {
     (travel >= MIN_TRAVEL && roughness <= SMOOTH).then_some(MovingObject {
         travel,
         roughness,
-        smoothed,
+        located,
     })
 }
 
@@ -178,10 +183,52 @@ mod tests {
         let frames = rod_and_bob(240, |t| 0.35 * (t as f64 * 0.21).cos());
         // Located pixel by pixel, the rod's ghost in the median frame (where it hangs most of
         // the time) outweighs the faint bob, and the locator jumps between the two.
-        assert_eq!(find_located(&frames, (64, 48), &[false]), None);
+        assert_eq!(find_located(&frames, (64, 48), &[Located::Frames]), None);
         let o = find(&frames, (64, 48)).expect("an object");
-        assert!(o.smoothed && o.roughness < 0.3, "{o:?}");
+        assert!(o.located == Located::Blurred && o.roughness < 0.3, "{o:?}");
         // The bob swings ±12.3 px across 64: a travel of 0.38 of the larger side.
         assert!((o.travel - 0.38).abs() < 0.05, "{o:?}");
+    }
+
+    /// `n` frames of 40×64: a dark mass 4 px wide and 10 tall whose top is at row `top(t)`,
+    /// hung from a spring (a thin line of 12 coils from row 2 to the mass, stretching with it)
+    /// and carrying a bright card 16 px wide at its foot, over a grey wall.
+    fn mass_on_spring(n: usize, top: impl Fn(usize) -> f64) -> Vec<f32> {
+        let (w, h) = (40, 64);
+        let cover = |p: usize, from: f64, to: f64| {
+            ((p as f64 + 1.0).min(to) - (p as f64).max(from)).max(0.0)
+        };
+        let mut f = Vec::with_capacity(n * w * h);
+        for t in 0..n {
+            let y = top(t);
+            for r in 0..h {
+                for c in 0..w {
+                    let mass = cover(r, y, y + 10.0) * cover(c, 18.0, 22.0);
+                    let card = cover(r, y + 10.0, y + 11.0) * cover(c, 12.0, 28.0);
+                    let phase = (r as f64 + 0.5 - 2.0) / (y - 2.0) * 12.0;
+                    let coil = if phase < 12.0 && r >= 2 && (c == 19 || c == 20) {
+                        0.5 + 0.5 * (std::f64::consts::TAU * phase).cos()
+                    } else {
+                        0.0
+                    };
+                    f.push((0.5 - 0.4 * mass + 0.45 * card - 0.3 * coil) as f32);
+                }
+            }
+        }
+        f
+    }
+
+    #[test]
+    fn a_mass_on_a_stretching_spring_is_found_by_matching_its_picture() {
+        let frames = mass_on_spring(200, |t| 24.0 + 8.0 * (t as f64 * 0.3).sin());
+        // Where the frame differs most, the coils, the card and the mass take turns.
+        assert_eq!(
+            find_located(&frames, (40, 64), &[Located::Frames, Located::Blurred]),
+            None
+        );
+        let o = find(&frames, (40, 64)).expect("an object");
+        assert_eq!(o.located, Located::Matched, "{o:?}");
+        // The mass travels 16 px of 64: a quarter of the larger side.
+        assert!((o.travel - 0.25).abs() < 0.02, "{o:?}");
     }
 }

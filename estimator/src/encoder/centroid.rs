@@ -12,6 +12,7 @@
 
 use super::blur::smoothed;
 use super::keypoints::centres;
+use super::template::Matched;
 use serde::Serialize;
 use tch::nn;
 use tch::{Kind, Tensor};
@@ -34,9 +35,36 @@ pub struct Front {
     /// perspective undone, `data::perspective`), and nothing across it (a fall's sideways
     /// wobble gave every training seed its own mix of the two: g spread 2.5 % over seeds).
     line: Option<Line>,
-    /// The object is located on the frames blurred (`data::object` found it
-    /// only there), and measured on the frames themselves.
-    smooth: bool,
+    /// How the object is located in each frame.
+    located: Located,
+    /// For [`Located::Matched`]: the template and what it matches on.
+    matched: Option<Matched>,
+}
+
+/// What a recording says of where its object is, for the front end (`data::ClipData`).
+#[derive(Debug, Clone, Copy)]
+pub struct Where<'a> {
+    /// A descent's line (`data::descent`).
+    pub line: Option<Line>,
+    /// How the object was found (`data::object`).
+    pub located: Located,
+    /// The mean training frame [C·H·W] in the clips' standardised units.
+    pub background: &'a Tensor,
+}
+
+/// How the object is located in each frame (`data::object` tries them in this order).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Located {
+    /// Where the frame differs most from the background, and measured there.
+    #[default]
+    Frames,
+    /// As `Frames` on the frames blurred (a thin rod's ghost outweighs a faint bob pixel for
+    /// pixel but not blob for blob), and measured on the frames themselves.
+    Blurred,
+    /// Where a template of the object matches best (`template`): its picture, not where the
+    /// frame differs most.
+    Matched,
 }
 
 /// The line of a descent (`data::descent`) along which the front end reads positions.
@@ -51,13 +79,22 @@ pub struct Line {
 impl Front {
     /// The front end for frames of `frame` = (C, H, W), the window sized on the standardised
     /// training frames `train` [.., C·H·W] (smoothed first where the object is located
-    /// `smooth`ed).
-    pub fn new(frame: (i64, i64, i64), train: &Tensor, line: Option<Line>, smooth: bool) -> Front {
+    /// blurred), reading the object where `at` says (the template of a `Matched` object is
+    /// cut from the training frames with the background added back).
+    pub fn new(frame: (i64, i64, i64), train: &Tensor, at: Where) -> Front {
+        let Where {
+            line,
+            located,
+            background,
+        } = at;
         let train = train.reshape([-1, frame.0 * frame.1 * frame.2]);
-        let map = if smooth {
+        let matched = (located == Located::Matched)
+            .then(|| Matched::new(&train, background, frame))
+            .flatten();
+        let map = if located == Located::Blurred {
             smoothed(&train, frame)
         } else {
-            train
+            train.shallow_clone()
         };
         let polarity = super::keypoints::polarity(&map);
         let window = window(&map, frame, polarity);
@@ -66,14 +103,17 @@ impl Front {
             polarity,
             window,
             line,
-            smooth,
+            located,
+            matched,
         }
     }
 
     /// Frames [F, C·H·W] → positions [F, 2] (on a descent's line: the position along it with
     /// the bend undone, and a zero).
     pub fn positions(&self, x: &Tensor) -> Tensor {
-        let p = if self.smooth {
+        let p = if let Some(m) = &self.matched {
+            m.positions(x, self.frame)
+        } else if self.located == Located::Blurred {
             let by = smoothed(x, self.frame);
             positions_on(&by, x, self.frame, self.polarity, self.window)
         } else {
@@ -266,18 +306,7 @@ mod tests {
 
     /// Frames [F, H·W] of a dark 3×3 square on a light wall at rows `rows`, column 4.
     fn frames(rows: &[f64], h: i64, w: i64) -> Tensor {
-        let mut v = vec![0.8f32; rows.len() * (h * w) as usize];
-        for (f, &r) in rows.iter().enumerate() {
-            for y in 0..h {
-                for x in 0..w {
-                    // Area coverage of the square [r, r + 3) × [3, 6) in pixel (y, x).
-                    let cy = ((y + 1) as f64).min(r + 3.0) - (y as f64).max(r);
-                    let cx = ((x + 1) as f64).min(6.0) - (x as f64).max(3.0);
-                    let cover = cy.max(0.0) * cx.max(0.0);
-                    v[f * (h * w) as usize + (y * w + x) as usize] -= (0.6 * cover) as f32;
-                }
-            }
-        }
+        let v = super::super::drawn(rows, h, w, |r| vec![[r, r + 3.0, 3.0, 6.0]]);
         let t = Tensor::from_slice(&v).view([rows.len() as i64, h * w]);
         let mean = t.mean_dim(0, true, Kind::Float);
         let d = &t - &mean;

@@ -6,6 +6,7 @@ pub mod blur;
 pub mod centroid;
 mod keypoints;
 mod mlp;
+pub mod template;
 
 pub use keypoints::polarity;
 
@@ -70,20 +71,18 @@ pub struct Encoder {
 impl Encoder {
     /// An encoder of frames of `frame` = (C, H, W) to `dims` latent numbers; `train` holds the
     /// standardised training clips (the keypoint encoder reads which way bodies differ from
-    /// the mean frame off them); the centroid reads a descent's position along its `line`, and
-    /// locates an object on the frames blurred where `smooth` (`centroid::Front`).
+    /// the mean frame off them); the centroid reads the object where `at` says
+    /// (`centroid::Front`: a descent's position along its line, or an object located as found).
     pub fn new(
         path: &nn::Path,
         frame: (i64, i64, i64),
         kind: EncoderKind,
         dims: i64,
         train: &Tensor,
-        line: Option<centroid::Line>,
-        smooth: bool,
+        at: centroid::Where,
     ) -> Encoder {
         let inputs = frame.0 * frame.1 * frame.2;
-        let front = (kind == EncoderKind::Centroid)
-            .then(|| centroid::Front::new(frame, train, line, smooth));
+        let front = (kind == EncoderKind::Centroid).then(|| centroid::Front::new(frame, train, at));
         let net: Box<dyn Module> = match kind {
             // The small encoder widens with the latent.
             EncoderKind::Small => Box::new(mlp::mlp(path, inputs, &[16 * dims], dims)),
@@ -136,4 +135,24 @@ impl Encoder {
             z.view([b, t, self.dims])
         }
     }
+}
+
+/// Test frames [F·H·W]: a light wall (0.8) with dark rectangles (0.6 darker, their edges drawn at
+/// their fraction of a pixel), those of frame f `rects(rows[f])` as [top, bottom, left, right].
+#[cfg(test)]
+fn drawn(rows: &[f64], h: i64, w: i64, rects: impl Fn(f64) -> Vec<[f64; 4]>) -> Vec<f32> {
+    let mut v = vec![0.8f32; rows.len() * (h * w) as usize];
+    let cover =
+        |from: f64, to: f64, p: i64| (((p + 1) as f64).min(to) - (p as f64).max(from)).max(0.0);
+    for (f, &r) in rows.iter().enumerate() {
+        for [top, bottom, left, right] in rects(r) {
+            for y in 0..h {
+                for x in 0..w {
+                    let c = cover(top, bottom, y) * cover(left, right, x);
+                    v[f * (h * w) as usize + (y * w + x) as usize] -= (0.6 * c) as f32;
+                }
+            }
+        }
+    }
+    v
 }
