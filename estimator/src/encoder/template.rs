@@ -248,4 +248,29 @@ mod tests {
         let x = frames(&[30.0; 10], 60, 16);
         assert!(Template::new(&x, (1, 60, 16)).is_none());
     }
+
+    #[test]
+    fn on_standardised_clips_the_match_is_the_bars_row_less_its_mean() {
+        let (h, w) = (60, 16);
+        let rows: Vec<f64> = (0..40)
+            .map(|k| 25.0 + 15.0 * (0.4 * k as f64).sin())
+            .collect();
+        let x = frames(&rows, h, w);
+        // Standardised as the clips are: the mean frame off, divided by one spread.
+        let mean = x.mean_dim(0, false, Kind::Float);
+        let spread = (&x - &mean).square().mean(Kind::Float).sqrt();
+        let clips = (&x - &mean) / &spread;
+        let m = Matched::new(&clips, &(&mean / &spread), (1, h, w)).expect("a template");
+        let p = m.positions(&clips, (1, h, w));
+        // The matched rows less their mean are the bar's less theirs, to a fraction of a pixel.
+        let centre = rows.iter().sum::<f64>() / rows.len() as f64;
+        for (k, &r) in rows.iter().enumerate() {
+            let y = p.double_value(&[k as i64, 1]) * 30.0;
+            assert!(
+                (y - (r - centre)).abs() < 0.3,
+                "frame {k}: {y} for {}",
+                r - centre
+            );
+        }
+    }
 }
