@@ -208,12 +208,17 @@ mod tests {
         Tensor::from_slice(&v).view([rows.len() as i64, h * w])
     }
 
+    /// The bar's top row in 40 frames of a swing of ±15 px about row 25.
+    fn swing() -> Vec<f64> {
+        (0..40)
+            .map(|k| 25.0 + 15.0 * (0.4 * k as f64).sin())
+            .collect()
+    }
+
     #[test]
     fn the_match_follows_the_moving_bar_to_a_fraction_of_a_pixel_and_never_the_pole() {
         let (h, w) = (60, 16);
-        let rows: Vec<f64> = (0..40)
-            .map(|k| 25.0 + 15.0 * (0.4 * k as f64).sin())
-            .collect();
+        let rows = swing();
         let x = frames(&rows, h, w);
         let t = Template::new(&x, (1, h, w)).expect("a template");
         let p = t.positions(&x, (1, h, w));
@@ -252,9 +257,7 @@ mod tests {
     #[test]
     fn on_standardised_clips_the_match_is_the_bars_row_less_its_mean() {
         let (h, w) = (60, 16);
-        let rows: Vec<f64> = (0..40)
-            .map(|k| 25.0 + 15.0 * (0.4 * k as f64).sin())
-            .collect();
+        let rows = swing();
         let x = frames(&rows, h, w);
         // Standardised as the clips are: the mean frame off, divided by one spread.
         let mean = x.mean_dim(0, false, Kind::Float);
