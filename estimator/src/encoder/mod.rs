@@ -28,8 +28,9 @@ pub enum EncoderKind {
     /// Body positions: the centroids of each body's share of what differs from the mean frame
     /// (vector latents of (x, y) per body only).
     Keypoints,
-    /// The position of one object crossing the frame: the centroid of where the frame differs
-    /// most from the mean frame, mapped affinely to the latent (falls and slides).
+    /// The position of one object: the centroid of where the frame differs most from the
+    /// background (or, where that jumps between things, where a template of the object
+    /// matches best), mapped affinely to the latent (falls, slides, a bob or a mass).
     Centroid,
 }
 
