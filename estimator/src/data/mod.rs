@@ -3,6 +3,7 @@
 //! probed first (`probe`: the model, dt and the load's plan, which the configuration takes
 //! over), then loaded as the configuration says (`load_clips`).
 
+mod crowd;
 mod dataset;
 pub mod descent;
 mod framing;
