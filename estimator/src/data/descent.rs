@@ -8,6 +8,7 @@
 
 use super::crowd::{crowded, EARLY};
 use super::perspective::{self, Bend};
+use super::swing;
 use crate::encoder::centroid::{self, Line};
 use serde::Serialize;
 use tch::Tensor;
@@ -99,6 +100,9 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
         .collect();
     let (path, axis) = project(&seen)?;
     let d = along(&path, axis, 2.0 * half)?;
+    if swing::swings(&path, d.last) {
+        return None;
+    }
     Some(Descent {
         crowded: crowded(&path, &spread, d.last),
         ..d

@@ -18,6 +18,7 @@ mod reuse;
 mod scale;
 mod stillness;
 pub mod summary;
+mod swing;
 mod timing;
 
 pub use framing::{Framing, DEFAULT_SIZE};
