@@ -53,7 +53,7 @@ pub struct Descent {
 }
 
 /// The descent in frames `[F, H·W]` of `size` = (W, H), or `None` when no object crosses
-/// the frame from rest.
+/// the frame from rest, or what does comes back to where it began and swings (`swing`).
 pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
     let (w, h) = (size.0 as i64, size.1 as i64);
     let n = frames.len() as i64 / (w * h);
