@@ -68,9 +68,9 @@ mod tests {
         assert!(!swings(&swing[..75], 30));
         // A ball falling 200 px and bouncing to 60 % and 36 % of that.
         let mut bounce: Vec<(usize, f64)> = (0..=20).map(|k| (k, 0.5 * (k * k) as f64)).collect();
-        for (i, h) in [0.6, 0.36].iter().enumerate() {
-            let half = (20.0 * f64::sqrt(*h)).round() as usize;
-            let from = 21 + 2 * half * i;
+        for h in [0.6, 0.36] {
+            let half = (20.0 * f64::sqrt(h)).round() as usize;
+            let from = bounce.len();
             bounce.extend((0..2 * half).map(|j| {
                 let u = j as f64 - half as f64;
                 (from + j, 200.0 - 0.5 * (half as f64 * half as f64 - u * u))
