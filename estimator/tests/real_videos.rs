@@ -189,13 +189,20 @@ fn real_free_fall_with_time_references_gives_g_in_si() {
     // The camera's perspective bends a pixel-to-metre scale by 10–14 % (README of the
     // recordings); the classical value from the release and the impact is 9.31 m/s².
     let g = estimate_of(&r, "g");
-    assert!((g / 9.81 - 1.0).abs() < 0.06, "g {g}");
+    assert!((g / 9.81 - 1.0).abs() < 0.03, "g {g}");
     assert_ne!(grade(&r), "unreliable", "{}", r["verdict"]);
-    // The hand that held the ball opens beside it as it drops (docs/recordings.md): the first
-    // frames of the descent measure more than the ball, and the verdict says so.
+    // The hand that held the ball opens beside it as it drops (docs/recordings.md): in grey the
+    // first frames of the descent measure more than the ball and pull the release 1.5 frames
+    // late; the ball's red sets it apart from the skin, and read by it the release is where
+    // its colour at full resolution put it (frame 117.96, outside the tool), the verdict
+    // finding nothing against it.
+    let d = &rec["descent"];
+    assert_eq!(d["colour"], true, "{d}\n{err}");
+    let release = d["release"].as_f64().unwrap();
+    assert!((117.5..118.7).contains(&release), "release {release}");
     let reasons = r["verdict"]["reasons"].as_array().unwrap();
     assert!(
-        reasons.iter().any(|x| x["check"] == "release"),
+        !reasons.iter().any(|x| x["check"] == "release"),
         "{reasons:?}"
     );
 }

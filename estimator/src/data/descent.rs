@@ -50,11 +50,32 @@ pub struct Descent {
     /// differs where the object starts (the shared ball: the hand that held it opening beside
     /// it), which pulls those positions and the release with them.
     pub crowded: f64,
+    /// Whether the path was read by the object's colour (`tinted`: the grey difference was
+    /// crowded where it starts, and its colour tells it apart) rather than its grey difference.
+    pub colour: bool,
 }
 
+impl Descent {
+    /// The descent released at frame `release`, with the frames at rest kept before it.
+    pub fn released_at(self, release: f64) -> Descent {
+        let frames = self.last as f64 - release;
+        let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;
+        Descent {
+            release,
+            first,
+            ..self
+        }
+    }
+}
+
+/// The positions the grey difference found, (frame, [x, y] in pixels from the frame's centre):
+/// the frames where something moves clearly.
+pub type Seen = Vec<(usize, [f64; 2])>;
+
 /// The descent in frames `[F, H·W]` of `size` = (W, H), or `None` when no object crosses
-/// the frame from rest, or what does comes back to where it began and swings (`swing`).
-pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
+/// the frame from rest, or what does comes back to where it began and swings (`swing`); with
+/// the positions it was read from.
+pub fn find(frames: &[f32], size: (usize, usize)) -> Option<(Descent, Seen)> {
     let (w, h) = (size.0 as i64, size.1 as i64);
     let n = frames.len() as i64 / (w * h);
     if n < 8 {
@@ -94,7 +115,7 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
     let mut sorted = peak.clone();
     sorted.sort_by(f64::total_cmp);
     let strong = 0.4 * sorted[sorted.len() * 9 / 10];
-    let seen: Vec<(usize, [f64; 2])> = (0..n as usize)
+    let seen: Seen = (0..n as usize)
         .filter(|&k| peak[k] >= strong && peak[k] > 0.0)
         .map(|k| (k, [p[2 * k], p[2 * k + 1]]))
         .collect();
@@ -103,18 +124,19 @@ pub fn find(frames: &[f32], size: (usize, usize)) -> Option<Descent> {
     if swing::swings(&path, d.last) {
         return None;
     }
-    Some(Descent {
+    let d = Descent {
         crowded: crowded(&path, &spread, d.last),
         ..d
-    })
+    };
+    Some((d, seen))
 }
 
 /// A path: (frame, pixels along it).
-type Path = Vec<(usize, f64)>;
+pub(super) type Path = Vec<(usize, f64)>;
 
 /// Positions `seen` (frame, [x, y]) projected on their principal axis, oriented so that the
 /// first half of them moves forward: (frame, pixels along the path), and the axis.
-fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
+pub(super) fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
     if seen.len() < 5 {
         return None;
     }
@@ -150,7 +172,7 @@ fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
 
 /// The descent in `path` (frame, position along the path in pixels, time order; the path's
 /// direction `axis`) on a frame whose larger side is `side` pixels.
-fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
+pub(super) fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     let lo = path.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
     let hi = path.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
     if hi - lo < MIN_TRAVEL * side {
@@ -234,11 +256,9 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
     let release = fitted
         .map_or(-b / (2.0 * c), |f| f.release)
         .clamp((first_k as f64 - before).min(0.0), first_k as f64);
-    let frames = last as f64 - release;
-    let first = (release - REST_MARGIN * frames).floor().max(0.0) as usize;
     Some(Descent {
         release,
-        first,
+        first: 0,
         last,
         travel: (hi - lo) / side,
         bend,
@@ -248,7 +268,9 @@ fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<Descent> {
             bend: bend.map_or(0.0, |b| b.per_pixel * side / 2.0),
         },
         crowded: 0.0,
+        colour: false,
     })
+    .map(|d| d.released_at(release))
 }
 
 #[cfg(test)]

@@ -3,8 +3,10 @@
 //! [`trim_to_descent`]), and where the release is in it.
 
 use super::descent::{self, Descent};
+use super::tinted;
 use physvid_shared::cli::approx;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
+use std::path::Path;
 
 /// The part of a recording kept, and its release.
 pub struct Kept {
@@ -71,17 +73,34 @@ impl Kept {
     }
 }
 
-/// Finds the descent in `decoded` (cut with `opts`) and keeps only it where `--start` /
-/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
+/// Finds the descent in `decoded` (cut with `opts` from `input`; read by the object's colour
+/// where that is less crowded, `tinted`) and keeps only it where `--start` / `--end` do not
+/// say otherwise and a clip still fits, saying so in `warnings`.
 pub fn trim_to_descent(
+    input: &Path,
     decoded: &mut DecodedVideo,
     opts: &VideoOptions,
     timeline_fps: f64,
     warnings: &mut Vec<String>,
 ) -> Kept {
     let mut kept = Kept::untrimmed(opts);
-    let Some(d) = descent::find(&decoded.frames, decoded.size) else {
+    let Some((grey, seen)) = descent::find(&decoded.frames, decoded.size) else {
         return kept;
+    };
+    let d = match tinted::in_colour(input, decoded, opts, &grey, &seen) {
+        Some(c) if c.crowded < grey.crowded => {
+            warnings.push(format!(
+                "motion from rest: something beside the object differs where it starts (on {} % \
+                 of the frames where the release is read, {} % by the object's colour): its \
+                 path read by its colour (the release at frame {} in grey, {} by colour)",
+                approx(100.0 * grey.crowded),
+                approx(100.0 * c.crowded),
+                approx(grey.release),
+                approx(c.release)
+            ));
+            c
+        }
+        _ => grey,
     };
     kept.descent = Some(d);
     let first = if opts.start.is_none() { d.first } else { 0 };

@@ -7,6 +7,7 @@ mod crowd;
 mod dataset;
 pub mod descent;
 mod framing;
+mod hue;
 pub mod kept;
 pub mod object;
 pub mod perspective;
@@ -20,6 +21,7 @@ mod stillness;
 pub mod summary;
 mod swing;
 mod timing;
+mod tinted;
 
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};

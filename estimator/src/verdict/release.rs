@@ -14,8 +14,8 @@ pub struct Release;
 /// the answer is doubtful. Measured: falls drawn with nothing beside the ball (`descent_cli`'s
 /// six, a 120-fps render) 0; a hand opening beside the ball 0.06 and 0.15 (release 0.4 and
 /// 0.7 frames late, g −0.4 % and +1.4 %); a hand pulled back up as it lets go 0.30 (release
-/// 8.5 frames early, g −16 %); the shared ball 0.45 (release 2.7 frames late against the one
-/// its colour shows at full resolution).
+/// 8.5 frames early, g −16 %); the shared ball 0.45 in grey (release 2.7 frames late against
+/// the one its colour shows at full resolution), 0 read by its colour (`data::tinted`).
 pub const DOUBTFUL_FROM: f64 = 0.2;
 
 impl Check for Release {
@@ -37,7 +37,8 @@ impl Check for Release {
                  go?): on {} % of the frames where the release is read, more than the object \
                  is measured there, so the release (frame {}) may be frames off, and with it \
                  every rate read from the fall; a recording where the object starts alone \
-                 (the hand above it, out of the picture, or still until the object is clear)",
+                 (the hand above it, out of the picture, or still until the object is clear), \
+                 or an object whose colour sets it apart from what is beside it",
                 approx(100.0 * d.crowded),
                 approx(d.release)
             ),

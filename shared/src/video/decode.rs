@@ -6,7 +6,7 @@
 use super::clock::Clock;
 use super::decoded::{cut, DecodedVideo};
 use super::folder::{check_alike, concat_list, damaged_folder, numbered};
-use super::tools::{read_full, tool};
+use super::tools::{read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
 use std::io::BufRead;
 use std::path::Path;
@@ -64,13 +64,7 @@ pub fn decode(
             Some(info) => info,
             None => probe(input)?,
         };
-        if let Some(s) = opts.start {
-            cmd.args(["-ss", &format!("{s}")]);
-        }
-        cmd.arg("-i").arg(input);
-        if let Some(e) = opts.end {
-            cmd.args(["-t", &format!("{}", e - opts.start.unwrap_or(0.0))]);
-        }
+        trimmed_input(&mut cmd, input, opts.start, opts.end);
         info
     };
     let fps = opts
@@ -92,25 +86,11 @@ pub fn decode(
             ),
         ));
     }
-    // Every frame as it is, stamped on the input's own time base: at the default 1/fps a
-    // variable-rate file's frames collide in the output and ffmpeg complains about its own
-    // muxer.
     if let Some(filter) = info.filter() {
         cmd.args(["-vf", &filter]);
     }
-    cmd.args([
-        "-map",
-        "0:v:0",
-        "-fps_mode",
-        "passthrough",
-        "-enc_time_base",
-        "-1",
-        "-f",
-        "rawvideo",
-        "-pix_fmt",
-        "gray",
-        "-",
-    ]);
+    cmd.args(EVERY_FRAME)
+        .args(["-f", "rawvideo", "-pix_fmt", "gray", "-"]);
     cmd.stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .stdin(Stdio::null());

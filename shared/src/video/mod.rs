@@ -4,6 +4,7 @@
 //! the errors, the options, and what counts as a recording.
 
 pub mod clock;
+mod colour;
 mod decode;
 mod decoded;
 pub mod fields;
@@ -16,6 +17,7 @@ mod survey;
 pub mod timescale;
 mod tools;
 
+pub use colour::colour_frames;
 pub use decode::decode;
 pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};

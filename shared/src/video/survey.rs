@@ -10,7 +10,7 @@
 use super::free::{departures, free_in, Departures, FreeSpan};
 use super::region::{blur, components, Bounds};
 use super::timescale::Thumbnails;
-use super::tools::{gray_frames, read_full, tool};
+use super::tools::{gray_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{Crop, VideoError, VideoInfo};
 use std::path::Path;
 
@@ -79,20 +79,8 @@ pub fn survey(
     let h = ((info.height as f64 * scale).round() as usize).max(2);
     let mut cmd = tool("ffmpeg")?;
     cmd.args(["-v", "error", "-nostdin"]);
-    if let Some(s) = start {
-        cmd.args(["-ss", &format!("{s}")]);
-    }
-    cmd.arg("-i").arg(input);
-    if let Some(e) = end {
-        cmd.args(["-t", &format!("{}", e - start.unwrap_or(0.0))]);
-    }
-    cmd.args([
-        "-map",
-        "0:v:0",
-        "-fps_mode",
-        "passthrough",
-        "-enc_time_base",
-        "-1",
+    trimmed_input(&mut cmd, input, start, end);
+    cmd.args(EVERY_FRAME).args([
         "-vf",
         &match info.filter() {
             Some(fields) => format!("{fields},scale={w}:{h}:flags=area"),

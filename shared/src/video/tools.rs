@@ -33,13 +33,42 @@ pub(crate) fn read_full(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<us
     Ok(n)
 }
 
+/// `input` as ffmpeg's input, trimmed to `start`..`end` (s of its own timeline).
+pub(crate) fn trimmed_input(cmd: &mut Command, input: &Path, start: Option<f64>, end: Option<f64>) {
+    if let Some(s) = start {
+        cmd.args(["-ss", &format!("{s}")]);
+    }
+    cmd.arg("-i").arg(input);
+    if let Some(e) = end {
+        cmd.args(["-t", &format!("{}", e - start.unwrap_or(0.0))]);
+    }
+}
+
+/// ffmpeg's output arguments for every frame of the first video stream as it is, stamped on
+/// the input's own time base (at the default 1/fps a variable-rate file's frames collide in
+/// the output and ffmpeg complains about its own muxer).
+pub(crate) const EVERY_FRAME: [&str; 6] = [
+    "-map",
+    "0:v:0",
+    "-fps_mode",
+    "passthrough",
+    "-enc_time_base",
+    "-1",
+];
+
 /// Runs ffmpeg's `cmd` (its input and filters given) with grey raw frames to a pipe, its
 /// complaints dropped: the child and its output, or the error naming `input`.
-pub(crate) fn gray_frames(
+pub(crate) fn gray_frames(cmd: Command, input: &Path) -> Result<(Child, ChildStdout), VideoError> {
+    raw_frames(cmd, input, "gray")
+}
+
+/// As [`gray_frames`], in ffmpeg's pixel format `pix_fmt`.
+pub(crate) fn raw_frames(
     mut cmd: Command,
     input: &Path,
+    pix_fmt: &str,
 ) -> Result<(Child, ChildStdout), VideoError> {
-    cmd.args(["-f", "rawvideo", "-pix_fmt", "gray", "-"])
+    cmd.args(["-f", "rawvideo", "-pix_fmt", pix_fmt, "-"])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .stdin(Stdio::null());
