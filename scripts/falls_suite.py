@@ -13,7 +13,9 @@ Each scene is written as NAME.mkv (ffv1, lossless) and run as README's users wou
 (dropped); the late release of the one without a hand showed the impact's frame, whose rule's
 constant (3/4) was set once, not tuned on them. The six in colour (a red or blue ball, a hand
 of skin in the shade, one ball of the hand's own colour) were drawn after the colour reading
-(`estimator/src/data/tinted.rs`) was written, to measure it; nothing in it was changed after.
+(`estimator/src/data/tinted.rs`) was written, to measure it; its one later change (the release
+read on the colour's part of the path alone) came from the shared ball at a coarser size, and
+left these rows as they were.
 
 usage: falls_suite.py ESTIMATE OUT_DIR [--md FILE]
 """

@@ -136,7 +136,7 @@ pub(super) type Path = Vec<(usize, f64)>;
 
 /// Positions `seen` (frame, [x, y]) projected on their principal axis, oriented so that the
 /// first half of them moves forward: (frame, pixels along the path), and the axis.
-pub(super) fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
+fn project(seen: &[(usize, [f64; 2])]) -> Option<(Path, [f64; 2])> {
     if seen.len() < 5 {
         return None;
     }
@@ -256,7 +256,7 @@ pub(super) fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<
     let release = fitted
         .map_or(-b / (2.0 * c), |f| f.release)
         .clamp((first_k as f64 - before).min(0.0), first_k as f64);
-    Some(Descent {
+    let d = Descent {
         release,
         first: 0,
         last,
@@ -269,8 +269,8 @@ pub(super) fn along(path: &[(usize, f64)], axis: [f64; 2], side: f64) -> Option<
         },
         crowded: 0.0,
         colour: false,
-    })
-    .map(|d| d.released_at(release))
+    };
+    Some(d.released_at(release))
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! object where it starts is something else (the hand that held it, opening), the grey
 //! difference measures both and pulls the release (`crowd`); the object's own colour, read
 //! where it is clear of the rest, tells it apart from a hand of another colour
-//! (`descent::in_colour` reads the release again from these positions).
+//! (`tinted::in_colour` reads the release again from these positions).
 
 /// Object and background chromaticities closer than this (in r, g, b shares of the
 /// brightness) are not told apart by colour: a grey object on a grey wall, a red ball before

@@ -16,9 +16,13 @@ const SCALE: usize = 2;
 /// Frames read before the grey release at least (it comes late where a hand crowds it).
 const BEFORE: usize = 10;
 
+/// The colour frames held at most (a long descent at a large size is read in grey only).
+const MAX_BYTES: usize = 256 << 20;
+
 /// The descent `grey` (found at `seen`) read again by the object's colour, where the grey one
 /// was crowded, `input` is a video whose decoded frames are its own (`decoded`, cut with
-/// `opts`), and the object's colour tells it apart from the background; `None` otherwise.
+/// `opts`), its colour frames fit in [`MAX_BYTES`], and the object's colour tells it apart from
+/// the background; `None` otherwise.
 pub fn in_colour(
     input: &Path,
     decoded: &DecodedVideo,
@@ -31,17 +35,16 @@ pub fn in_colour(
     }
     let size = decoded.size;
     let info = &decoded.info;
-    let crop = opts.crop.unwrap_or(Crop {
-        x: 0,
-        y: 0,
-        w: info.width,
-        h: info.height,
-    });
-    let scale = SCALE.min(crop.w / size.0).min(crop.h / size.1).max(1);
+    let crop = Crop::of(opts, info);
     let n = decoded.frame_count();
     let lead = BEFORE.max((0.15 * (grey.last as f64 - grey.release)).ceil() as usize);
     let from = (grey.release.floor().max(0.0) as usize).saturating_sub(lead);
     let to = (grey.last + BEFORE).min(n - 1);
+    // Twice the grey size where the recording has it and the frames fit in MAX_BYTES.
+    let bytes = |s: usize| (to + 1 - from) * 3 * size.0 * size.1 * s * s * 4;
+    let scale = (1..=SCALE.min(crop.w / size.0).min(crop.h / size.1).max(1))
+        .rev()
+        .find(|&s| bytes(s) <= MAX_BYTES)?;
     let frames = colour_frames(
         input,
         info,

@@ -29,12 +29,7 @@ pub fn colour_frames(
     let (mut child, mut stdout) = raw_frames(cmd, input, "gbrp")?;
     let plane = info.width * info.height;
     let mut buf = vec![0u8; 3 * plane];
-    let crop = opts.crop.unwrap_or(Crop {
-        x: 0,
-        y: 0,
-        w: info.width,
-        h: info.height,
-    });
+    let crop = Crop::of(opts, info);
     let mut resizer = FrameResizer::new(info.width, crop, size);
     let mut out = Vec::with_capacity(frames.len() * 3 * size.0 * size.1);
     let mut k = 0;

@@ -71,12 +71,7 @@ pub fn decode(
         .fps
         .or(info.container_fps)
         .ok_or_else(|| bad(input, "the container gives no frame rate: pass --fps"))?;
-    let crop = opts.crop.unwrap_or(Crop {
-        x: 0,
-        y: 0,
-        w: info.width,
-        h: info.height,
-    });
+    let crop = Crop::of(opts, &info);
     if crop.w == 0 || crop.h == 0 || crop.x + crop.w > info.width || crop.y + crop.h > info.height {
         return Err(bad(
             input,

@@ -62,6 +62,16 @@ pub struct Crop {
 }
 
 impl Crop {
+    /// What `opts` crop of a frame of `info` (the whole frame without `--crop`).
+    pub fn of(opts: &VideoOptions, info: &VideoInfo) -> Crop {
+        opts.crop.unwrap_or(Crop {
+            x: 0,
+            y: 0,
+            w: info.width,
+            h: info.height,
+        })
+    }
+
     /// The crop widened (about its centre, within the `frame`'s width and height) to the
     /// aspect ratio `aspect` (width / height), so that resizing it to the encoder's frame
     /// magnifies both directions alike (a narrow band along a swing would otherwise be
