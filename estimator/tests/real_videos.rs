@@ -193,13 +193,13 @@ fn real_free_fall_with_time_references_gives_g_in_si() {
     assert_ne!(grade(&r), "unreliable", "{}", r["verdict"]);
     // The hand that held the ball opens beside it as it drops (docs/recordings.md): in grey the
     // first frames of the descent measure more than the ball and pull the release 1.5 frames
-    // late; the ball's red sets it apart from the skin, and read by it the release is where
-    // its colour at full resolution put it (frame 117.96, outside the tool), the verdict
-    // finding nothing against it.
+    // late; the ball's red sets it apart from the skin, and read by it the release is within
+    // 0.6 frame of where its colour at full resolution put it (frame 117.96–118.1, outside the
+    // tool), the verdict finding nothing against it.
     let d = &rec["descent"];
     assert_eq!(d["colour"], true, "{d}\n{err}");
     let release = d["release"].as_f64().unwrap();
-    assert!((117.5..118.7).contains(&release), "release {release}");
+    assert!((117.4..118.6).contains(&release), "release {release}");
     let reasons = r["verdict"]["reasons"].as_array().unwrap();
     assert!(
         !reasons.iter().any(|x| x["check"] == "release"),
