@@ -50,8 +50,9 @@ pub struct Descent {
     /// differs where the object starts (the shared ball: the hand that held it opening beside
     /// it), which pulls those positions and the release with them.
     pub crowded: f64,
-    /// Whether the path was read by the object's colour (`tinted`: the grey difference was
-    /// crowded where it starts, and its colour tells it apart) rather than its grey difference.
+    /// Whether the release was read on the object's path in colour (`tinted`: the grey
+    /// difference was crowded where it starts, and its colour tells it apart) rather than on
+    /// its grey difference's.
     pub colour: bool,
 }
 

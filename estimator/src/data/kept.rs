@@ -73,9 +73,9 @@ impl Kept {
     }
 }
 
-/// Finds the descent in `decoded` (cut with `opts` from `input`; read by the object's colour
-/// where that is less crowded, `tinted`) and keeps only it where `--start` / `--end` do not
-/// say otherwise and a clip still fits, saying so in `warnings`.
+/// Finds the descent in `decoded` (cut with `opts` from `input`; its release read by the
+/// object's colour where that is less crowded, `tinted`) and keeps only it where `--start` /
+/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
 pub fn trim_to_descent(
     input: &Path,
     decoded: &mut DecodedVideo,
@@ -92,7 +92,7 @@ pub fn trim_to_descent(
             warnings.push(format!(
                 "motion from rest: something beside the object differs where it starts (on {} % \
                  of the frames where the release is read, {} % by the object's colour): its \
-                 path read by its colour (the release at frame {} in grey, {} by colour)",
+                 release read by its colour (at frame {} in grey, {} by colour)",
                 approx(100.0 * grey.crowded),
                 approx(100.0 * c.crowded),
                 approx(grey.release),

@@ -1,8 +1,8 @@
-//! A descent read again by the object's colour where its grey difference was crowded where it
-//! starts (`crowd`: the hand that held it opening beside it): the descent's frames decoded in
-//! colour (`colour_frames`), the object followed by its colour (`hue`), and the release read
-//! from those positions as from the grey ones (`descent::along`); the descent's end and bend
-//! stay the grey reading's.
+//! A descent's release read again by the object's colour where its grey difference was
+//! crowded where it starts (`crowd`: the hand that held it opening beside it): the descent's
+//! frames decoded in colour (`colour_frames`), the object followed by its colour (`hue`), and
+//! the release read from those positions as from the grey ones (`descent::along`); the
+//! descent's end and bend stay the grey reading's.
 
 use super::crowd::{crowded_against, EARLY};
 use super::descent::{along, Descent, Path as AlongPath, Seen};
@@ -19,10 +19,10 @@ const BEFORE: usize = 10;
 /// The colour frames held at most (a long descent at a large size is read in grey only).
 const MAX_BYTES: usize = 256 << 20;
 
-/// The descent `grey` (found at `seen`) read again by the object's colour, where the grey one
-/// was crowded, `input` is a video whose decoded frames are its own (`decoded`, cut with
-/// `opts`), its colour frames fit in [`MAX_BYTES`], and the object's colour tells it apart from
-/// the background; `None` otherwise.
+/// The descent `grey` (found at `seen`) with its release read again by the object's colour,
+/// where the grey one was crowded, `input` is a video whose decoded frames are its own
+/// (`decoded`, cut with `opts`), its colour frames fit in [`MAX_BYTES`], and the object's
+/// colour tells it apart from the background; `None` otherwise.
 pub fn in_colour(
     input: &Path,
     decoded: &DecodedVideo,

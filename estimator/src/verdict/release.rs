@@ -15,7 +15,7 @@ pub struct Release;
 /// six, a 120-fps render) 0; a hand opening beside the ball 0.06 and 0.15 (release 0.4 and
 /// 0.7 frames late, g −0.4 % and +1.4 %); a hand pulled back up as it lets go 0.30 (release
 /// 8.5 frames early, g −16 %); the shared ball 0.45 in grey (release 2.7 frames late against
-/// the one its colour shows at full resolution), 0 read by its colour (`data::tinted`).
+/// the one its colour shows at full resolution), 0 with its release read by its colour (`data::tinted`).
 pub const DOUBTFUL_FROM: f64 = 0.2;
 
 impl Check for Release {
