@@ -53,14 +53,7 @@ fn film(dir: &Path, ball: [f64; 3], hand: [f64; 3], video: &Path) {
         img.save(frames.join(format!("frame{}.png", k + 1)))
             .unwrap();
     }
-    let o = std::process::Command::new("ffmpeg")
-        .args(["-v", "error", "-framerate", "60", "-i"])
-        .arg(frames.join("frame%d.png"))
-        .args(["-c:v", "ffv1", "-pix_fmt", "yuv420p"])
-        .arg(video)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    util::encode_ffv1(&frames, video, 60, "yuv420p");
 }
 
 /// `estimate VIDEO --model free-fall` with a reference at rest and one 20 frames into the fall.

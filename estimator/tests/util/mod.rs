@@ -183,10 +183,16 @@ pub fn write_frames_of(dir: &Path, n: usize, radius: f64, disc: impl Fn(usize) -
 
 /// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at `fps`.
 pub fn encode_lossless(frames: &Path, video: &Path, fps: u32) {
+    encode_ffv1(frames, video, fps, "gray")
+}
+
+/// Encodes `frames/frame%d.png` into `video`, an FFV1 file at `fps` in ffmpeg's pixel format
+/// `pix_fmt` (`yuv420p`: the colour at half the resolution, as phones store it).
+pub fn encode_ffv1(frames: &Path, video: &Path, fps: u32, pix_fmt: &str) {
     let o = std::process::Command::new("ffmpeg")
         .args(["-v", "error", "-framerate", &fps.to_string(), "-i"])
         .arg(frames.join("frame%d.png"))
-        .args(["-c:v", "ffv1", "-pix_fmt", "gray"])
+        .args(["-c:v", "ffv1", "-pix_fmt", pix_fmt])
         .arg(video)
         .output()
         .unwrap();
