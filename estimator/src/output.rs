@@ -1,19 +1,19 @@
 //! The one place that writes a run's outputs into `--out`: report.json, report.html,
-//! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv, change.png and
-//! clips.png, in a folder this tool owns (`physvid_shared::outdir`): each file written whole
+//! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv, change.png,
+//! clips.png, track.png and track.csv, in a folder this tool owns (`physvid_shared::outdir`): each file written whole
 //! under a temporary name and renamed, only the tool's own files ever removed or replaced.
 
 use crate::data::ClipData;
 use crate::error::{input_error, EstimateError};
 use crate::html::{report_page, Figure};
-use crate::plots::{change_png, latents_png, parameters_png, timeline_png};
+use crate::plots::{change_png, latents_png, parameters_png, timeline_png, track_png};
 use crate::report::Report;
 use physvid_shared::outdir::{self, OutputDir, Wait, MANIFEST};
 use std::path::Path;
 
 /// Every file a run may write, report.json first: an earlier run's (this tool's) are removed
 /// before a run writes its own.
-pub const OUTPUTS: [&str; 9] = [
+pub const OUTPUTS: [&str; 11] = [
     "report.json",
     "report.html",
     "metrics.csv",
@@ -23,6 +23,8 @@ pub const OUTPUTS: [&str; 9] = [
     "timeline.csv",
     "change.png",
     "clips.png",
+    "track.png",
+    "track.csv",
 ];
 
 /// Checks before any work that a run may write into `out` (`outdir::check`), and that it
@@ -99,7 +101,7 @@ pub fn clear_earlier(out: &Path, force: bool) -> Result<(), EstimateError> {
 }
 
 /// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
-/// timeline.csv, change.png and clips.png for a recording) into `out`, report.json last.
+/// timeline.csv, change.png, clips.png, track.png and track.csv for a recording) into `out`, report.json last.
 pub fn write_outputs(
     out: &Path,
     force: bool,
@@ -142,6 +144,13 @@ pub fn write_outputs(
             "The picture's change over the recording, and the span fitted (shaded)",
             plot(&mut dir, "change.png", png)?,
         ));
+    }
+    if let Some(route) = &report.run.track {
+        figures.push(plot_figure(
+            "The object's own track and the laws fitted on it (the second route)",
+            plot(&mut dir, "track.png", track_png(route))?,
+        ));
+        dir.write("track.csv", route.track.csv().as_bytes())?;
     }
     if let Some(png) = &data.preview_png {
         if report.run.recording.as_ref().is_some_and(|r| r.preview) {

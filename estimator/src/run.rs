@@ -9,6 +9,7 @@ use crate::config::{Request, RunConfig};
 use crate::data::{load_clips, probe, ClipData};
 use crate::device::select_device;
 use crate::error::EstimateError;
+use crate::guide;
 use crate::output::{check_out, clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
@@ -69,6 +70,9 @@ pub fn run(req: &Request) -> anyhow::Result<()> {
     if let Some(e) = &report.run.ensemble {
         term::print(&e.table())?;
     }
+    if let Some(t) = &report.run.track {
+        term::print(&t.line())?;
+    }
     for w in &report.run.warnings {
         term::eprint_line(&format!("warning: {w}"));
     }
@@ -93,11 +97,30 @@ pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
 
 /// [`estimation`], followed and stopped as `watch` says.
 pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
-    if chooses(req) {
-        choose(req, watch)
+    let mut warnings = Vec::new();
+    let route = guide::second_route(req, &mut warnings);
+    let guided = route
+        .as_ref()
+        .and_then(|r| guide::guided(req, r, chooses(req)));
+    let req = guided.as_ref().map_or(req, |(g, _)| g);
+    let mut est = if chooses(req) {
+        choose(req, watch)?
     } else {
-        estimate(req, watch)
+        estimate(req, watch)?
+    };
+    let run = &mut est.report.run;
+    run.warnings.extend(warnings);
+    run.warnings.extend(guided.map(|(_, why)| why));
+    if let Some(route) = route {
+        run.track = Some(route);
+        let close = est
+            .report
+            .model_choice
+            .as_ref()
+            .and_then(choice::close::close_call);
+        est.report.verdict = verdict::judge(&est.report.run).with(close);
     }
+    Ok(est)
 }
 
 /// Whether `req` chooses its model: asked to (`choose`), or no model named on an input that

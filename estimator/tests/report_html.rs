@@ -172,13 +172,27 @@ fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
             "3.93300 s to 6.72000 s",
         ],
     );
-    // Parameters, latents, the timeline, the picture's change with the span fitted, the clips.
-    assert_eq!(dom.matches("<img ").count(), 5);
+    // Parameters, latents, the timeline, the picture's change with the span fitted, the
+    // object's own track, the clips.
+    assert_eq!(dom.matches("<img ").count(), 6);
     assert!(
         dom.contains("the span fitted (shaded)"),
         "the change figure's caption"
     );
     assert!(run.join("change.png").exists());
+    // The second route: its section, its figure and its samples.
+    assert!(
+        dom.contains("Second route: the object's own track"),
+        "the track's section"
+    );
+    assert!(dom.contains("id=\"track-line\""));
+    assert!(run.join("track.png").exists());
+    let csv = std::fs::read_to_string(run.join("track.csv")).unwrap();
+    assert!(
+        csv.starts_with("t_s,file_s,x_px,y_px,quality,along_px\n"),
+        "{csv}"
+    );
+    assert!(csv.lines().count() > 20, "{csv}");
     assert!(
         !run.join("clips.png").exists(),
         "clips.png only with --preview"

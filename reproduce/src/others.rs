@@ -57,10 +57,7 @@ struct Answer {
 }
 
 fn judged(render: String, run: &Run) -> Answer {
-    let model = run
-        .model_choice
-        .as_ref()
-        .map_or_else(String::new, |c| c.chosen.clone());
+    let model = run.model.clone();
     let (rate, damping) = match model.as_str() {
         "damped-oscillator" => ("gamma0", "gamma1"),
         _ => ("g_over_l", "damping"),

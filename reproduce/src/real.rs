@@ -9,6 +9,7 @@
 
 use crate::runner::Runner;
 use crate::table::{self, Cell, Table};
+use estimator::digits::sig;
 use estimator::verdict::Grade;
 
 /// A value known for a recording: the model whose law is the system's, its parameter, the
@@ -138,30 +139,49 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         let mut flags: Vec<&str> = rec.readings.to_vec();
         flags.extend(["--seed", "0"]);
         let run = r.estimate(&dir.join(rec.file), &flags)?;
-        let Some(choice) = run.model_choice.as_ref() else {
-            anyhow::bail!("{}: no model choice in the report", rec.file);
-        };
-        for c in &choice.candidates {
-            let Some(grade) = c.grade else { continue };
-            let error = rec
-                .known
+        // Every candidate where the model was chosen; where the object's track guided the
+        // run to one law on its span, that answer alone.
+        let tried: Vec<(String, Option<Grade>, String, String, bool)> = match &run.model_choice {
+            Some(choice) => choice
+                .candidates
                 .iter()
-                .filter(|k| k.model == c.model)
-                .find_map(|k| {
-                    values(&c.answer)
-                        .into_iter()
-                        .find(|(n, _)| n == k.parameter)
-                        .map(|(_, v)| (v / k.value - 1.0, k.bar))
-                });
+                .map(|c| {
+                    let chosen = c.model == choice.chosen;
+                    let reasons = c.reasons.join(", ");
+                    (c.model.clone(), c.grade, c.answer.clone(), reasons, chosen)
+                })
+                .collect(),
+            None => {
+                let answer = run
+                    .parameters
+                    .iter()
+                    .filter(|p| p.units == "SI")
+                    .map(|p| format!("{} = {} {}", p.name, sig(p.estimate), p.unit))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let mut reasons: Vec<&str> = run.verdict.reasons.iter().map(|r| r.check).collect();
+                reasons.dedup();
+                let grade = Some(run.verdict.grade);
+                vec![(run.model.clone(), grade, answer, reasons.join(", "), true)]
+            }
+        };
+        for (model, grade, answer, checks, chosen) in tried {
+            let Some(grade) = grade else { continue };
+            let error = rec.known.iter().filter(|k| k.model == model).find_map(|k| {
+                values(&answer)
+                    .into_iter()
+                    .find(|(n, _)| n == k.parameter)
+                    .map(|(_, v)| (v / k.value - 1.0, k.bar))
+            });
             answers.push(Answer {
                 recording: rec.file,
-                model: c.model.clone(),
-                chosen: c.model == choice.chosen,
-                answer: c.answer.clone(),
+                model,
+                chosen,
+                answer,
                 error: error.map(|e| e.0),
                 right: error.is_some_and(|(e, bar)| e.abs() <= bar),
                 grade,
-                checks: c.reasons.join(", "),
+                checks,
             });
         }
     }

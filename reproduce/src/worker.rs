@@ -32,6 +32,8 @@ fn request_path(report: &Path) -> std::path::PathBuf {
 /// What the tables read of one estimation: report.json's fields of the same names.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Run {
+    /// The model of the answer (the chosen one's, where a choice was made).
+    pub model: String,
     pub parameters: Vec<ParameterResult>,
     pub verdict: Verdict,
     pub model_choice: Option<ModelChoice>,

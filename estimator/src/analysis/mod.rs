@@ -82,6 +82,10 @@ pub struct Run {
     /// pendulum's damping from its swing peaks, appendix A.6), beside the learned value.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cross_check: Option<PeakDecay>,
+    /// For a video: the object's own track and the laws fitted on it (`track`), the second
+    /// route's answer; set after the estimation, before the verdict.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub track: Option<crate::track::TrackRoute>,
     pub wall_time_s: f64,
     /// `--ensemble K`: the spread of each value over K seeds (the fields above are seed
     /// --seed's).
@@ -186,6 +190,7 @@ impl Run {
                 let latents: Vec<f64> = t.latents.iter().map(|&v| v as f64).collect();
                 model.cross_check(&outcome.parameters, &latents, t.frame_dt)
             }),
+            track: None,
             wall_time_s: wall.as_secs_f64(),
             ensemble: None,
             warnings,

@@ -209,6 +209,34 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             seconds => format!("{:.1}", c.wall_time_s),
         }
     });
+    // The second route: each law fitted on the object's track, where it holds.
+    let track = report.run.track.as_ref().map(|r| {
+        let rows: Vec<_> = r
+            .laws
+            .iter()
+            .map(|l| {
+                let values: Vec<String> = l
+                    .values
+                    .iter()
+                    .map(|v| {
+                        format!(
+                            "{} {} ± {} {}",
+                            v.name,
+                            sig(v.value),
+                            significant(v.error),
+                            v.unit
+                        )
+                    })
+                    .collect();
+                context! {
+                    law => l.law.name(), chosen => Some(l.law) == r.chosen, holds => l.holds,
+                    span => format!("{:.2}–{:.2} s ({} samples)", l.first_s, l.last_s, l.samples),
+                    rms => format!("{:.2} px", l.rms_px), answer => values.join(", "),
+                }
+            })
+            .collect();
+        context! { line => r.line(), rows }
+    });
     let headline = format!(
         "{} clips, dt {} s; {} epochs in {:.1} s on {}",
         report.run.train_clips + report.run.validation_clips,
@@ -223,7 +251,8 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
         context! {
             style => style(),
             model => report.run.model, input => report.run.input, headline,
-            parameters, ensemble, cross_check, warnings => report.run.warnings, facts, recording, choice,
+            parameters, ensemble, cross_check, track, warnings => report.run.warnings, facts, recording,
+            choice,
             grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
             version => report.version, libtorch => report.libtorch_version,

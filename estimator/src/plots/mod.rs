@@ -1,12 +1,15 @@
 //! PNG plots drawn with plotters, returned as bytes (`output.rs` writes them): the parameters
 //! over epochs (ground truth dashed), the encoded latent against the physics rollout for a few
 //! validation clips (the bodies' paths in the latent plane for a vector latent), and a
-//! recording's timeline, and its picture's change with the span fitted (`change.rs`). One
+//! recording's timeline, its picture's change with the span fitted (`change.rs`) and the
+//! object's own track with the laws fitted on it (`track.rs`). One
 //! chart set-up serves them all.
 
 mod change;
+mod track;
 
 pub use change::change_png;
+pub use track::track_png;
 
 use crate::analysis::Run;
 use crate::timeline::Timeline;

@@ -14,6 +14,7 @@ mod motion;
 mod plausible;
 mod premise;
 mod release;
+mod routes;
 mod sampling;
 mod swing;
 mod training;
@@ -53,6 +54,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &consistency::Halves,
     &plausible::Plausible,
     &calibration::References,
+    &routes::Routes,
 ];
 
 #[cfg(test)]

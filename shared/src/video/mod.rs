@@ -11,8 +11,9 @@ pub mod fields;
 mod folder;
 pub mod free;
 mod probe;
-mod region;
+pub mod region;
 mod resize;
+mod small;
 mod survey;
 pub mod timescale;
 mod tools;
@@ -22,6 +23,7 @@ pub use decode::decode;
 pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::FrameResizer;
+pub use small::{small_frames, SmallFrames};
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 
 use std::path::{Path, PathBuf};

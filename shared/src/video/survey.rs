@@ -9,8 +9,8 @@
 
 use super::free::{departures, free_in, Departures, FreeSpan};
 use super::region::{blur, components, Bounds};
+use super::small::small_frames;
 use super::timescale::Thumbnails;
-use super::tools::{gray_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{Crop, VideoError, VideoInfo};
 use std::path::Path;
 
@@ -73,29 +73,9 @@ pub fn survey(
     (start, end): (Option<f64>, Option<f64>),
     period: bool,
 ) -> Result<Survey, VideoError> {
-    let scale = SURVEY_SIDE as f64 / info.width.max(info.height) as f64;
-    let scale = scale.min(1.0);
-    let w = ((info.width as f64 * scale).round() as usize).max(2);
-    let h = ((info.height as f64 * scale).round() as usize).max(2);
-    let mut cmd = tool("ffmpeg")?;
-    cmd.args(["-v", "error", "-nostdin"]);
-    trimmed_input(&mut cmd, input, start, end);
-    cmd.args(EVERY_FRAME).args([
-        "-vf",
-        &match info.filter() {
-            Some(fields) => format!("{fields},scale={w}:{h}:flags=area"),
-            None => format!("scale={w}:{h}:flags=area"),
-        },
-    ]);
-    let (mut child, mut stdout) = gray_frames(cmd, input)?;
-    // The frames are held (a byte a pixel at this size): the free motion is found first, and
-    // only it is measured.
-    let mut frames = Vec::new();
-    let mut buf = vec![0u8; w * h];
-    while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
-        frames.extend_from_slice(&buf);
-    }
-    let _ = child.wait();
+    let small = small_frames(input, info, (start, end), SURVEY_SIDE)?;
+    let (w, h) = small.size;
+    let frames = small.pixels;
     let change = departures(&frames, (w, h));
     let free = change.as_ref().and_then(free_in);
     let span = free.map_or(0..frames.len() / (w * h), |f| f.first..f.last + 1);

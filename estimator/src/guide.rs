@@ -1,0 +1,68 @@
+//! The second route's part in a run: the object's own track read for a video file
+//! (`track::follow`), and the request it guides where its oscillation is clear (the
+//! oscillator on the track's span, in place of a choice among every model on frames a hand
+//! may share). `run` calls both before the estimation and sets the track on its `Run`.
+
+use crate::config::Request;
+use crate::physics::ModelRef;
+use crate::track::{self, TrackRoute};
+use physvid_shared::video;
+
+/// Where the model and the span are the tool's to choose (`chooses` with no `--model` at all,
+/// not `--model auto`, no model files, no
+/// `--start`/`--end`, no `--init`) and the track oscillates clearly (`TrackRoute::guiding`):
+/// the request for the latent route on the oscillator over the track's span, with the warning
+/// that says so. The latent starts from its own starts, not the track's answer: the two routes
+/// stay independent measurements for the verdict to compare (`verdict::routes`), and a run that
+/// starts at its answer never improves, which the training check reads as a latent that did
+/// not learn.
+pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
+    let r = &req.load.recording;
+    // An explicit `--model auto` asks for every candidate; only a model left unsaid is guided.
+    let free = chooses
+        && !req.choose
+        && req.candidates.is_empty()
+        && req.init.is_empty()
+        && r.start.is_none()
+        && r.end.is_none();
+    let span = route.guiding().filter(|_| free)?;
+    let model = ModelRef::by_name("damped-oscillator")?;
+    let (first, last) = route.file_span(span);
+    let mut g = req.clone();
+    g.choose = false;
+    g.load.model = Some(model);
+    g.load.recording.start = Some(first);
+    // The end is excluded: half a frame past the last sample.
+    let step = (last - first) / (span.samples.max(2) - 1) as f64;
+    g.load.recording.end = Some(last + 0.5 * step);
+    let why = format!(
+        "the object's track oscillates over {:.2}–{:.2} s of the file ({:.1} periods): the \
+         latent route trained the damped-oscillator there, from its own starts, as a measurement \
+         independent of the track's (give --model or --start to choose yourself)",
+        first,
+        last,
+        span.periods.unwrap_or(0.0)
+    );
+    Some((g, why))
+}
+
+/// The object's own track and the laws fitted on it (`track`), for a video file (not an image
+/// folder, not frames in memory); where it cannot be read, a warning says why and the latent's
+/// answer stands alone.
+pub fn second_route(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
+    let load = &req.load;
+    let input = &load.input;
+    if load.frames.is_some() || !input.is_file() || !video::is_recording(input) {
+        return None;
+    }
+    let r = &load.recording;
+    let found = video::probe_as(input, r.fields)
+        .and_then(|info| track::follow(input, &info, (r.start, r.end), r.fps));
+    match found {
+        Ok(route) => route,
+        Err(e) => {
+            warnings.push(format!("the object's track could not be read: {e}"));
+            None
+        }
+    }
+}

@@ -1,0 +1,144 @@
+//! The laws fitted to a track, each by least squares on the frames' own times: a damped
+//! oscillation of the position along the motion's axis, c + e^(−ζt)(a cos ωt + b sin ωt)
+//! (γ0 = ω² + ζ², γ1 = 2ζ: the oscillator's z'' + γ1 z' + γ0 z = 0, and a swing's g/L at small
+//! angles), found by variable projection (ω and ζ searched, the rest solved for), and a
+//! constant acceleration in the picture's plane, p0 + v0 t + a t²/2 in x and y (a fall, a toss,
+//! a roll, the release's velocity free). Standard errors from the Jacobian, widened for
+//! residuals that follow one another (their lag-one correlation).
+
+mod acceleration;
+mod oscillation;
+
+use acceleration::acceleration;
+use oscillation::oscillation;
+use physvid_shared::linalg::solve;
+use serde::Serialize;
+
+/// The laws a track is tried against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TrackLaw {
+    Oscillation,
+    ConstantAcceleration,
+}
+
+impl TrackLaw {
+    pub const ALL: [TrackLaw; 2] = [TrackLaw::Oscillation, TrackLaw::ConstantAcceleration];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            TrackLaw::Oscillation => "oscillation",
+            TrackLaw::ConstantAcceleration => "constant acceleration",
+        }
+    }
+
+    /// Free parameters of the law (both coordinates for the acceleration).
+    pub fn freedom(self) -> usize {
+        match self {
+            TrackLaw::Oscillation => 5,
+            TrackLaw::ConstantAcceleration => 6,
+        }
+    }
+
+    /// The law fitted to the samples `t` (s), `u` (the position along the axis) and `xy` (the
+    /// position in the picture), all of one span; a nonlinear fit starts from `near`'s
+    /// solution where given (a span grown from one fitted before), else searches.
+    pub fn fit(
+        self,
+        t: &[f64],
+        u: &[f64],
+        xy: &[(f64, f64)],
+        near: Option<&Fitted>,
+    ) -> Option<Fitted> {
+        match self {
+            TrackLaw::Oscillation => oscillation(t, u, near.map(|f| f.shape)),
+            TrackLaw::ConstantAcceleration => acceleration(t, xy),
+        }
+    }
+}
+
+/// One value a law gives, with its standard error and unit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Value {
+    pub name: &'static str,
+    pub value: f64,
+    pub error: f64,
+    pub unit: &'static str,
+}
+
+/// A law fitted to one span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fitted {
+    pub values: Vec<Value>,
+    /// The residuals (for the acceleration, x's then y's), in pixels.
+    pub residuals: Vec<f64>,
+    /// The fitted positions along the axis (the acceleration's: along its direction), one per
+    /// sample.
+    pub curve: Vec<f64>,
+    /// How many periods the span holds (the oscillation), for the law to be seen at all.
+    pub periods: Option<f64>,
+    /// The nonlinear parameters found (the oscillation's ζ and ω), to start a nearby fit.
+    pub shape: [f64; 2],
+}
+
+impl Fitted {
+    pub fn rms(&self) -> f64 {
+        (self.residuals.iter().map(|r| r * r).sum::<f64>() / self.residuals.len().max(1) as f64)
+            .sqrt()
+    }
+
+    pub fn value(&self, name: &str) -> Option<&Value> {
+        self.values.iter().find(|v| v.name == name)
+    }
+}
+
+/// Least squares of `y` on the columns `cols`: the coefficients and the residuals.
+pub(super) fn linear(cols: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let k = cols.len();
+    let mut m = vec![0.0; k * k];
+    let mut b = vec![0.0; k];
+    for i in 0..k {
+        for j in 0..k {
+            m[i * k + j] = cols[i].iter().zip(&cols[j]).map(|(a, c)| a * c).sum();
+        }
+        b[i] = cols[i].iter().zip(y).map(|(a, c)| a * c).sum();
+    }
+    let c = solve(&m, &b, k)?;
+    let r = (0..y.len())
+        .map(|n| y[n] - (0..k).map(|i| c[i] * cols[i][n]).sum::<f64>())
+        .collect();
+    Some((c, r))
+}
+
+/// The covariance of parameters whose model has the Jacobian columns `cols`, from residuals
+/// `r`: s²·(JᵀJ)⁻¹, s² widened by (1 + ρ)/(1 − ρ) for the residuals' lag-one correlation ρ.
+pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
+    let k = cols.len();
+    let n = r.len();
+    if n <= k {
+        return None;
+    }
+    let mut m = vec![0.0; k * k];
+    for i in 0..k {
+        for j in 0..k {
+            m[i * k + j] = cols[i].iter().zip(&cols[j]).map(|(a, c)| a * c).sum();
+        }
+    }
+    let ss: f64 = r.iter().map(|v| v * v).sum();
+    let rho = if ss > 0.0 {
+        (r.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / ss).clamp(0.0, 0.9)
+    } else {
+        0.0
+    };
+    let s2 = ss / (n - k) as f64 * (1.0 + rho) / (1.0 - rho);
+    let mut inv = vec![0.0; k * k];
+    for j in 0..k {
+        let mut e = vec![0.0; k];
+        e[j] = 1.0;
+        let col = solve(&m, &e, k)?;
+        for i in 0..k {
+            inv[i * k + j] = col[i] * s2;
+        }
+    }
+    Some(inv)
+}

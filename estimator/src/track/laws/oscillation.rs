@@ -1,0 +1,181 @@
+//! The damped oscillation c + e^(−ζt)(a cos ωt + b sin ωt) by variable projection: ω and ζ
+//! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each.
+
+use super::{covariance, linear, Fitted, Value};
+use physvid_shared::linalg::solve;
+
+/// The oscillation's columns at decay `z` and angular frequency `w`.
+fn basis(t: &[f64], z: f64, w: f64) -> Vec<Vec<f64>> {
+    let e: Vec<f64> = t.iter().map(|&s| (-z * s).exp()).collect();
+    vec![
+        vec![1.0; t.len()],
+        t.iter().zip(&e).map(|(&s, e)| e * (w * s).cos()).collect(),
+        t.iter().zip(&e).map(|(&s, e)| e * (w * s).sin()).collect(),
+    ]
+}
+
+fn sum_sq(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+/// The undamped angular frequency on a log grid from half a cycle in `span` to the samples'
+/// Nyquist frequency (`step` apart) that leaves the least residual.
+fn grid_frequency(span: f64, step: f64, residual: &dyn Fn(f64, f64) -> Option<Vec<f64>>) -> f64 {
+    let (lo, hi) = (std::f64::consts::PI / span, std::f64::consts::PI / step);
+    const GRID: usize = 400;
+    let mut best = (f64::INFINITY, lo);
+    for i in 0..GRID {
+        let w = lo * (hi / lo).powf(i as f64 / (GRID - 1) as f64);
+        if let Some(r) = residual(0.0, w) {
+            let s = sum_sq(&r);
+            if s < best.0 {
+                best = (s, w);
+            }
+        }
+    }
+    best.1
+}
+
+/// The damped oscillation fitted to `u` at times `t`, from (ζ, ω) = `start` or else from the
+/// best undamped ω of a grid.
+pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fitted> {
+    let n = t.len();
+    if n < 8 {
+        return None;
+    }
+    let t0 = t[0];
+    let t: Vec<f64> = t.iter().map(|s| s - t0).collect();
+    let span = t[n - 1];
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let step = steps[steps.len() / 2];
+    if span <= 0.0 || step <= 0.0 {
+        return None;
+    }
+    let residual = |z: f64, w: f64| linear(&basis(&t, z, w), u).map(|(_, r)| r);
+    let start = start.unwrap_or_else(|| [0.0, grid_frequency(span, step, &residual)]);
+    // Levenberg–Marquardt on (ζ, ω).
+    let mut p = start;
+    let mut r = residual(p[0], p[1])?;
+    let mut s = sum_sq(&r);
+    let mut lambda = 1e-3;
+    for _ in 0..100 {
+        let mut jac = [vec![0.0; n], vec![0.0; n]];
+        for (k, col) in jac.iter_mut().enumerate() {
+            let h = 1e-6 * p[k].abs().max(1e-2);
+            let mut q = p;
+            q[k] += h;
+            let rq = residual(q[0], q[1])?;
+            for (c, (a, b)) in col.iter_mut().zip(rq.iter().zip(&r)) {
+                *c = (a - b) / h;
+            }
+        }
+        let a = [
+            sum_sq(&jac[0]),
+            jac[0].iter().zip(&jac[1]).map(|(x, y)| x * y).sum(),
+            0.0,
+            sum_sq(&jac[1]),
+        ];
+        let g = [
+            jac[0].iter().zip(&r).map(|(x, y)| x * y).sum::<f64>(),
+            jac[1].iter().zip(&r).map(|(x, y)| x * y).sum::<f64>(),
+        ];
+        let mut moved = false;
+        while lambda < 1e12 {
+            let m = [a[0] * (1.0 + lambda), a[1], a[1], a[3] * (1.0 + lambda)];
+            let Some(d) = solve(&m, &[-g[0], -g[1]], 2) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let q = [p[0] + d[0], p[1] + d[1]];
+            if let Some(rq) = residual(q[0], q[1]) {
+                let sq = sum_sq(&rq);
+                if sq < s {
+                    let gain = (s - sq) / s.max(1e-300);
+                    p = q;
+                    r = rq;
+                    s = sq;
+                    lambda = (lambda * 0.3).max(1e-12);
+                    moved = gain > 1e-12;
+                    break;
+                }
+            }
+            lambda *= 10.0;
+        }
+        if !moved {
+            break;
+        }
+    }
+    let (z, w) = (p[0], p[1]);
+    // Beyond the samples' Nyquist frequency, or decaying within a cycle, nothing oscillates.
+    if !(w > 0.0 && w <= std::f64::consts::PI / step && z.abs() < w) {
+        return None;
+    }
+    let cols = basis(&t, z, w);
+    let (c, r) = linear(&cols, u)?;
+    // The model's Jacobian in (c, a, b, ζ, ω).
+    let (a, b) = (c[1], c[2]);
+    let dz: Vec<f64> = t
+        .iter()
+        .zip(cols[1].iter().zip(&cols[2]))
+        .map(|(&s, (ec, es))| -s * (a * ec + b * es))
+        .collect();
+    let dw: Vec<f64> = t
+        .iter()
+        .zip(cols[1].iter().zip(&cols[2]))
+        .map(|(&s, (ec, es))| s * (-a * es + b * ec))
+        .collect();
+    let mut full = cols.clone();
+    full.push(dz);
+    full.push(dw);
+    let cov = covariance(&full, &r)?;
+    let (vz, vw, vzw) = (cov[3 * 5 + 3], cov[4 * 5 + 4], cov[3 * 5 + 4]);
+    let g0 = w * w + z * z;
+    let g0_var = 4.0 * (w * w * vw + z * z * vz + 2.0 * w * z * vzw);
+    let curve = u.iter().zip(&r).map(|(u, r)| u - r).collect();
+    Some(Fitted {
+        values: vec![
+            Value {
+                name: "gamma0",
+                value: g0,
+                error: g0_var.max(0.0).sqrt(),
+                unit: "1/s^2",
+            },
+            Value {
+                name: "gamma1",
+                value: 2.0 * z,
+                error: 2.0 * vz.max(0.0).sqrt(),
+                unit: "1/s",
+            },
+        ],
+        residuals: r,
+        curve,
+        periods: Some(w * span / std::f64::consts::TAU),
+        shape: [z, w],
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_damped_oscillation_gives_back_its_gamma0_and_gamma1() {
+        let (g0, g1): (f64, f64) = (35.7, 0.04);
+        let z = g1 / 2.0;
+        let w = (g0 - z * z).sqrt();
+        let t: Vec<f64> = (0..240).map(|i| 0.5 + i as f64 / 30.0).collect();
+        // A little deterministic "noise" (an incommensurate ripple of 0.05 px).
+        let u: Vec<f64> = t
+            .iter()
+            .map(|&s| 100.0 + 20.0 * (-z * s).exp() * (w * s + 0.3).cos() + 0.05 * (37.1 * s).sin())
+            .collect();
+        let f = oscillation(&t, &u, None).expect("fits");
+        let g = f.value("gamma0").unwrap();
+        assert!((g.value / g0 - 1.0).abs() < 1e-3, "{g:?}");
+        assert!(g.error > 0.0 && g.error < 0.05, "{g:?}");
+        let d = f.value("gamma1").unwrap();
+        assert!((d.value - g1).abs() < 0.005, "{d:?}");
+        assert!(f.periods.unwrap() > 7.0);
+    }
+}

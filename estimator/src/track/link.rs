@@ -1,0 +1,122 @@
+//! Blobs joined frame to frame into tracklets: each blob continues the tracklet whose last
+//! blob is nearest, within a step that grows with the frames missed, and of a size within a
+//! factor of its own; the rest start tracklets of their own.
+
+use super::blobs::Blob;
+
+/// A tracklet may miss this many frames (hidden, blurred into the wall) and go on.
+const GAP: usize = 3;
+
+/// Sizes of one object differ by less than this factor from frame to frame.
+const SIZE_FACTOR: f64 = 4.0;
+
+/// One thing followed over frames: the frame indices and its blob in each.
+#[derive(Debug, Clone, Default)]
+pub struct Tracklet {
+    pub frames: Vec<usize>,
+    pub blobs: Vec<Blob>,
+}
+
+impl Tracklet {
+    fn last(&self) -> (usize, Blob) {
+        (
+            *self.frames.last().expect("a tracklet has a frame"),
+            *self.blobs.last().expect("a tracklet has a blob"),
+        )
+    }
+
+    /// How far its centroid moves over the tracklet (the larger side of the box it spans).
+    pub fn extent(&self) -> f64 {
+        let span = |f: fn(&Blob) -> f64| {
+            let (lo, hi) = self
+                .blobs
+                .iter()
+                .map(f)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+            hi - lo
+        };
+        span(|b| b.x).max(span(|b| b.y))
+    }
+}
+
+/// The tracklets of `frames` (each frame's blobs), a blob moving at most `step` pixels a
+/// frame.
+pub fn link(frames: &[Vec<Blob>], step: f64) -> Vec<Tracklet> {
+    let mut tracklets: Vec<Tracklet> = Vec::new();
+    for (k, blobs) in frames.iter().enumerate() {
+        let mut pairs = Vec::new();
+        for (ti, t) in tracklets.iter().enumerate() {
+            let (f, last) = t.last();
+            if k - f > GAP {
+                continue;
+            }
+            for (bi, b) in blobs.iter().enumerate() {
+                let d = (b.x - last.x).hypot(b.y - last.y);
+                let ratio = b.area.max(last.area) / b.area.min(last.area).max(1.0);
+                if d <= step * (k - f) as f64 && ratio < SIZE_FACTOR {
+                    pairs.push((d, ti, bi));
+                }
+            }
+        }
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut taken_t = vec![false; tracklets.len()];
+        let mut taken_b = vec![false; blobs.len()];
+        for (_, ti, bi) in pairs {
+            if taken_t[ti] || taken_b[bi] {
+                continue;
+            }
+            taken_t[ti] = true;
+            taken_b[bi] = true;
+            tracklets[ti].frames.push(k);
+            tracklets[ti].blobs.push(blobs[bi]);
+        }
+        for (bi, b) in blobs.iter().enumerate() {
+            if !taken_b[bi] {
+                tracklets.push(Tracklet {
+                    frames: vec![k],
+                    blobs: vec![*b],
+                });
+            }
+        }
+    }
+    tracklets
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn blob(x: f64, y: f64) -> Blob {
+        Blob { area: 10.0, x, y }
+    }
+
+    #[test]
+    fn two_things_are_two_tracklets_and_a_gap_is_bridged() {
+        let frames: Vec<Vec<Blob>> = (0..10)
+            .map(|k| {
+                let mut v = vec![blob(5.0 + k as f64, 5.0)];
+                if k != 4 && k != 5 {
+                    v.push(blob(50.0, 10.0 + 2.0 * k as f64));
+                }
+                v
+            })
+            .collect();
+        let t = link(&frames, 3.0);
+        assert_eq!(t.len(), 2);
+        assert_eq!(t[0].frames.len(), 10);
+        assert_eq!(t[1].frames.len(), 8);
+        assert!((t[1].extent() - 18.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_jump_beyond_the_step_starts_another() {
+        let frames = vec![
+            vec![blob(0.0, 0.0)],
+            vec![blob(1.0, 0.0)],
+            vec![blob(30.0, 0.0)],
+        ];
+        assert_eq!(link(&frames, 5.0).len(), 2);
+    }
+}

@@ -1,0 +1,298 @@
+//! The object's own track, the second route to an answer: a recording decoded at
+//! [`TRACK_SIDE`] pixels, what differs from its median background followed from frame to frame
+//! (`blobs`, `link`), the longest-lived thing kept, its position along its motion's own axis,
+//! and each law of `laws` fitted where it holds (`segment`). It reads no model and trains
+//! nothing: seconds on a recording, and an answer to set beside the latent's.
+
+pub mod blobs;
+pub mod laws;
+pub mod link;
+mod route;
+pub mod segment;
+pub mod template;
+
+pub use route::{LawSpan, TrackRoute, GUIDING_ERROR, GUIDING_PERIODS};
+
+use laws::TrackLaw;
+use physvid_shared::video::{small_frames, VideoError, VideoInfo};
+use segment::{longest, noise, Samples};
+use serde::Serialize;
+use std::path::Path;
+use template::Match;
+
+/// The long side of the frames the track is read on (pixels).
+pub const TRACK_SIDE: usize = 320;
+
+/// A tracklet must live at least this many frames to be followed.
+const LEAST_FRAMES: usize = 12;
+
+/// The fastest object crosses this many of the frame's long sides in a second (a ball dropped
+/// 2.3 m past a 2.5-m picture: about 3), so a frame's step is its share at the frames' rate.
+const FASTEST: f64 = 4.0;
+
+/// The window a law starts from: an oscillation's an eighth of the track (at least 12
+/// samples), an acceleration's 10 samples.
+fn least_window(law: TrackLaw, n: usize) -> usize {
+    match law {
+        TrackLaw::Oscillation => (n / 8).max(12),
+        TrackLaw::ConstantAcceleration => 10,
+    }
+}
+
+/// The track: one position a frame where the object was seen (pixels of the displayed frame,
+/// times in seconds of real time from the first frame read), and its quality (its blob's size
+/// (its picture's correlation with the reference patch, `template`, or its blob's size against
+/// its usual size: a hand over it, a blur or a turn lowers either).
+#[derive(Debug, Clone, Serialize)]
+pub struct Track {
+    pub t: Vec<f64>,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub quality: Vec<f64>,
+    /// Each sample's time on the file's own timeline (as a player shows it; `--start` reads
+    /// these), which differs from `t` for a slow-motion capture.
+    pub file_s: Vec<f64>,
+    /// The position along the motion's own axis (the principal direction of the path), pixels
+    /// from its mean.
+    pub along: Vec<f64>,
+    /// The axis (a unit vector in the picture, y down).
+    pub axis: (f64, f64),
+    /// The track's noise along the axis (pixels, `segment::noise`).
+    pub noise: f64,
+    /// Frames read, and the picture's threshold for a change (grey levels).
+    pub frames: usize,
+    pub threshold: f64,
+}
+
+impl Track {
+    /// The track as CSV: one row a sample (t, the file's time, x, y, quality, along).
+    pub fn csv(&self) -> String {
+        let mut s = String::from("t_s,file_s,x_px,y_px,quality,along_px\n");
+        for i in 0..self.t.len() {
+            s += &format!(
+                "{},{},{},{},{},{}\n",
+                self.t[i], self.file_s[i], self.x[i], self.y[i], self.quality[i], self.along[i]
+            );
+        }
+        s
+    }
+}
+
+/// The frames' real times: `fps` where the user gave it, else the container's timestamps
+/// (a slow-motion capture's scaled to its capture rate), else the container's even rate.
+/// And each frame's time on the file's own timeline.
+fn times(
+    info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    n: usize,
+    fps: Option<f64>,
+) -> (Vec<f64>, Vec<f64>) {
+    let from = span.0.unwrap_or(0.0);
+    let stamps = info.times_within(span.0, span.1);
+    let even = |rate: f64| -> Vec<f64> { (0..n).map(|i| i as f64 / rate).collect() };
+    let container = info.read_rate(info.container_fps.unwrap_or(30.0));
+    let file: Vec<f64> = if stamps.len() == n {
+        stamps.clone()
+    } else {
+        even(container).iter().map(|t| from + t).collect()
+    };
+    if let Some(f) = fps {
+        return (even(info.read_rate(f)), file);
+    }
+    let slow = match (info.capture_fps, info.container_fps) {
+        (Some(c), Some(f)) if c > f => f / c,
+        _ => 1.0,
+    };
+    let real = file.iter().map(|t| (t - file[0]) * slow).collect();
+    (real, file)
+}
+
+/// Tracklets tried as the object: the longest-lived this many, each read two ways (its blobs'
+/// centroids, its picture's matches).
+const TRIED: usize = 8;
+
+/// A tracklet whose centroid moves less than this (pixels of the frames read) is a flicker.
+const LEAST_EXTENT: f64 = 2.0;
+
+/// Follows the object of `input` (trimmed to `span`) and fits each law where it holds: of the
+/// [`TRIED`] longest-lived things that move, the one a law explains over the longest time;
+/// `None` where nothing lives long enough to follow.
+pub fn follow(
+    input: &Path,
+    info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    fps: Option<f64>,
+) -> Result<Option<TrackRoute>, VideoError> {
+    let frames = small_frames(input, info, span, TRACK_SIDE)?;
+    let n = frames.len();
+    if n < LEAST_FRAMES {
+        return Ok(None);
+    }
+    let (w, h) = frames.size;
+    let bg = blobs::background(&frames);
+    let found: Vec<Vec<blobs::Blob>> = (0..n)
+        .map(|i| blobs::blobs(frames.frame(i), &bg, (w, h)))
+        .collect();
+    let (t_all, file_all) = times(info, span, n, fps);
+    let mut steps: Vec<f64> = t_all
+        .windows(2)
+        .map(|p| p[1] - p[0])
+        .filter(|d| *d > 0.0)
+        .collect();
+    steps.sort_by(f64::total_cmp);
+    let frame_s = steps.get(steps.len() / 2).copied().unwrap_or(1.0 / 30.0);
+    let reach = (FASTEST * frame_s).min(0.5) * w.max(h) as f64;
+    let mut tracklets: Vec<link::Tracklet> = link::link(&found, reach)
+        .into_iter()
+        .filter(|t| t.frames.len() >= LEAST_FRAMES && t.extent() >= LEAST_EXTENT)
+        .collect();
+    tracklets.sort_by_key(|t| std::cmp::Reverse(t.frames.len()));
+    let scale = info.width.max(info.height) as f64 / w.max(h) as f64;
+    let clock = Clock {
+        t: &t_all,
+        file: &file_all,
+        scale,
+    };
+    let best = tracklets
+        .iter()
+        .take(TRIED)
+        .flat_map(|t| [centroids(t), template::refine(&frames, t)])
+        .filter_map(|sightings| route_of(&sightings, &clock, n, bg.threshold))
+        .max_by(|a, b| {
+            a.explained()
+                .total_cmp(&b.explained())
+                .then(a.track.t.len().cmp(&b.track.t.len()))
+        });
+    Ok(best)
+}
+
+/// The frames' times and the frames' scale to the displayed picture.
+struct Clock<'a> {
+    t: &'a [f64],
+    file: &'a [f64],
+    scale: f64,
+}
+
+/// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against
+/// its usual size.
+fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
+    let mut areas: Vec<f64> = tracklet.blobs.iter().map(|b| b.area).collect();
+    let mid = areas.len() / 2;
+    let usual = *areas.select_nth_unstable_by(mid, f64::total_cmp).1;
+    tracklet
+        .frames
+        .iter()
+        .zip(&tracklet.blobs)
+        .map(|(&k, b)| {
+            let score = b.area.min(usual) / b.area.max(usual);
+            (
+                k,
+                Match {
+                    x: b.x,
+                    y: b.y,
+                    score,
+                },
+            )
+        })
+        .collect()
+}
+
+/// The route of one reading of a tracklet (`centroids`, or `template`'s matches): the axis, the
+/// noise and each law's span.
+fn route_of(
+    matches: &[(usize, Match)],
+    clock: &Clock,
+    n: usize,
+    threshold: f64,
+) -> Option<TrackRoute> {
+    if matches.len() < LEAST_FRAMES {
+        return None;
+    }
+    let scale = clock.scale;
+    let t: Vec<f64> = matches.iter().map(|(k, _)| clock.t[*k]).collect();
+    let file_s: Vec<f64> = matches.iter().map(|(k, _)| clock.file[*k]).collect();
+    let x: Vec<f64> = matches.iter().map(|(_, m)| (m.x + 0.5) * scale).collect();
+    let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale).collect();
+    let quality = matches.iter().map(|(_, m)| m.score).collect();
+    let (along, axis) = principal_axis(&x, &y);
+    let sigma = noise(&along).unwrap_or(segment_floor());
+    let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+    let samples = Samples {
+        t: &t,
+        u: &along,
+        xy: &xy,
+    };
+    let laws: Vec<LawSpan> = TrackLaw::ALL
+        .iter()
+        .filter_map(|&law| {
+            let s = longest(&samples, law, least_window(law, t.len()), sigma)?;
+            Some(LawSpan {
+                law,
+                holds: s.holds,
+                first_s: t[s.first],
+                last_s: t[s.last - 1],
+                samples: s.last - s.first,
+                rms_px: s.fitted.rms(),
+                periods: s.fitted.periods,
+                values: s.fitted.values,
+                curve: s.fitted.curve,
+                first: s.first,
+            })
+        })
+        .collect();
+    let chosen = route::choose(&laws);
+    Some(TrackRoute {
+        track: Track {
+            t,
+            x,
+            y,
+            quality,
+            file_s,
+            along,
+            axis,
+            noise: sigma,
+            frames: n,
+            threshold,
+        },
+        laws,
+        chosen,
+    })
+}
+
+fn segment_floor() -> f64 {
+    0.02
+}
+
+/// The positions along the path's principal direction (from its mean), and that direction.
+fn principal_axis(x: &[f64], y: &[f64]) -> (Vec<f64>, (f64, f64)) {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxx += (a - mx) * (a - mx);
+        syy += (b - my) * (b - my);
+        sxy += (a - mx) * (b - my);
+    }
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let d = (angle.cos(), angle.sin());
+    let along = x
+        .iter()
+        .zip(y)
+        .map(|(a, b)| (a - mx) * d.0 + (b - my) * d.1)
+        .collect();
+    (along, d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_axis_of_a_slanted_line_is_its_direction() {
+        let x: Vec<f64> = (0..10).map(|i| i as f64).collect();
+        let y: Vec<f64> = x.iter().map(|v| 2.0 * v + 1.0).collect();
+        let (along, d) = principal_axis(&x, &y);
+        assert!((d.1 / d.0 - 2.0).abs() < 1e-9);
+        assert!((along[9] - along[0] - 9.0 * 5f64.sqrt()).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,134 @@
+//! The track route's answer: each law's span on the track, the law chosen, and whether its
+//! oscillation is clear enough to guide the latent route (`guiding`) and to judge its answer
+//! (`verdict::routes`).
+
+use super::laws::{TrackLaw, Value};
+use super::Track;
+use serde::Serialize;
+
+/// A law fitted on the track where it holds.
+#[derive(Debug, Clone, Serialize)]
+pub struct LawSpan {
+    pub law: TrackLaw,
+    pub holds: bool,
+    /// The span, seconds of the track's times, and its samples.
+    pub first_s: f64,
+    pub last_s: f64,
+    pub samples: usize,
+    pub values: Vec<Value>,
+    pub rms_px: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub periods: Option<f64>,
+    /// The law's curve over the span (along its axis, pixels), for the figure.
+    #[serde(skip)]
+    pub curve: Vec<f64>,
+    #[serde(skip)]
+    pub first: usize,
+}
+
+/// The track route's answer: the track, every law's span, and the law chosen (the one that
+/// holds over the longest time; an oscillation only where its span holds a whole period).
+#[derive(Debug, Clone, Serialize)]
+pub struct TrackRoute {
+    pub track: Track,
+    pub laws: Vec<LawSpan>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chosen: Option<TrackLaw>,
+}
+
+/// The track's oscillation guides the latent where its span holds at least this many periods…
+pub const GUIDING_PERIODS: f64 = 3.0;
+/// …and its γ0's standard error is at most this share of it.
+pub const GUIDING_ERROR: f64 = 0.01;
+
+impl TrackRoute {
+    /// The chosen law's span where it is an oscillation clear enough to set the latent's law,
+    /// span and start (`GUIDING_PERIODS`, `GUIDING_ERROR`).
+    pub fn guiding(&self) -> Option<&LawSpan> {
+        let l = self.chosen_span()?;
+        let g = l.values.iter().find(|v| v.name == "gamma0")?;
+        (l.law == TrackLaw::Oscillation
+            && l.holds
+            && l.periods.unwrap_or(0.0) >= GUIDING_PERIODS
+            && g.error <= GUIDING_ERROR * g.value.abs())
+        .then_some(l)
+    }
+
+    /// How much motion the chosen law explains: its span's samples times their variance along
+    /// the axis (pixels²); 0 where no law was chosen. Of several things followed, the object is
+    /// the one a law explains the most motion of.
+    pub fn explained(&self) -> f64 {
+        let Some(l) = self.chosen_span() else {
+            return 0.0;
+        };
+        let u = &self.track.along[l.first..l.first + l.samples];
+        let m = u.iter().sum::<f64>() / u.len() as f64;
+        u.iter().map(|v| (v - m) * (v - m)).sum()
+    }
+
+    /// The span's first and last times on the file's own timeline.
+    pub fn file_span(&self, l: &LawSpan) -> (f64, f64) {
+        let f = &self.track.file_s;
+        (f[l.first], f[l.first + l.samples - 1])
+    }
+
+    /// The chosen law's span.
+    pub fn chosen_span(&self) -> Option<&LawSpan> {
+        self.laws.iter().find(|l| Some(l.law) == self.chosen)
+    }
+
+    /// One line for the terminal.
+    pub fn line(&self) -> String {
+        match self.chosen_span() {
+            Some(l) => format!(
+                "track: {} over {:.2}–{:.2} s ({} samples, {:.2} px rms, noise {:.2} px): {}",
+                l.law.name(),
+                l.first_s,
+                l.last_s,
+                l.samples,
+                l.rms_px,
+                self.track.noise,
+                l.values
+                    .iter()
+                    .map(|v| format!("{} {:.6} ± {:.2} {}", v.name, v.value, v.error, v.unit))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            None => format!(
+                "track: followed over {} of {} frames; no law explains it within its noise ({:.2} px)",
+                self.track.t.len(),
+                self.track.frames,
+                self.track.noise
+            ),
+        }
+    }
+}
+
+/// The law that holds over the longest time; an oscillation only where its span holds at least
+/// one period (else nothing oscillated) and its amplitude does not grow by more than
+/// [`GROWING_ERRORS`] standard errors of its damping (a hand shaking the object drives it; a
+/// free motion loses energy); of two spans within a tenth of each other's length, the law with
+/// less freedom.
+pub(super) fn choose(laws: &[LawSpan]) -> Option<TrackLaw> {
+    let free = |l: &LawSpan| {
+        l.values
+            .iter()
+            .find(|v| v.name == "gamma1")
+            .is_none_or(|d| d.value >= -GROWING_ERRORS * d.error)
+    };
+    let seen = |l: &&LawSpan| l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l);
+    let longest = laws
+        .iter()
+        .filter(seen)
+        .map(|l| l.last_s - l.first_s)
+        .fold(0.0, f64::max);
+    laws.iter()
+        .filter(seen)
+        .filter(|l| l.last_s - l.first_s >= 0.9 * longest)
+        .min_by_key(|l| l.law.freedom())
+        .map(|l| l.law)
+}
+
+/// An oscillation whose damping is below zero by more than this many standard errors grows:
+/// something drives it.
+const GROWING_ERRORS: f64 = 3.0;

@@ -1,0 +1,220 @@
+//! Where a law holds: the track's own noise (what a smooth motion leaves of each point), and
+//! for a law the longest span it explains within that noise, grown from the window it explains
+//! best. The free motion is where the law holds: a hand holding or letting go, an impact, a
+//! bounce or an exit from the frame end it, whatever the picture does around it.
+
+use super::laws::{Fitted, TrackLaw};
+
+/// A span's residuals may be this many times the track's noise (root mean square)…
+const SPREADS: f64 = 3.0;
+/// …and no point added to it this many times.
+const POINT_SPREADS: f64 = 6.0;
+
+/// A law holds on a span where it explains at least this share of the motion's variance.
+pub const EXPLAINED: f64 = 0.99;
+
+/// Below this (pixels) a track's noise is rounding: a clean render's.
+const LEAST_NOISE: f64 = 0.02;
+
+/// The noise of a sampled motion: each point's distance from the cubic through its six
+/// neighbours' window (the Savitzky–Golay smoother's residual, 7 points), as a robust spread
+/// (1.4826 × the median absolute residual), scaled to a point's own noise (the residual's
+/// variance is 2/3 of it). `None` for fewer than 9 points.
+pub fn noise(u: &[f64]) -> Option<f64> {
+    const C: [f64; 7] = [-2.0, 3.0, 6.0, 7.0, 6.0, 3.0, -2.0];
+    if u.len() < 9 {
+        return None;
+    }
+    let mut r: Vec<f64> = u
+        .windows(7)
+        .map(|w| (w[3] - w.iter().zip(C).map(|(a, c)| a * c).sum::<f64>() / 21.0).abs())
+        .collect();
+    let mid = r.len() / 2;
+    let med = *r.select_nth_unstable_by(mid, f64::total_cmp).1;
+    Some((1.4826 * med / (2.0f64 / 3.0).sqrt()).max(LEAST_NOISE))
+}
+
+/// A span of the track (indices `first..last`, the end excluded) and the law fitted there.
+#[derive(Debug, Clone)]
+pub struct Span {
+    pub first: usize,
+    pub last: usize,
+    pub fitted: Fitted,
+    /// Whether the law explains the span: its residuals leave at most `1 − EXPLAINED` of the
+    /// motion's variance there.
+    pub holds: bool,
+}
+
+/// The samples of a track that a law is fitted to.
+pub struct Samples<'a> {
+    pub t: &'a [f64],
+    pub u: &'a [f64],
+    pub xy: &'a [(f64, f64)],
+}
+
+impl Samples<'_> {
+    /// The variance of what `law` is fitted to over `a..b` (the acceleration's: x's and y's,
+    /// averaged as its residuals are).
+    fn variance(&self, law: TrackLaw, a: usize, b: usize) -> f64 {
+        fn var(v: impl Iterator<Item = f64> + Clone) -> f64 {
+            let n = v.clone().count() as f64;
+            let m = v.clone().sum::<f64>() / n;
+            v.map(|x| (x - m) * (x - m)).sum::<f64>() / n
+        }
+        match law {
+            TrackLaw::Oscillation => var(self.u[a..b].iter().copied()),
+            TrackLaw::ConstantAcceleration => {
+                let xy = &self.xy[a..b];
+                0.5 * (var(xy.iter().map(|p| p.0)) + var(xy.iter().map(|p| p.1)))
+            }
+        }
+    }
+
+    fn fit(&self, law: TrackLaw, a: usize, b: usize, near: Option<&Fitted>) -> Option<Fitted> {
+        law.fit(&self.t[a..b], &self.u[a..b], &self.xy[a..b], near)
+    }
+}
+
+/// The longest span where `law` explains `s` within `noise`: the window of `least` samples whose
+/// motion it explains best, grown at either end (by halves, eighths, then single samples) while the
+/// span's residuals stay within [`SPREADS`] noise and each sample added within
+/// [`POINT_SPREADS`]. `None` where the track is shorter than `least` or the law fits no window.
+pub fn longest(s: &Samples, law: TrackLaw, least: usize, noise: f64) -> Option<Span> {
+    let n = s.t.len();
+    if n < least || least < 2 {
+        return None;
+    }
+    let step = (least / 3).max(1);
+    let mut starts: Vec<usize> = (0..=n - least).step_by(step).collect();
+    starts.push(n - least);
+    // The seed: the window whose motion the law explains best (least residual for its spread;
+    // a still stretch explains nothing).
+    let (mut first, mut last) = starts
+        .iter()
+        .filter_map(|&i| {
+            let f = s.fit(law, i, i + least, None)?;
+            let spread = s.variance(law, i, i + least);
+            (spread > 0.0).then(|| (f.rms().powi(2) / spread, i))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, i)| (i, i + least))?;
+    let mut fitted = s.fit(law, first, last, None)?;
+    // The law's own accuracy on this track: its best window's residual (widened for the
+    // freedom it used there), where that is above the noise (a centroid's smooth bias, a
+    // swing's arc read along a line).
+    let k = law.freedom() as f64
+        / if law == TrackLaw::ConstantAcceleration {
+            2.0
+        } else {
+            1.0
+        };
+    let level = fitted.rms() * (least as f64 / (least as f64 - k).max(1.0)).sqrt();
+    let noise = noise.max(level);
+    'grow: loop {
+        for before in [true, false] {
+            let len = last - first;
+            for by in [len / 2, len / 8, 1] {
+                let by = by.max(1);
+                let (a, b) = if before {
+                    (first.saturating_sub(by), last)
+                } else {
+                    (first, (last + by).min(n))
+                };
+                if (a, b) == (first, last) {
+                    continue;
+                }
+                let Some(f) = s.fit(law, a, b, Some(&fitted)) else {
+                    continue;
+                };
+                if explains(&f, law, (a, b), (first, last), noise) {
+                    first = a;
+                    last = b;
+                    fitted = f;
+                    continue 'grow;
+                }
+            }
+        }
+        break;
+    }
+    let spread = s.variance(law, first, last);
+    Some(Span {
+        first,
+        last,
+        holds: spread > 0.0 && fitted.rms().powi(2) <= (1.0 - EXPLAINED) * spread,
+        fitted,
+    })
+}
+
+/// Whether `f`, fitted on `a..b`, explains it within the noise, the samples outside `was`
+/// each within [`POINT_SPREADS`].
+fn explains(
+    f: &Fitted,
+    law: TrackLaw,
+    (a, b): (usize, usize),
+    was: (usize, usize),
+    noise: f64,
+) -> bool {
+    if f.rms() > SPREADS * noise {
+        return false;
+    }
+    let len = b - a;
+    // The acceleration's residuals are x's then y's.
+    let channels = match law {
+        TrackLaw::Oscillation => 1,
+        TrackLaw::ConstantAcceleration => 2,
+    };
+    (0..channels).all(|c| {
+        let r = &f.residuals[c * len..(c + 1) * len];
+        (a..b)
+            .filter(|i| !(was.0..was.1).contains(i))
+            .all(|i| r[i - a].abs() <= POINT_SPREADS * noise)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A mass held still by a hand that shakes it, then let go to oscillate.
+    #[test]
+    fn the_span_starts_where_the_hand_lets_go() {
+        let t: Vec<f64> = (0..300).map(|i| i as f64 / 30.0).collect();
+        let (w, z) = (6.0, 0.02);
+        let u: Vec<f64> = t
+            .iter()
+            .map(|&s| {
+                let ripple = 0.03 * (91.7 * s).sin();
+                if s < 3.0 {
+                    30.0 + 4.0 * (s * 2.3).sin().powi(3) + ripple
+                } else {
+                    let s = s - 3.0;
+                    30.0 * (-z * s).exp() * (w * s).cos() + ripple
+                }
+            })
+            .collect();
+        let xy: Vec<(f64, f64)> = u.iter().map(|&v| (0.0, v)).collect();
+        let s = Samples {
+            t: &t,
+            u: &u,
+            xy: &xy,
+        };
+        let sigma = noise(&u).unwrap();
+        let span = longest(&s, TrackLaw::Oscillation, 40, sigma).unwrap();
+        assert!(span.holds);
+        assert!((88..=92).contains(&span.first), "{}", span.first);
+        assert_eq!(span.last, 300);
+        let g0 = span.fitted.value("gamma0").unwrap().value;
+        assert!((g0 / (w * w + z * z) - 1.0).abs() < 1e-3, "{g0}");
+    }
+
+    #[test]
+    fn the_noise_of_a_smooth_motion_is_its_added_noise() {
+        // A slow sine with an alternating ±0.5 px: the smoother leaves it all.
+        let u: Vec<f64> = (0..200)
+            .map(|i| 10.0 * (i as f64 * 0.05).sin() + if i % 2 == 0 { 0.5 } else { -0.5 })
+            .collect();
+        let n = noise(&u).unwrap();
+        // The residual of ±0.5 through the smoother is 0.5·(1 + 14/21)... scaled: within 2×.
+        assert!(n > 0.4 && n < 1.5, "{n}");
+    }
+}

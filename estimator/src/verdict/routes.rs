@@ -1,0 +1,86 @@
+//! The two routes compared: where the object's own track (`track`) oscillates clearly
+//! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a measurement of the same γ0 (or g/L) the latent's answer gives, with no
+//! encoder between the picture and the law. An answer whose model does not oscillate, or whose
+//! rate lies away from the track's by more than both errors allow and more than the 2 % that
+//! separates a right answer from a wrong one, is doubtful, and the reason names both.
+
+use super::{Check, Grade, Reason};
+use crate::analysis::Run;
+use crate::track::GUIDING_PERIODS;
+use physvid_shared::cli::approx;
+
+pub struct Routes;
+
+/// Rates further apart than this share, and than [`ERRORS`] joint standard errors, disagree.
+pub const APART: f64 = 0.02;
+pub const ERRORS: f64 = 3.0;
+
+/// The names a rate² goes by among the models' values.
+const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
+
+impl Check for Routes {
+    fn name(&self) -> &'static str {
+        "routes"
+    }
+    fn judge(&self, r: &Run) -> Vec<Reason> {
+        let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
+            return Vec::new();
+        };
+        let periods = span.periods.unwrap_or(0.0);
+        let Some(g) = span.values.iter().find(|v| v.name == "gamma0") else {
+            return Vec::new();
+        };
+        let track = format!(
+            "the object's track oscillates over {}–{} s ({} periods) with γ0 {} ± {} 1/s^2",
+            approx(span.first_s),
+            approx(span.last_s),
+            approx(periods),
+            approx(g.value),
+            approx(g.error)
+        );
+        if !r.config.model.oscillates(&r.final_values) {
+            return vec![Reason::new(
+                self.name(),
+                Grade::Doubtful,
+                format!(
+                    "{track}, but the answer is a {} that does not: try --model \
+                     damped-oscillator (or pendulum), with --start {} to keep the free motion",
+                    r.model,
+                    approx(span.first_s)
+                ),
+            )
+            .measured(periods, GUIDING_PERIODS)];
+        }
+        let Some(p) = r
+            .parameters
+            .iter()
+            .find(|p| RATE_NAMES.contains(&p.name.as_str()))
+        else {
+            return Vec::new();
+        };
+        let gap = (p.estimate - g.value).abs();
+        let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
+        let share = gap / g.value.abs().max(f64::MIN_POSITIVE);
+        if share <= APART || gap <= ERRORS * joint {
+            return Vec::new();
+        }
+        vec![Reason::new(
+            self.name(),
+            Grade::Doubtful,
+            format!(
+                "{track}; the latent's {} is {} ± {}, {} % away ({} joint standard errors): \
+                 one of the two is wrong; look at the track in report.html",
+                p.name,
+                approx(p.estimate),
+                approx(p.standard_error.unwrap_or(f64::NAN)),
+                approx(100.0 * share),
+                approx(if joint > 0.0 {
+                    gap / joint
+                } else {
+                    f64::INFINITY
+                })
+            ),
+        )
+        .measured(share, APART)]
+    }
+}
