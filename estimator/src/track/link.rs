@@ -25,6 +25,13 @@ impl Tracklet {
         )
     }
 
+    /// Its blobs' median size (pixels).
+    pub fn usual_area(&self) -> f64 {
+        let mut areas: Vec<f64> = self.blobs.iter().map(|b| b.area).collect();
+        let mid = areas.len() / 2;
+        *areas.select_nth_unstable_by(mid, f64::total_cmp).1
+    }
+
     /// How far its centroid moves over the tracklet (the larger side of the box it spans).
     pub fn extent(&self) -> f64 {
         let span = |f: fn(&Blob) -> f64| {

@@ -176,9 +176,7 @@ struct Clock<'a> {
 /// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against
 /// its usual size.
 fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
-    let mut areas: Vec<f64> = tracklet.blobs.iter().map(|b| b.area).collect();
-    let mid = areas.len() / 2;
-    let usual = *areas.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let usual = tracklet.usual_area();
     tracklet
         .frames
         .iter()

@@ -82,9 +82,7 @@ impl Patch {
 /// is not seen), the blobs moving at most `step` pixels a frame.
 pub fn refine(frames: &SmallFrames, tracklet: &Tracklet) -> Vec<(usize, Match)> {
     let (w, h) = frames.size;
-    let mut areas: Vec<f64> = tracklet.blobs.iter().map(|b| b.area).collect();
-    let mid = areas.len() / 2;
-    let usual = *areas.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let usual = tracklet.usual_area();
     let half = ((usual.sqrt() / 2.0).ceil() as usize + 2).clamp(3, LARGEST_HALF);
     // The fastest step seen between consecutive sightings widens the search.
     let fastest = tracklet
@@ -231,7 +229,7 @@ mod tests {
         for (k, m) in &found {
             assert!((m.x - places[*k].0 - x0).abs() < 0.15, "frame {k}: {m:?}");
             assert!((m.y - places[*k].1 - y0).abs() < 0.15, "frame {k}: {m:?}");
-            assert!(m.score > 0.9);
+            assert!(m.score > LEAST_SCORE, "frame {k}: {m:?}");
         }
     }
 }
