@@ -8,8 +8,8 @@ use crate::physics::ModelRef;
 use crate::track::{self, TrackRoute};
 use physvid_shared::video;
 
-/// Where the model and the span are the tool's to choose (`chooses` with no `--model` at all,
-/// not `--model auto`, no model files, no
+/// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
+/// no model files, no
 /// `--start`/`--end`, no `--init`) and the track oscillates clearly (`TrackRoute::guiding`):
 /// the request for the latent route on the oscillator over the track's span, with the warning
 /// that says so. The latent starts from its own starts, not the track's answer: the two routes
@@ -18,9 +18,7 @@ use physvid_shared::video;
 /// not learn.
 pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     let r = &req.load.recording;
-    // An explicit `--model auto` asks for every candidate; only a model left unsaid is guided.
     let free = chooses
-        && !req.choose
         && req.candidates.is_empty()
         && req.init.is_empty()
         && r.start.is_none()

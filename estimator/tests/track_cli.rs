@@ -71,7 +71,7 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
     let n = track["track"]["t"].as_array().unwrap().len();
     assert!(n >= 200, "{n} samples");
     assert_eq!(track["track"]["quality"].as_array().unwrap().len(), n);
-    // The latent trained the oscillator on that span, from the track's answer.
+    // The latent trained the oscillator on that span alone (no model choice).
     assert_eq!(report["model"], "damped-oscillator");
     assert!(
         err.contains("the latent route trained the damped-oscillator there"),
