@@ -1,11 +1,14 @@
 //! The second route's part in a run: the object's own track read for a video file
 //! (`track::follow`), and the request it guides where its oscillation is clear (the
 //! oscillator on the track's span, in place of a choice among every model on frames a hand
-//! may share). `run` calls both before the estimation and sets the track on its `Run`.
+//! may share). `run` calls both before the estimation, and `settle` after it.
 
+use crate::choice;
 use crate::config::Request;
 use crate::physics::ModelRef;
+use crate::report::Report;
 use crate::track::{self, TrackRoute};
+use crate::verdict;
 use physvid_shared::video;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
@@ -62,5 +65,19 @@ pub fn second_route(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRo
             warnings.push(format!("the object's track could not be read: {e}"));
             None
         }
+    }
+}
+
+/// `report` with the track and the route's warnings set on its run, and its verdict judged
+/// again with them (the model choice's close call kept).
+pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
+    report.run.warnings.extend(warnings);
+    if let Some(route) = route {
+        report.run.track = Some(route);
+        let close = report
+            .model_choice
+            .as_ref()
+            .and_then(choice::close::close_call);
+        report.verdict = verdict::judge(&report.run).with(close);
     }
 }

@@ -47,8 +47,7 @@ pub fn run(req: &Request) -> anyhow::Result<()> {
     let Estimation { mut report, data } = match estimation(req) {
         Ok(e) => e,
         Err(e) => {
-            // No estimate: an earlier run's report must not stand in --out as if it were this
-            // run's.
+            // No estimate: an earlier run's report must not stand in --out as this run's.
             if matches!(
                 e.downcast_ref::<EstimateError>(),
                 Some(EstimateError::NoEstimate(_))
@@ -89,8 +88,8 @@ pub fn run(req: &Request) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The model's choice where the request makes one ([`chooses`]), else one estimation; writes
-/// nothing.
+/// The object's track (`guide`), then the model's choice where the request makes one
+/// ([`chooses`]) or one estimation; writes nothing.
 pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
     estimation_watched(req, Watch::default())
 }
@@ -108,18 +107,8 @@ pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimat
     } else {
         estimate(req, watch)?
     };
-    let run = &mut est.report.run;
-    run.warnings.extend(warnings);
-    run.warnings.extend(guided.map(|(_, why)| why));
-    if let Some(route) = route {
-        run.track = Some(route);
-        let close = est
-            .report
-            .model_choice
-            .as_ref()
-            .and_then(choice::close::close_call);
-        est.report.verdict = verdict::judge(&est.report.run).with(close);
-    }
+    warnings.extend(guided.map(|(_, why)| why));
+    guide::settle(&mut est.report, route, warnings);
     Ok(est)
 }
 
