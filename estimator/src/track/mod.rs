@@ -213,7 +213,7 @@ fn route_of(
     let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale).collect();
     let quality = matches.iter().map(|(_, m)| m.score).collect();
     let (along, axis) = principal_axis(&x, &y);
-    let sigma = noise(&along).unwrap_or(segment_floor());
+    let sigma = noise(&along).unwrap_or(segment::LEAST_NOISE);
     let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
     let samples = Samples {
         t: &t,
@@ -255,10 +255,6 @@ fn route_of(
         laws,
         chosen,
     })
-}
-
-fn segment_floor() -> f64 {
-    0.02
 }
 
 /// The positions along the path's principal direction (from its mean), and that direction.

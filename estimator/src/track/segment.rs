@@ -14,7 +14,7 @@ const POINT_SPREADS: f64 = 6.0;
 pub const EXPLAINED: f64 = 0.99;
 
 /// Below this (pixels) a track's noise is rounding: a clean render's.
-const LEAST_NOISE: f64 = 0.02;
+pub const LEAST_NOISE: f64 = 0.02;
 
 /// The noise of a sampled motion: each point's distance from the cubic through its six
 /// neighbours' window (the Savitzky–Golay smoother's residual, 7 points), as a robust spread
