@@ -5,6 +5,7 @@
 
 use crate::choice;
 use crate::config::Request;
+use crate::data::Framing;
 use crate::physics::ModelRef;
 use crate::report::Report;
 use crate::track::{self, TrackRoute};
@@ -32,14 +33,25 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let mut g = req.clone();
     g.choose = false;
     g.load.model = Some(model);
+    let framed = match r.crop {
+        None => {
+            let crop = route.frame_of(span);
+            g.load.recording.crop = Some(Framing::Track(crop));
+            format!(
+                ", framed on the object's path (--crop {},{},{},{})",
+                crop.x, crop.y, crop.w, crop.h
+            )
+        }
+        Some(_) => String::new(),
+    };
     g.load.recording.start = Some(first);
     // The end is excluded: half a frame past the last sample.
     let step = (last - first) / (span.samples.max(2) - 1) as f64;
     g.load.recording.end = Some(last + 0.5 * step);
     let why = format!(
         "the object's track oscillates over {:.2}–{:.2} s of the file ({:.1} periods): the \
-         latent route trained the damped-oscillator there, from its own starts, as a measurement \
-         independent of the track's (give --model or --start to choose yourself)",
+         latent route trained the damped-oscillator there{framed}, from its own starts, as a \
+         measurement independent of the track's (give --model or --start to choose yourself)",
         first,
         last,
         span.periods.unwrap_or(0.0)

@@ -1,8 +1,8 @@
 //! Framing: what part of a recording's frame the encoder sees. `--crop X,Y,W,H` as given,
 //! `--crop full` the whole frame, and by default (`--crop auto`) the region where the picture
 //! moves, from a quick survey at low resolution (`physvid_shared::video::survey`), at the
-//! frame's shape (a tall region in a wide frame at its own); and the figure that shows it
-//! above the clips.
+//! frame's shape (a tall region in a wide frame at its own), or the object's path where its
+//! track guides the run (`guide`); and the figure that shows it above the clips.
 
 use super::RecordingRequest;
 use crate::error::{input_error, EstimateError};
@@ -20,6 +20,8 @@ pub enum Framing {
     Full,
     /// The rectangle given.
     Crop(Crop),
+    /// The object's path where its track guides the latent (`TrackRoute::frame_of`).
+    Track(Crop),
 }
 
 /// An automatic crop covering more of the frame than this is not made (the whole frame is
@@ -91,6 +93,12 @@ pub fn frame(
         (Some(Framing::Crop(c)), _) => Framed {
             crop: Some(c),
             how: "--crop",
+            survey: None,
+            size: size_for(c.w, c.h),
+        },
+        (Some(Framing::Track(c)), _) => Framed {
+            crop: Some(c),
+            how: "the object's path, from its track",
             survey: None,
             size: size_for(c.w, c.h),
         },

@@ -1,5 +1,6 @@
-//! What differs from the background in each frame: the sensor's noise read off the
-//! differences from each pixel's median over the recording, the object's polarity (darker or
+//! What differs from the background in each frame: each frame's level (a camera's exposure or
+//! a drifting light moves the whole picture at once, and is taken off), the sensor's noise read
+//! off the differences from each pixel's median over the recording, the object's polarity (darker or
 //! lighter than what it passes: the sign most of the large differences take), the background
 //! as each pixel's value that the object leaves alone (a high percentile for a dark object, a
 //! low one for a light one: a slow or small motion puts the object on the same pixels for much
@@ -35,8 +36,12 @@ pub struct Blob {
 
 /// The background and the difference that counts as a change.
 pub struct Background {
-    /// Each pixel's value without the object (`BACKGROUND_SHARE`).
+    /// Each pixel's value without the object (`BACKGROUND_SHARE`), on the frames' common level.
     pub median: Vec<u8>,
+    /// Each frame's level against the others (grey levels): the median of its differences
+    /// from the median picture, a camera's exposure or a drifting light moving the whole
+    /// picture at once. A frame is compared with the background less its level.
+    pub level: Vec<i16>,
     /// The object's sense: −1 darker than the background, +1 lighter.
     pub polarity: f64,
     /// Grey levels.
@@ -45,9 +50,40 @@ pub struct Background {
     pub noise: f64,
 }
 
+/// Each frame's level (the median of its differences from `median`, whole grey levels).
+fn levels(frames: &SmallFrames, median: &[u8]) -> Vec<i16> {
+    (0..frames.len())
+        .map(|i| {
+            let mut histogram = [0u64; 511];
+            for (a, b) in frames.frame(i).iter().zip(median) {
+                histogram[(*a as i32 - *b as i32 + 255) as usize] += 1;
+            }
+            let total: u64 = histogram.iter().sum();
+            let mut seen = 0;
+            let at = histogram
+                .iter()
+                .position(|&c| {
+                    seen += c;
+                    2 * seen >= total
+                })
+                .unwrap_or(255);
+            at as i16 - 255
+        })
+        .collect()
+}
+
+/// The pictures' values at a pixel for the frames `picked`, each less its frame's level,
+/// sorted.
+fn column(frames: &SmallFrames, picked: &[usize], level: &[i16], p: usize, into: &mut Vec<i16>) {
+    into.clear();
+    into.extend(picked.iter().map(|&i| frames.frame(i)[p] as i16 - level[i]));
+    into.sort_unstable();
+}
+
 /// The noise of the differences from each pixel's median over up to [`BACKGROUND_FRAMES`]
-/// frames (1.4826 × their median absolute deviation, from a histogram), the polarity of the
-/// larger ones, and the background the object leaves alone.
+/// frames (1.4826 × their median absolute deviation, from a histogram), each frame taken at
+/// the common level (`levels`), the polarity of the larger ones, and the background the object
+/// leaves alone.
 pub fn background(frames: &SmallFrames) -> Background {
     let n = frames.len();
     let pixels = frames.size.0 * frames.size.1;
@@ -58,23 +94,31 @@ pub fn background(frames: &SmallFrames) -> Background {
             .map(|k| k * (n - 1) / (BACKGROUND_FRAMES - 1))
             .collect()
     };
-    let mut median = vec![0u8; pixels];
+    let mut values = Vec::with_capacity(picked.len());
+    let flat = vec![0i16; n];
+    let raw: Vec<u8> = (0..pixels)
+        .map(|p| {
+            column(frames, &picked, &flat, p, &mut values);
+            values[values.len() / 2].clamp(0, 255) as u8
+        })
+        .collect();
+    let level = levels(frames, &raw);
+    let mut median = vec![0i16; pixels];
     let mut low = vec![0u8; pixels];
     let mut high = vec![0u8; pixels];
-    let mut column = Vec::with_capacity(picked.len());
     let at = |share: f64, len: usize| ((share * (len - 1) as f64).round() as usize).min(len - 1);
+    let grey = |v: i16| v.clamp(0, 255) as u8;
     for p in 0..pixels {
-        column.clear();
-        column.extend(picked.iter().map(|&i| frames.frame(i)[p]));
-        column.sort_unstable();
-        median[p] = column[column.len() / 2];
-        low[p] = column[at(1.0 - BACKGROUND_SHARE, column.len())];
-        high[p] = column[at(BACKGROUND_SHARE, column.len())];
+        column(frames, &picked, &level, p, &mut values);
+        median[p] = values[values.len() / 2];
+        low[p] = grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]);
+        high[p] = grey(values[at(BACKGROUND_SHARE, values.len())]);
     }
+    let difference = |i: usize, p: usize, a: u8| (a as i16 - level[i] - median[p]) as f64;
     let mut histogram = [0u64; 256];
     for &i in &picked {
-        for (a, b) in frames.frame(i).iter().zip(&median) {
-            histogram[a.abs_diff(*b) as usize] += 1;
+        for (p, &a) in frames.frame(i).iter().enumerate() {
+            histogram[difference(i, p, a).abs().min(255.0) as usize] += 1;
         }
     }
     let med = histogram_median(&histogram);
@@ -87,8 +131,8 @@ pub fn background(frames: &SmallFrames) -> Background {
     // The polarity: which sign the differences beyond the threshold mostly take.
     let (mut darker, mut lighter) = (0.0, 0.0);
     for &i in &picked {
-        for (a, b) in frames.frame(i).iter().zip(&median) {
-            let d = *a as f64 - *b as f64;
+        for (p, &a) in frames.frame(i).iter().enumerate() {
+            let d = difference(i, p, a);
             if d < -threshold {
                 darker -= d;
             } else if d > threshold {
@@ -103,6 +147,7 @@ pub fn background(frames: &SmallFrames) -> Background {
     };
     Background {
         median,
+        level,
         polarity,
         threshold,
         noise,
@@ -121,13 +166,17 @@ fn histogram_median(h: &[u64; 256]) -> f64 {
     255.0
 }
 
-/// The blobs of `frame` against `bg`: pixels beyond the threshold in the object's sense, opened by a 3×3 cross (a
-/// speck or a one-pixel line goes), 8-connected, at least [`LEAST_AREA`] pixels.
-pub fn blobs(frame: &[u8], bg: &Background, (w, h): (usize, usize)) -> Vec<Blob> {
-    let diff: Vec<f64> = frame
+/// The blobs of frame `k` against `bg`: pixels beyond the threshold in the object's sense (the
+/// frame taken at the common level), opened by a 3×3 cross (a speck or a one-pixel line goes),
+/// 8-connected, at least [`LEAST_AREA`] pixels.
+pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
+    let (w, h) = frames.size;
+    let level = bg.level[k] as f64;
+    let diff: Vec<f64> = frames
+        .frame(k)
         .iter()
         .zip(&bg.median)
-        .map(|(a, b)| (bg.polarity * (*a as f64 - *b as f64)).max(0.0))
+        .map(|(a, b)| (bg.polarity * (*a as f64 - level - *b as f64)).max(0.0))
         .collect();
     let on: Vec<bool> = diff.iter().map(|&d| d > bg.threshold).collect();
     let on = dilate(&erode(&on, w, h), w, h);
@@ -213,7 +262,7 @@ mod tests {
         let bg = background(&frames);
         assert_eq!(bg.median[0], 200);
         for (k, &(x, y)) in places.iter().enumerate() {
-            let b = blobs(frames.frame(k), &bg, frames.size);
+            let b = blobs(&frames, k, &bg);
             assert_eq!(b.len(), 1, "frame {k}: {b:?}");
             assert!((b[0].x - (x as f64 + 1.5)).abs() < 1e-9);
             assert!((b[0].y - (y as f64 + 1.5)).abs() < 1e-9);
@@ -223,9 +272,31 @@ mod tests {
     }
 
     #[test]
+    fn a_picture_brightening_and_dimming_as_a_whole_keeps_one_blob() {
+        // A camera's exposure moving the wall 12–30 grey levels from frame to frame (more than
+        // the threshold of 10): the frame's level is taken off before it is compared.
+        let places: Vec<(usize, usize)> = (0..9).map(|k| (2 + 3 * k, 5)).collect();
+        let mut frames = square_at(&places, (40, 16));
+        let pixels = 40 * 16;
+        for k in 0..places.len() {
+            let shift = [0i16, 30, -12, 18, -25, 0, 12, -30, 20][k];
+            for v in &mut frames.pixels[k * pixels..(k + 1) * pixels] {
+                *v = (*v as i16 + shift).clamp(0, 255) as u8;
+            }
+        }
+        let bg = background(&frames);
+        assert_eq!(bg.level[1] - bg.level[0], 30);
+        for (k, &(x, _)) in places.iter().enumerate() {
+            let b = blobs(&frames, k, &bg);
+            assert_eq!(b.len(), 1, "frame {k}: {b:?}");
+            assert!((b[0].x - (x as f64 + 1.5)).abs() < 1e-9, "frame {k}: {b:?}");
+        }
+    }
+
+    #[test]
     fn a_still_picture_has_no_blobs() {
         let frames = square_at(&[(3, 3); 5], (20, 12));
         let bg = background(&frames);
-        assert!(blobs(frames.frame(2), &bg, frames.size).is_empty());
+        assert!(blobs(&frames, 2, &bg).is_empty());
     }
 }

@@ -59,6 +59,11 @@ pub struct Track {
     pub axis: (f64, f64),
     /// The track's noise along the axis (pixels, `segment::noise`).
     pub noise: f64,
+    /// The object's usual size: the side of a square of its blob's usual area (pixels of the
+    /// displayed frame; the part of it that differs from the background in the object's sense).
+    pub size: f64,
+    /// The displayed frame's width and height (pixels).
+    pub picture: (usize, usize),
     /// Frames read, and the picture's threshold for a change (grey levels).
     pub frames: usize,
     pub threshold: f64,
@@ -123,16 +128,32 @@ pub fn follow(
     span: (Option<f64>, Option<f64>),
     fps: Option<f64>,
 ) -> Result<Option<TrackRoute>, VideoError> {
+    Ok(candidates(input, info, span, fps)?
+        .into_iter()
+        .max_by(|a, b| {
+            a.explained()
+                .total_cmp(&b.explained())
+                .then(a.track.t.len().cmp(&b.track.t.len()))
+        }))
+}
+
+/// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
+/// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
+/// where it holds: what `follow` chooses among.
+pub fn candidates(
+    input: &Path,
+    info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    fps: Option<f64>,
+) -> Result<Vec<TrackRoute>, VideoError> {
     let frames = small_frames(input, info, span, TRACK_SIDE)?;
     let n = frames.len();
     if n < LEAST_FRAMES {
-        return Ok(None);
+        return Ok(Vec::new());
     }
     let (w, h) = frames.size;
     let bg = blobs::background(&frames);
-    let found: Vec<Vec<blobs::Blob>> = (0..n)
-        .map(|i| blobs::blobs(frames.frame(i), &bg, (w, h)))
-        .collect();
+    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(&frames, i, &bg)).collect();
     let (t_all, file_all) = times(info, span, n, fps);
     let mut steps: Vec<f64> = t_all
         .windows(2)
@@ -152,25 +173,25 @@ pub fn follow(
         t: &t_all,
         file: &file_all,
         scale,
+        picture: (info.width, info.height),
     };
-    let best = tracklets
+    Ok(tracklets
         .iter()
         .take(TRIED)
-        .flat_map(|t| [centroids(t), template::refine(&frames, t)])
-        .filter_map(|sightings| route_of(&sightings, &clock, n, bg.threshold))
-        .max_by(|a, b| {
-            a.explained()
-                .total_cmp(&b.explained())
-                .then(a.track.t.len().cmp(&b.track.t.len()))
-        });
-    Ok(best)
+        .flat_map(|t| {
+            let size = t.usual_area().sqrt();
+            [(centroids(t), size), (template::refine(&frames, t), size)]
+        })
+        .filter_map(|(sightings, size)| route_of(&sightings, size, &clock, n, bg.threshold))
+        .collect())
 }
 
-/// The frames' times and the frames' scale to the displayed picture.
+/// The frames' times, their scale to the displayed picture and its size.
 struct Clock<'a> {
     t: &'a [f64],
     file: &'a [f64],
     scale: f64,
+    picture: (usize, usize),
 }
 
 /// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against
@@ -199,6 +220,7 @@ fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
 /// noise and each law's span.
 fn route_of(
     matches: &[(usize, Match)],
+    size: f64,
     clock: &Clock,
     n: usize,
     threshold: f64,
@@ -249,6 +271,8 @@ fn route_of(
             along,
             axis,
             noise: sigma,
+            size: size * scale,
+            picture: clock.picture,
             frames: n,
             threshold,
         },

@@ -4,6 +4,7 @@
 
 use super::laws::{TrackLaw, Value};
 use super::Track;
+use physvid_shared::video::Crop;
 use serde::Serialize;
 
 /// A law fitted on the track where it holds.
@@ -35,6 +36,12 @@ pub struct TrackRoute {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub chosen: Option<TrackLaw>,
 }
+
+/// The frame the latent route is trained on where the track guides it (`frame_of`): the
+/// object's path widened by this many of its sizes…
+pub const FRAME_SIZES: f64 = 4.0;
+/// …or by this share of the frame's short side, where that is more.
+pub const FRAME_SHARE: f64 = 0.1;
 
 /// The track's oscillation guides the latent where its span holds at least this many periods…
 pub const GUIDING_PERIODS: f64 = 3.0;
@@ -70,6 +77,33 @@ impl TrackRoute {
     pub fn file_span(&self, l: &LawSpan) -> (f64, f64) {
         let f = &self.track.file_s;
         (f[l.first], f[l.first + l.samples - 1])
+    }
+
+    /// The rectangle of the displayed frame the object keeps to over the
+    /// span `l`: its path's box widened on each side by [`FRAME_SIZES`] of the object's size, or
+    /// by [`FRAME_SHARE`] of the frame's short side where that is more (the blob is the part of
+    /// the object that differs in its sense: a card or a string beside it may not).
+    pub fn frame_of(&self, l: &LawSpan) -> Crop {
+        let t = &self.track;
+        let (width, height) = t.picture;
+        let span = l.first..l.first + l.samples;
+        let extent = |v: &[f64]| {
+            v[span.clone()]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
+                    (lo.min(a), hi.max(a))
+                })
+        };
+        let margin = (FRAME_SIZES * t.size).max(FRAME_SHARE * width.min(height) as f64);
+        let side = |(lo, hi): (f64, f64), limit: usize| {
+            let limit = limit.max(1) as f64;
+            let a = (lo - margin).floor().clamp(0.0, limit - 1.0);
+            let b = (hi + margin).ceil().clamp(a + 1.0, limit);
+            (a as usize, (b - a) as usize)
+        };
+        let (x, w) = side(extent(&t.x), width);
+        let (y, h) = side(extent(&t.y), height);
+        Crop { x, y, w, h }
     }
 
     /// The chosen law's span.
@@ -132,3 +166,69 @@ pub(super) fn choose(laws: &[LawSpan]) -> Option<TrackLaw> {
 /// An oscillation whose damping is below zero by more than this many standard errors grows:
 /// something drives it.
 const GROWING_ERRORS: f64 = 3.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A route whose object moves between `x` 100–140 and `y` 50–60 of a 400×300 picture (its
+    /// size 6 px), its one law holding on samples 2..8.
+    fn route() -> (TrackRoute, LawSpan) {
+        let n = 10;
+        let x: Vec<f64> = (0..n)
+            .map(|i| {
+                if i < 2 {
+                    10.0
+                } else {
+                    100.0 + 40.0 * ((i - 2) as f64 / 5.0).min(1.0)
+                }
+            })
+            .collect();
+        let y: Vec<f64> = (0..n).map(|i| 50.0 + (i % 2) as f64 * 10.0).collect();
+        let track = Track {
+            t: (0..n).map(|i| i as f64 * 0.1).collect(),
+            file_s: (0..n).map(|i| i as f64 * 0.1).collect(),
+            quality: vec![1.0; n],
+            along: x.clone(),
+            x,
+            y,
+            axis: (1.0, 0.0),
+            noise: 0.1,
+            size: 6.0,
+            picture: (400, 300),
+            frames: n,
+            threshold: 10.0,
+        };
+        let span = LawSpan {
+            law: TrackLaw::Oscillation,
+            holds: true,
+            first_s: 0.2,
+            last_s: 0.7,
+            samples: 6,
+            values: Vec::new(),
+            rms_px: 0.1,
+            periods: Some(3.0),
+            curve: Vec::new(),
+            first: 2,
+        };
+        let route = TrackRoute {
+            track,
+            laws: vec![span.clone()],
+            chosen: Some(TrackLaw::Oscillation),
+        };
+        (route, span)
+    }
+
+    #[test]
+    fn the_frame_of_a_span_is_its_path_widened_and_kept_in_the_picture() {
+        let (mut route, span) = route();
+        // The margin: a tenth of the short side (30 px) over four sizes (24 px); the samples
+        // outside the span (x 10) are left out.
+        let c = route.frame_of(&span);
+        assert_eq!((c.x, c.y, c.w, c.h), (70, 20, 100, 70));
+        // A large object widens it by four of its sizes; the picture's edges bound it.
+        route.track.size = 20.0;
+        let c = route.frame_of(&span);
+        assert_eq!((c.x, c.y, c.w, c.h), (20, 0, 200, 140));
+    }
+}
