@@ -30,11 +30,11 @@ const LEAST_FRAMES: usize = 12;
 /// 2.3 m past a 2.5-m picture: about 3), so a frame's step is its share at the frames' rate.
 const FASTEST: f64 = 4.0;
 
-/// The window a law starts from: an oscillation's an eighth of the track (at least 12
-/// samples), an acceleration's 10 samples.
+/// The window a law starts from: an oscillation's or a swing's an eighth of the track (at
+/// least 12 samples), an acceleration's 10 samples.
 fn least_window(law: TrackLaw, n: usize) -> usize {
     match law {
-        TrackLaw::Oscillation => (n / 8).max(12),
+        TrackLaw::Oscillation | TrackLaw::Swing => (n / 8).max(12),
         TrackLaw::ConstantAcceleration => 10,
     }
 }

@@ -147,7 +147,7 @@ pub(super) fn choose(laws: &[LawSpan]) -> Option<TrackLaw> {
     let free = |l: &LawSpan| {
         l.values
             .iter()
-            .find(|v| v.name == "gamma1")
+            .find(|v| v.name == "gamma1" || v.name == "damping")
             .is_none_or(|d| d.value >= -GROWING_ERRORS * d.error)
     };
     let seen = |l: &&LawSpan| l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l);

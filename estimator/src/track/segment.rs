@@ -54,7 +54,7 @@ pub struct Samples<'a> {
 
 impl Samples<'_> {
     /// The variance of what `law` is fitted to over `a..b` (the acceleration's: x's and y's,
-    /// averaged as its residuals are).
+    /// averaged as its residuals are; the swing's: the path's, along its arc).
     fn variance(&self, law: TrackLaw, a: usize, b: usize) -> f64 {
         fn var(v: impl Iterator<Item = f64> + Clone) -> f64 {
             let n = v.clone().count() as f64;
@@ -63,6 +63,11 @@ impl Samples<'_> {
         }
         match law {
             TrackLaw::Oscillation => var(self.u[a..b].iter().copied()),
+            // The arc's: the path's whole spread (x's and y's).
+            TrackLaw::Swing => {
+                let xy = &self.xy[a..b];
+                var(xy.iter().map(|p| p.0)) + var(xy.iter().map(|p| p.1))
+            }
             TrackLaw::ConstantAcceleration => {
                 let xy = &self.xy[a..b];
                 0.5 * (var(xy.iter().map(|p| p.0)) + var(xy.iter().map(|p| p.1)))
@@ -160,7 +165,7 @@ fn explains(
     let len = b - a;
     // The acceleration's residuals are x's then y's.
     let channels = match law {
-        TrackLaw::Oscillation => 1,
+        TrackLaw::Oscillation | TrackLaw::Swing => 1,
         TrackLaw::ConstantAcceleration => 2,
     };
     (0..channels).all(|c| {

@@ -3,16 +3,19 @@
 //! (γ0 = ω² + ζ², γ1 = 2ζ: the oscillator's z'' + γ1 z' + γ0 z = 0, and a swing's g/L at small
 //! angles), found by variable projection (ω and ζ searched, the rest solved for), and a
 //! constant acceleration in the picture's plane, p0 + v0 t + a t²/2 in x and y (a fall, a toss,
-//! a roll, the release's velocity free). Standard errors from the Jacobian, widened for
-//! residuals that follow one another (their lag-one correlation).
+//! a roll, the release's velocity free), and a swing about a pivot at any amplitude (`swing`).
+//! Standard errors from the Jacobian, widened for residuals that follow one another (their
+//! lag-one correlation).
 
 mod acceleration;
 mod oscillation;
+pub mod swing;
 
 use acceleration::acceleration;
 use oscillation::oscillation;
 use physvid_shared::linalg::solve;
 use serde::Serialize;
+use swing::swing;
 
 /// The laws a track is tried against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -20,23 +23,31 @@ use serde::Serialize;
 pub enum TrackLaw {
     Oscillation,
     ConstantAcceleration,
+    Swing,
 }
 
 impl TrackLaw {
-    pub const ALL: [TrackLaw; 2] = [TrackLaw::Oscillation, TrackLaw::ConstantAcceleration];
+    pub const ALL: [TrackLaw; 3] = [
+        TrackLaw::Oscillation,
+        TrackLaw::ConstantAcceleration,
+        TrackLaw::Swing,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             TrackLaw::Oscillation => "oscillation",
             TrackLaw::ConstantAcceleration => "constant acceleration",
+            TrackLaw::Swing => "swing",
         }
     }
 
-    /// Free parameters of the law (both coordinates for the acceleration).
+    /// Free parameters of the law (both coordinates for the acceleration; the swing's circle
+    /// and its five).
     pub fn freedom(self) -> usize {
         match self {
             TrackLaw::Oscillation => 5,
             TrackLaw::ConstantAcceleration => 6,
+            TrackLaw::Swing => 8,
         }
     }
 
@@ -53,6 +64,7 @@ impl TrackLaw {
         match self {
             TrackLaw::Oscillation => oscillation(t, u, near.map(|f| f.shape)),
             TrackLaw::ConstantAcceleration => acceleration(t, xy),
+            TrackLaw::Swing => swing(t, u, xy, near.map(|f| f.shape)),
         }
     }
 }
@@ -141,4 +153,83 @@ pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
         }
     }
     Some(inv)
+}
+
+pub(super) fn sum_sq(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+/// The model's Jacobian at `p` (one column a parameter) by forward differences of the
+/// residuals (data less model) `r` there.
+pub(super) fn jacobian(
+    p: &[f64],
+    r: &[f64],
+    residual: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+) -> Option<Vec<Vec<f64>>> {
+    (0..p.len())
+        .map(|k| {
+            let h = 1e-6 * p[k].abs().max(1e-2);
+            let mut q = p.to_vec();
+            q[k] += h;
+            let rq = residual(&q)?;
+            Some(rq.iter().zip(r).map(|(a, b)| -(a - b) / h).collect())
+        })
+        .collect()
+}
+
+/// Levenberg–Marquardt from `p0` on the residuals (data less model) that `residual` gives:
+/// the parameters and residuals of the least sum of squares reached. `None` where the start
+/// has no residual.
+pub(super) fn least_squares(
+    p0: &[f64],
+    residual: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let k = p0.len();
+    let mut p = p0.to_vec();
+    let mut r = residual(&p)?;
+    let mut s = sum_sq(&r);
+    let mut lambda = 1e-3;
+    for _ in 0..200 {
+        let Some(j) = jacobian(&p, &r, residual) else {
+            break;
+        };
+        let mut a = vec![0.0; k * k];
+        for i in 0..k {
+            for m in 0..k {
+                a[i * k + m] = j[i].iter().zip(&j[m]).map(|(x, y)| x * y).sum();
+            }
+        }
+        let g: Vec<f64> = j
+            .iter()
+            .map(|c| c.iter().zip(&r).map(|(x, y)| x * y).sum())
+            .collect();
+        let mut moved = false;
+        while lambda < 1e12 {
+            let mut m = a.clone();
+            for i in 0..k {
+                m[i * k + i] *= 1.0 + lambda;
+            }
+            let Some(d) = solve(&m, &g, k) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let q: Vec<f64> = p.iter().zip(&d).map(|(a, b)| a + b).collect();
+            if let Some(rq) = residual(&q) {
+                let sq = sum_sq(&rq);
+                if sq < s {
+                    moved = (s - sq) / s.max(1e-300) > 1e-12;
+                    p = q;
+                    r = rq;
+                    s = sq;
+                    lambda = (lambda * 0.3).max(1e-12);
+                    break;
+                }
+            }
+            lambda *= 10.0;
+        }
+        if !moved {
+            break;
+        }
+    }
+    Some((p, r))
 }
