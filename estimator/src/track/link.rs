@@ -32,6 +32,12 @@ impl Tracklet {
         *areas.select_nth_unstable_by(mid, f64::total_cmp).1
     }
 
+    /// How much it moves: its frames times its extent (what the object does, far and for
+    /// long; a flicker lives long in place, a passing speck moves for a few frames).
+    pub fn reach(&self) -> f64 {
+        self.frames.len() as f64 * self.extent()
+    }
+
     /// How far its centroid moves over the tracklet (the larger side of the box it spans).
     pub fn extent(&self) -> f64 {
         let span = |f: fn(&Blob) -> f64| {
@@ -115,6 +121,23 @@ mod tests {
         assert_eq!(t[0].frames.len(), 10);
         assert_eq!(t[1].frames.len(), 8);
         assert!((t[1].extent() - 18.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_thing_that_moves_far_reaches_further_than_a_flicker_that_lives_long() {
+        let frames: Vec<Vec<Blob>> = (0..30)
+            .map(|k| {
+                let mut v = vec![blob(5.0 + (k % 2) as f64 * 2.5, 5.0)];
+                if (6..26).contains(&k) {
+                    v.push(blob(40.0 + 10.0 * k as f64, 60.0));
+                }
+                v
+            })
+            .collect();
+        let mut t = link(&frames, 12.0);
+        t.sort_by(|a, b| b.reach().total_cmp(&a.reach()));
+        assert_eq!(t[0].frames.len(), 20);
+        assert_eq!(t[1].frames.len(), 30);
     }
 
     #[test]
