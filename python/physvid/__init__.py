@@ -3,7 +3,8 @@
 The Rust estimator and generator of this workspace, called in process (``physvid._core``,
 built with maturin and PyO3). ``generate`` renders a seeded synthetic data set as ``gen`` does;
 ``estimate`` fits a known law to a data set, an array, a video or an image folder and grades
-the answer, as ``estimate`` does::
+the answer, as ``estimate`` does; ``track`` follows the object of a video and fits each law
+where it holds (the second route ``estimate`` prints as ``track:``)::
 
     import physvid
     data = physvid.generate("intensity", samples=200, size=32, seed=5)
@@ -15,6 +16,7 @@ from __future__ import annotations
 # libtorch comes from the torch wheel: torch is loaded first, so the module finds it.
 import torch  # noqa: F401
 
+import html
 import json
 import os
 import shutil
@@ -31,6 +33,7 @@ from ._core import BadInputError, NoEstimateError, PhysvidError, UnreliableError
 __all__ = [
     "generate",
     "estimate",
+    "track",
     "Dataset",
     "Result",
     "Parameter",
@@ -189,9 +192,54 @@ class Result:
 
         return pd.DataFrame([p.__dict__ for p in self.parameters.values()])
 
+    @property
+    def track(self):
+        """The object's own track on a video (``track``'s table: a pandas DataFrame where pandas
+        is installed, else a dict of numpy arrays), or None (a data set, an array, a folder of
+        images, or nothing followed)."""
+        route = self.report.get("track")
+        return None if route is None else _track_table(route)
+
     def __repr__(self) -> str:
         values = ", ".join(f"{p.name}={p.value:.6g}" for p in self.parameters.values())
         return f"Result({self.model}: {values}; {self.verdict.grade})"
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: the model, the verdict with its reasons, the values with their
+        errors and truth, the model choice and the track's line."""
+        e = html.escape
+
+        def num(v: Optional[float]) -> str:
+            return "–" if v is None else f"{v:.6g}"
+
+        rows = "".join(
+            f"<tr><td>{e(p.name)}</td><td>{num(p.value)}</td><td>{num(p.standard_error)}</td>"
+            f"<td>{e(p.unit)}</td><td>{num(p.truth)}</td>"
+            f"<td>{'–' if p.relative_error is None else f'{100 * p.relative_error:+.2f} %'}</td></tr>"
+            for p in self.parameters.values()
+        )
+        reasons = "".join(
+            f"<li><b>{e(r.check)}</b> [{e(r.grade)}]: {e(r.detail)}</li>" for r in self.verdict.reasons
+        )
+        choice = ""
+        if self.report.get("model_choice"):
+            fits = self.report["model_choice"].get("candidates", [])
+            choice = "<p>model choice: " + ", ".join(
+                e(f"{c.get('model')} ({c.get('grade', '?')})") for c in fits
+            ) + "</p>"
+        line = _track_line(self.report["track"]) if self.report.get("track") else ""
+        return (
+            f"<div class='physvid-result'><p><b>{e(self.model)}</b> — verdict "
+            f"<b>{e(self.verdict.grade)}</b></p>"
+            + (f"<ul>{reasons}</ul>" if reasons else "")
+            + "<table><tr><th>parameter</th><th>estimate</th><th>± std. err.</th><th>unit</th>"
+            "<th>truth</th><th>rel. error</th></tr>"
+            + rows
+            + "</table>"
+            + choice
+            + (f"<p>{e(line)}</p>" if line else "")
+            + "</div>"
+        )
 
 
 Source = Union[str, os.PathLike, Dataset, np.ndarray, "torch.Tensor"]
@@ -266,3 +314,49 @@ def estimate(
         if bar is not None:
             bar.close()
     return Result(fitted)
+
+
+_TRACK_COLUMNS = ("t", "file_s", "x", "y", "quality", "along")
+
+
+def _track_table(route: Dict[str, Any]):
+    """report.json's ``track`` as a table: t (s of real time), file_s (the file's own time), x and
+    y (pixels of the displayed frame), quality, along (the position along the motion's own axis,
+    pixels); the laws fitted, the law chosen, the axis and the noise in ``attrs`` (a DataFrame) or
+    under those keys (a dict)."""
+    t = route["track"]
+    columns = {c: np.asarray(t[c], dtype=np.float64) for c in _TRACK_COLUMNS}
+    about = {"laws": route.get("laws", []), "chosen": route.get("chosen"), "axis": t["axis"], "noise": t["noise"]}
+    try:
+        import pandas as pd
+    except ImportError:
+        return {**columns, **about}
+    frame = pd.DataFrame(columns)
+    frame.attrs.update(about)
+    return frame
+
+
+def _track_line(route: Dict[str, Any]) -> str:
+    """The track's line as ``estimate`` prints it (its chosen law, span and values)."""
+    law = next((l for l in route.get("laws", []) if l["law"] == route.get("chosen")), None)
+    if law is None:
+        return "track: no law explains it within its noise"
+    values = ", ".join(f"{v['name']} {v['value']:.6g} ± {v['error']:.2g} {v['unit']}" for v in law["values"])
+    return f"track: {law['law']} over {law['first_s']:.2f}–{law['last_s']:.2f} s: {values}"
+
+
+def track(
+    video: Union[str, os.PathLike],
+    start: Optional[float] = None,
+    end: Optional[float] = None,
+    fps: Optional[float] = None,
+):
+    """The object's own track in ``video`` (``start``/``end``: seconds of its own timeline, as
+    ``estimate --start``; ``fps``: frames a second of real time, as ``--fps``), in seconds and
+    without training: a pandas DataFrame (t, file_s, x, y, quality, along) where pandas is
+    installed, else a dict of numpy arrays; the laws fitted where they hold (a damped
+    oscillation, a constant acceleration, a swing), the one chosen, the axis and the noise in
+    ``attrs`` (or under those keys). None where nothing lives long enough to follow. Raises
+    ``BadInputError`` for a file that is no video."""
+    found = _core.track(str(Path(video)), start=start, end=end, fps=fps)
+    return None if found is None else _track_table(json.loads(found))

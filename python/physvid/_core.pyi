@@ -27,3 +27,9 @@ def estimate(
     out: Optional[str] = None,
     on_epoch: Optional[Callable[[int, int, float, List[Tuple[str, float]]], None]] = None,
 ) -> Fitted: ...
+def track(
+    video: str,
+    start: Optional[float] = None,
+    end: Optional[float] = None,
+    fps: Optional[float] = None,
+) -> Optional[str]: ...

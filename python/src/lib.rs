@@ -1,6 +1,7 @@
 //! `physvid._core`: the generator and the estimator called from Python, in process, on the
 //! workspace's typed library API (`generator::GenArgs` for a data set, `estimator::Request` and
-//! `estimator::estimation_watched` for an estimate). The Python package (`physvid/`) wraps
+//! `estimator::estimation_watched` for an estimate, `estimator::track` for the object's own
+//! track). The Python package (`physvid/`) wraps
 //! these functions in typed objects; errors arrive as the exception classes below, which mirror
 //! `estimate`'s exit codes.
 
@@ -234,10 +235,37 @@ fn estimate(
     Ok(fitted)
 }
 
+/// The object's own track in the video file `video` (trimmed to `start`..`end` of its own
+/// timeline, at `fps` frames a second of real time where given), with each law fitted where it
+/// holds, as report.json's `track`; `None` where nothing lives long enough to follow.
+#[pyfunction]
+#[pyo3(signature = (video, start=None, end=None, fps=None))]
+fn track(
+    py: Python<'_>,
+    video: PathBuf,
+    start: Option<f64>,
+    end: Option<f64>,
+    fps: Option<f64>,
+) -> PyResult<Option<String>> {
+    if !video.is_file() || !physvid_shared::video::is_recording(&video) {
+        return Err(BadInputError::new_err(format!(
+            "{}: not a video file; track() reads a recording (an .mp4, .mov, .avi, .gif, ...)",
+            video.display()
+        )));
+    }
+    let route = py
+        .allow_threads(|| estimator::track::follow_file(&video, (start, end), fps))
+        .map_err(|e| BadInputError::new_err(format!("{}: {e}", video.display())))?;
+    route
+        .map(|r| serde_json::to_string(&r).map_err(|e| PhysvidError::new_err(e.to_string())))
+        .transpose()
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
+    m.add_function(wrap_pyfunction!(track, m)?)?;
     m.add_class::<Fitted>()?;
     let py = m.py();
     m.add("PhysvidError", py.get_type::<PhysvidError>())?;

@@ -1,6 +1,6 @@
 """pytest tests of the Python package (python/): generate and estimate in process, the same
-answers and files as the `gen` and `estimate` binaries, typed errors, and docs/python.md's
-example. Run by scripts/test.sh after `cargo test` has built the binaries."""
+answers and files as the `gen` and `estimate` binaries, the object's track, a notebook's view,
+typed errors, and docs/python.md's example. Run by scripts/test.sh after `cargo test` has built the binaries."""
 import json
 import re
 import subprocess
@@ -41,6 +41,51 @@ def test_generate_then_estimate_recovers_gamma0_and_gamma1(small):
     assert g0.units == "SI" and g0.truth == pytest.approx(4.0016)
     assert r.verdict.grade == "ok", r.verdict
     assert len(r.history) == r.report["epochs_run"]
+    # A notebook's view: the verdict and the values; no track on a data set.
+    page = r._repr_html_()
+    assert "verdict <b>ok</b>" in page and "<td>gamma0</td>" in page and f"{g0.value:.6g}" in page
+    assert r.track is None
+
+
+def swinging_disc(path, seconds=8.0, fps=30):
+    """A bright disc on a grey wall oscillating along x, x = 40 + 15 cos(2π t) e^(−0.05 t), as a
+    lossless video (ffmpeg reads the frames from a pipe)."""
+    import shutil
+
+    if shutil.which("ffmpeg") is None:
+        pytest.skip("ffmpeg is not installed (scripts/setup.sh installs it)")
+    t = np.arange(int(seconds * fps)) / fps
+    rows, cols = np.mgrid[0:60, 0:80]
+    frames = np.full((len(t), 60, 80), 120, np.uint8)
+    for k, s in enumerate(t):
+        x = 40 + 15 * np.cos(2 * np.pi * s) * np.exp(-0.05 * s)
+        frames[k][(cols - x) ** 2 + (rows - 30) ** 2 < 16] = 230
+    done = subprocess.run(
+        ["ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "gray", "-s", "80x60",
+         "-r", str(fps), "-i", "-", "-c:v", "ffv1", str(path)],
+        input=frames.tobytes(), capture_output=True,
+    )
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+def test_track_follows_the_object_and_fits_its_law(tmp_path):
+    table = physvid.track(swinging_disc(tmp_path / "disc.mkv"))
+    assert table is not None
+    columns = {c: np.asarray(table[c]) for c in ("t", "x", "y", "quality", "along")}
+    assert len(columns["t"]) > 200 and np.all(np.diff(columns["t"]) > 0)
+    # x follows the disc (displayed pixels, its centre 0.5 px in); y stays on its row.
+    assert abs(columns["x"].max() - 55.5) < 1.5 and abs(np.median(columns["y"]) - 30.5) < 1.0
+    about = table.attrs if hasattr(table, "attrs") else table
+    assert about["chosen"] == "oscillation", about["laws"]
+    law = next(l for l in about["laws"] if l["law"] == "oscillation")
+    g0 = next(v["value"] for v in law["values"] if v["name"] == "gamma0")
+    assert abs(g0 / (4 * np.pi**2 + 0.0025) - 1) < 0.01, g0
+    # A trimmed span reads only its frames; a file that is no video is refused by name.
+    assert physvid.track(tmp_path / "disc.mkv", start=4.0)["t"].__len__() < len(columns["t"])
+    (tmp_path / "notes.txt").write_text("no video")
+    with pytest.raises(physvid.BadInputError, match="notes.txt"):
+        physvid.track(tmp_path / "notes.txt")
 
 
 def test_the_same_answer_as_the_command_line_on_a_path_an_array_and_a_tensor(tmp_path, small):

@@ -139,6 +139,16 @@ pub fn follow(
         }))
 }
 
+/// [`follow`] on the video file `input`, probed first (the Python package's `track`).
+pub fn follow_file(
+    input: &Path,
+    span: (Option<f64>, Option<f64>),
+    fps: Option<f64>,
+) -> Result<Option<TrackRoute>, VideoError> {
+    let info = physvid_shared::video::probe(input)?;
+    follow(input, &info, span, fps)
+}
+
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
 /// where it holds: what `follow` chooses among.
