@@ -16,6 +16,7 @@ from __future__ import annotations
 # libtorch comes from the torch wheel: torch is loaded first, so the module finds it.
 import torch  # noqa: F401
 
+import difflib
 import html
 import json
 import os
@@ -34,6 +35,8 @@ __all__ = [
     "generate",
     "estimate",
     "track",
+    "options",
+    "Option",
     "Dataset",
     "Result",
     "Parameter",
@@ -245,29 +248,89 @@ class Result:
 Source = Union[str, os.PathLike, Dataset, np.ndarray, "torch.Tensor"]
 
 
+@dataclass(frozen=True)
+class Option:
+    """One of ``estimate``'s options as a keyword: its command-line flag, whether it takes a
+    value (else ``True`` sets it) and may be given several times (a list then), its default as
+    the command line prints it, and its help."""
+
+    keyword: str
+    flag: str
+    takes_value: bool
+    repeats: bool
+    default: Optional[str]
+    help: str
+
+
+_OPTIONS: Optional[Dict[str, Option]] = None
+
+# Keywords of earlier versions, still read.
+_ALIASES = {"references": "reference"}
+
+
+def options() -> Dict[str, Option]:
+    """Every option of ``estimate`` that ``physvid.estimate`` takes as a keyword, by keyword:
+    read from the one definition the command line parses, so the two cannot drift. Left out:
+    the input (``source``), ``--out``/``--force`` (``out=``, ``Result.save``), ``--quiet``
+    (``progress=False``) and a batch's ``--batch``/``--shard``/``--merge`` (a Python loop)."""
+    global _OPTIONS
+    if _OPTIONS is None:
+        _OPTIONS = {o["keyword"]: Option(**o) for o in json.loads(_core.options())}
+    return _OPTIONS
+
+
+def _flags(given: Dict[str, Any]) -> List[str]:
+    """The command line's flags for the keywords ``given`` (``None`` leaves an option at its
+    default; ``True``/``False`` sets or leaves a switch; a list repeats an option that repeats,
+    and is joined by commas for one that takes a list in one value)."""
+    known = options()
+    args: List[str] = []
+    for key, value in given.items():
+        key = _ALIASES.get(key, key)
+        o = known.get(key)
+        if o is None:
+            close = difflib.get_close_matches(key, list(known), n=3)
+            hint = f"; did you mean {', '.join(close)}?" if close else "; physvid.options() lists them"
+            raise TypeError(f"estimate() got an unexpected keyword argument '{key}'{hint}")
+        if value is None or value is False and not o.takes_value:
+            continue
+        if not o.takes_value:
+            if value is not True:
+                raise TypeError(f"{key}: a switch, True or False (got {value!r})")
+            args.append(o.flag)
+        elif isinstance(value, (list, tuple)):
+            if o.repeats:
+                for v in value:
+                    args += [o.flag, str(v)]
+            else:
+                args += [o.flag, ",".join(str(v) for v in value)]
+        else:
+            args += [o.flag, str(value)]
+    return args
+
+
 def estimate(
     source: Source,
-    model: Optional[str] = None,
-    dt: Optional[float] = None,
-    fps: Optional[float] = None,
-    references: Optional[str] = None,
-    epochs: Optional[int] = None,
-    seed: int = 0,
-    device: str = "auto",
-    threads: Optional[int] = None,
+    *,
     progress: Union[bool, Callable[[Epoch], None]] = True,
     out: Union[str, os.PathLike, None] = None,
+    **options: Any,
 ) -> Result:
-    """Estimates the parameters of ``model`` (a built-in's name or a model file; ``None``: the
-    one a data set's meta.json names, else chosen by the evidence; ``"auto"``: chosen always)
-    from ``source``: a path (data set
-    folder, ``.npy``, video, image folder), a ``Dataset``, or an array / tensor
-    ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy`` would be: ``dt`` is needed).
-    ``references`` is ``estimate --reference``'s text. ``progress``: ``True`` shows a tqdm bar
+    """Estimates on ``source``: a path (data set folder, ``.npy``, video, image folder), a
+    ``Dataset``, or an array / tensor ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy``
+    would be: ``dt`` is needed). Every option of ``estimate`` is a keyword of the same name and
+    default (``physvid.options()`` lists them with their help): ``model`` (a built-in's name or
+    a model file; ``None``: the one a data set's meta.json names, else chosen by the evidence;
+    ``"auto"``: chosen always), ``dt``, ``fps``, ``reference`` (``--reference``'s text),
+    ``epochs``, ``seed``, ``threads``, ``start``, ``end``, ``crop``, ``incline_deg``,
+    ``candidate`` (a list of model files), ``ensemble``, ``encoder``, ...; the command line's own
+    parser reads them, so a value it refuses is a ``BadInputError`` with its message, and an
+    unknown keyword a ``TypeError`` naming the close ones. ``progress``: ``True`` shows a tqdm bar
     (``tqdm.auto``: a widget in notebooks) where tqdm is installed, else the command line's
     lines; ``False`` nothing; a function is called with each ``Epoch``. With ``out``, writes what
     ``estimate --out`` writes. Raises ``BadInputError``, ``NoEstimateError`` or
     ``UnreliableError`` (its ``result`` the graded estimate) as ``estimate`` exits 2, 3 or 4."""
+    args = _flags(options)
     if isinstance(source, Dataset):
         read: Any = str(source.path)
     elif isinstance(source, (str, os.PathLike)):
@@ -295,14 +358,7 @@ def estimate(
     try:
         fitted = _core.estimate(
             read,
-            model=model,
-            dt=dt,
-            fps=fps,
-            references=references,
-            epochs=epochs,
-            seed=seed,
-            device=device,
-            threads=threads,
+            args,
             quiet=not progress,
             out=None if out is None else str(out),
             on_epoch=on_epoch,

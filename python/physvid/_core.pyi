@@ -15,18 +15,12 @@ class Fitted:
 def generate(args: List[str], out: str) -> str: ...
 def estimate(
     source: Union[str, np.ndarray],
-    model: Optional[str] = None,
-    dt: Optional[float] = None,
-    fps: Optional[float] = None,
-    references: Optional[str] = None,
-    epochs: Optional[int] = None,
-    seed: int = 0,
-    device: str = "auto",
-    threads: Optional[int] = None,
+    args: List[str],
     quiet: bool = False,
     out: Optional[str] = None,
     on_epoch: Optional[Callable[[int, int, float, List[Tuple[str, float]]], None]] = None,
 ) -> Fitted: ...
+def options() -> str: ...
 def track(
     video: str,
     start: Optional[float] = None,

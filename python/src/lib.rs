@@ -5,16 +5,15 @@
 //! these functions in typed objects; errors arrive as the exception classes below, which mirror
 //! `estimate`'s exit codes.
 
-use clap::ValueEnum;
-use estimator::cli::parse_reference;
-use estimator::config::request::DEFAULT_OUT;
+use clap::Parser;
+use estimator::cli::EstimateArgs;
 use estimator::data::Frames;
-use estimator::physics::ModelRef;
-use estimator::{estimation_watched, EstimateError, Request, Watch};
+use estimator::{estimation_watched, EstimateError, Watch};
 use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
+use std::ffi::OsString;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -117,66 +116,73 @@ impl Fitted {
     }
 }
 
-/// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
-/// array `[N, T, C, H, W]` read in memory) and returns the `Fitted` estimation; with `out`,
-/// writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C stops
-/// it between epochs and raises KeyboardInterrupt.
+/// `estimate`'s options that Python takes as keywords: every flag of the command line but the
+/// input, the output's (Python's `out`, `Result.save` and `progress`) and a batch's (a Python
+/// loop): as JSON, each with its keyword, flag, whether it takes a value and may repeat, its
+/// default and its help, read from the one definition the command line parses
+/// (`cli::EstimateArgs`).
 #[pyfunction]
-#[pyo3(signature = (source, model=None, dt=None, fps=None, references=None, epochs=None, seed=0, device="auto", threads=None, quiet=false, out=None, on_epoch=None))]
-#[allow(clippy::too_many_arguments)]
+fn options() -> PyResult<String> {
+    use clap::CommandFactory;
+    const ELSEWHERE: [&str; 8] = [
+        "input", "out", "force", "quiet", "batch", "shard", "merge", "help",
+    ];
+    let list: Vec<serde_json::Value> = EstimateArgs::command()
+        .get_arguments()
+        .filter(|a| a.get_long().is_some() && !ELSEWHERE.contains(&a.get_id().as_str()))
+        .map(|a| {
+            let takes = a.get_num_args().is_none_or(|n| n.takes_values())
+                && !matches!(
+                    a.get_action(),
+                    clap::ArgAction::SetTrue | clap::ArgAction::SetFalse | clap::ArgAction::Count
+                );
+            serde_json::json!({
+                "keyword": a.get_id().as_str(),
+                "flag": format!("--{}", a.get_long().unwrap_or_default()),
+                "takes_value": takes,
+                "repeats": matches!(a.get_action(), clap::ArgAction::Append),
+                "default": a.get_default_values().first().map(|v| v.to_string_lossy().into_owned()),
+                "help": a.get_help().map(|h| h.to_string()).unwrap_or_default(),
+            })
+        })
+        .collect();
+    serde_json::to_string(&list).map_err(|e| PhysvidError::new_err(e.to_string()))
+}
+
+/// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
+/// array `[N, T, C, H, W]` read in memory) with `args`, `estimate`'s flags (what `options`
+/// lists), parsed and resolved by the command line's own code (`cli::EstimateArgs`: the same
+/// defaults, the same checks, the same errors), and returns the `Fitted` estimation; with
+/// `out`, writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C
+/// stops it between epochs and raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (source, args, quiet=false, out=None, on_epoch=None))]
 fn estimate(
     py: Python<'_>,
     source: Source,
-    model: Option<&str>,
-    dt: Option<f64>,
-    fps: Option<f64>,
-    references: Option<&str>,
-    epochs: Option<usize>,
-    seed: u64,
-    device: &str,
-    threads: Option<usize>,
+    args: Vec<String>,
     quiet: bool,
     out: Option<PathBuf>,
     on_epoch: Option<Py<PyAny>>,
 ) -> PyResult<Fitted> {
     let writes = out.is_some();
     let (input, frames) = source.load()?;
-    // The request, the command line's defaults where an option is not given.
-    let mut req = Request::new(input);
+    let mut line: Vec<OsString> = vec!["estimate".into(), input.into_os_string()];
+    line.extend(args.into_iter().map(OsString::from));
+    if quiet {
+        line.push("--quiet".into());
+    }
+    // Without `out` nothing is written; the default folder is not asked to be writable.
+    line.push("--out".into());
+    line.push(out.unwrap_or_else(std::env::temp_dir).into_os_string());
+    let parsed = EstimateArgs::try_parse_from(line).map_err(|e| {
+        let text = e.to_string();
+        let first = text.lines().next().unwrap_or_default();
+        BadInputError::new_err(first.trim_start_matches("error: ").to_string())
+    })?;
+    let parsed = parsed.validate().map_err(|e| to_py(e.into()))?;
+    let mut req = parsed.request().map_err(|e| to_py(e.into()))?;
     req.load.frames = frames.map(std::sync::Arc::new);
-    match model {
-        // As without --model: a data set's meta.json names it, else it is chosen.
-        None => {}
-        Some("auto") => req.choose = true,
-        Some(name) => req.load.model = Some(ModelRef::parse(name).map_err(BadInputError::new_err)?),
-    }
-    req.load.dt = dt;
-    req.load.recording.fps = fps;
-    if let Some(text) = references {
-        let r = parse_reference(text)
-            .map_err(|e| BadInputError::new_err(format!("references: {e}")))?;
-        req.load.recording.measured_at = r.times.iter().map(|t| t.0).collect();
-        req.calibration.values = r.values;
-        req.calibration.times = r.times;
-        req.calibration.positions = r.positions;
-    }
-    if let Some(e) = epochs {
-        if e == 0 {
-            return Err(BadInputError::new_err("epochs 0: must be at least 1"));
-        }
-        req.training.epochs = e;
-    }
-    req.training.seed = seed;
-    req.training.device = estimator::device::DeviceChoice::from_str(device, true)
-        .map_err(|_| BadInputError::new_err(format!("device '{device}': use auto, cpu or cuda")))?;
-    if let Some(t) = threads {
-        if t == 0 {
-            return Err(BadInputError::new_err("threads 0: must be at least 1"));
-        }
-        req.training.threads = t;
-    }
-    req.quiet = quiet;
-    req.out = out.unwrap_or_else(|| DEFAULT_OUT.into());
     if writes {
         estimator::output::check_out(&req.out, Some(req.input()), req.force)
             .map_err(|e| to_py(e.into()))?;
@@ -266,6 +272,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(track, m)?)?;
+    m.add_function(wrap_pyfunction!(options, m)?)?;
     m.add_class::<Fitted>()?;
     let py = m.py();
     m.add("PhysvidError", py.get_type::<PhysvidError>())?;

@@ -69,6 +69,38 @@ def swinging_disc(path, seconds=8.0, fps=30):
     return path
 
 
+def test_the_same_answer_as_the_command_line_on_a_video_with_its_options(tmp_path):
+    video = swinging_disc(tmp_path / "disc.mkv")
+    flags = ["--model", "damped-oscillator", "--start", "1", "--end", "7", "--epochs", "15",
+             "--threads", "2", "--stride", "2"]
+    done = cli("estimate", video, *flags, "--out", tmp_path / "cli", "--quiet")
+    assert done.returncode in (0, 4), done.stderr
+    want = json.loads((tmp_path / "cli" / "report.json").read_text())
+    kw = dict(model="damped-oscillator", start=1.0, end=7.0, epochs=15, threads=2, stride=2)
+    try:
+        got = physvid.estimate(video, progress=False, **kw)
+    except physvid.UnreliableError as e:
+        got = e.result
+    assert [p["estimate"] for p in got.report["parameters"]] == [p["estimate"] for p in want["parameters"]]
+    assert got.report["recording"]["start"] == want["recording"]["start"] == 1.0
+    assert got.track is not None and len(got.track["t"]) == len(want["track"]["track"]["t"])
+
+
+def test_every_option_of_the_command_line_is_a_keyword(small):
+    done = cli("estimate", "--help")
+    flags = set(re.findall(r"^\s+(?:-\w, )?(--[a-z0-9-]+)", done.stdout, re.M))
+    elsewhere = {"--help", "--version", "--out", "--force", "--quiet", "--batch", "--shard", "--merge"}
+    keywords = {o.flag for o in physvid.options().values()}
+    assert len(flags) > 30 and flags - elsewhere == keywords, flags ^ (keywords | elsewhere)
+    assert physvid.options()["incline_deg"].flag == "--incline-deg"
+    assert physvid.options()["epochs"].default == "300" and not physvid.options()["preview"].takes_value
+    # An unknown keyword names the close ones; a value the command line refuses, its message.
+    with pytest.raises(TypeError, match="epochs"):
+        physvid.estimate(small, epochz=3, progress=False)
+    with pytest.raises(physvid.BadInputError, match="--stride"):
+        physvid.estimate(small, stride="often", progress=False)
+
+
 def test_track_follows_the_object_and_fits_its_law(tmp_path):
     table = physvid.track(swinging_disc(tmp_path / "disc.mkv"))
     assert table is not None
