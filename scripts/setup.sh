@@ -11,7 +11,8 @@
 #  4. with --tests (what scripts/test.sh passes), Debian's `chromium` the same way, for the test
 #     that opens report.html in a browser, and `slurmctld`, `slurmd` and `slurm-client`, for the
 #     test that runs a batch as a job array on a one-node cluster (scripts/slurm.sh): the main
-#     job needs neither; and maturin and pytest in .venv, for the Python package and its tests.
+#     job needs neither; and maturin, pytest and matplotlib in .venv, for the Python package and
+#     its tests.
 set -euo pipefail
 for_tests=""
 case "${1:-}" in
@@ -40,10 +41,11 @@ if ! have_torch; then
     have_torch || { echo "setup: torch $TORCH_VERSION did not install into .venv" >&2; exit 1; }
 fi
 
-# The Python package (python/) is built with maturin and tested with pytest, both in .venv, so
-# that the test command itself downloads nothing.
-if [ -n "$for_tests" ] && ! .venv/bin/python -c 'import pytest, maturin' 2>/dev/null; then
-    .venv/bin/python -m pip install --quiet --disable-pip-version-check pytest "maturin>=1.8,<2"
+# The Python package (python/) is built with maturin and tested with pytest (and its figures
+# with matplotlib), all in .venv, so that the test command itself downloads nothing.
+if [ -n "$for_tests" ] && ! .venv/bin/python -c 'import pytest, maturin, matplotlib' 2>/dev/null; then
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check pytest "maturin>=1.8,<2" \
+        matplotlib
 fi
 
 libtorch="$(torch_dir)"

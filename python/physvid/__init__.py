@@ -81,6 +81,27 @@ class Dataset:
         shape = "x".join(str(s) for s in self.meta["shape"])
         return f"Dataset({self.meta['scenario']}, {shape}, dt={self.dt})"
 
+    def preview(self, clips: int = 4, frames: int = 8):
+        """A matplotlib figure of the first ``frames`` frames (evenly spread over a clip) of the
+        first ``clips`` clips, one row a clip, with their times: what preview.png shows
+        (matplotlib must be installed)."""
+        plt = _pyplot()
+        x = self.frames
+        n, t = min(clips, x.shape[0]), min(frames, x.shape[1])
+        steps = np.linspace(0, x.shape[1] - 1, t).round().astype(int)
+        fig, axes = plt.subplots(n, t, figsize=(1.4 * t, 1.4 * n), squeeze=False)
+        for i in range(n):
+            for j, k in enumerate(steps):
+                image = x[i, k].transpose(1, 2, 0)
+                ax = axes[i][j]
+                ax.imshow(image[..., 0] if image.shape[2] == 1 else image, cmap="gray", vmin=0, vmax=1)
+                ax.set_xticks([])
+                ax.set_yticks([])
+                if i == 0:
+                    ax.set_title(f"{k * self.dt:.3g} s", fontsize=8)
+        fig.suptitle(repr(self), fontsize=9)
+        return fig
+
 
 def generate(
     scenario: str,
@@ -207,6 +228,42 @@ class Result:
         values = ", ".join(f"{p.name}={p.value:.6g}" for p in self.parameters.values())
         return f"Result({self.model}: {values}; {self.verdict.grade})"
 
+    def plot(self):
+        """A matplotlib figure (matplotlib must be installed): each of the physics block's
+        parameters over the epochs with its final value and truth (parameters.png), and on a
+        video the object's track along its axis with each law's span shaded (track.png)."""
+        plt = _pyplot()
+        # The physics block's own parameters are those trained (a derived one, as the incline's
+        # μ from its acceleration, has no history).
+        names = list(self.report.get("block_parameters") or self.parameters)
+        route = self.report.get("track")
+        rows = len(names) + (1 if route else 0)
+        fig, axes = plt.subplots(rows, 1, figsize=(7, 2.2 * rows), squeeze=False)
+        epochs = [h["epoch"] for h in self.history]
+        for i, name in enumerate(names):
+            ax, p = axes[i][0], self.parameters.get(name)
+            ax.plot(epochs, [h["parameters"][i] for h in self.history], label=name)
+            if p is not None:
+                ax.axhline(p.value, color="C1", lw=0.8, label=f"estimate {p.value:.6g}")
+                if p.truth is not None:
+                    ax.axhline(p.truth, color="C2", ls="--", lw=0.8, label=f"truth {p.truth:.6g}")
+            ax.set_ylabel(name if p is None else f"{name} ({p.unit})")
+            ax.legend(fontsize=7)
+        axes[len(names) - 1][0].set_xlabel("epoch")
+        if route:
+            ax, t = axes[-1][0], route["track"]
+            ax.plot(t["t"], t["along"], ".", ms=2, color="k", label="the track")
+            for k, law in enumerate(route["laws"]):
+                chosen = law["law"] == route.get("chosen")
+                ax.axvspan(law["first_s"], law["last_s"], alpha=0.25 if chosen else 0.08,
+                           color=f"C{k}", label=f"{law['law']}{' (chosen)' if chosen else ''}")
+            ax.set_xlabel("time (s)")
+            ax.set_ylabel("along its axis (px)")
+            ax.legend(fontsize=7)
+        fig.suptitle(f"{self.model}: verdict {self.verdict.grade}", fontsize=9)
+        fig.tight_layout()
+        return fig
+
     def _repr_html_(self) -> str:
         """A notebook's view: the model, the verdict with its reasons, the values with their
         errors and truth, the model choice and the track's line."""
@@ -226,9 +283,11 @@ class Result:
         )
         choice = ""
         if self.report.get("model_choice"):
-            fits = self.report["model_choice"].get("candidates", [])
+            mc = self.report["model_choice"]
             choice = "<p>model choice: " + ", ".join(
-                e(f"{c.get('model')} ({c.get('grade', '?')})") for c in fits
+                e(f"{c.get('model')} ({'chosen, ' if c.get('model') == mc.get('chosen') else ''}"
+                  f"{c.get('grade', '?')})")
+                for c in mc.get("candidates", [])
             ) + "</p>"
         line = _track_line(self.report["track"]) if self.report.get("track") else ""
         return (
@@ -370,6 +429,15 @@ def estimate(
         if bar is not None:
             bar.close()
     return Result(fitted)
+
+
+def _pyplot():
+    """matplotlib's pyplot, or an ImportError that says how to get it."""
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        raise ImportError("the figures need matplotlib: pip install matplotlib") from e
+    return plt
 
 
 _TRACK_COLUMNS = ("t", "file_s", "x", "y", "quality", "along")

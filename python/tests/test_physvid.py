@@ -45,6 +45,12 @@ def test_generate_then_estimate_recovers_gamma0_and_gamma1(small):
     page = r._repr_html_()
     assert "verdict <b>ok</b>" in page and "<td>gamma0</td>" in page and f"{g0.value:.6g}" in page
     assert r.track is None
+    # The figures: a panel a parameter, and the data set's frames.
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    fig = r.plot()
+    assert len(fig.axes) == 2 and fig.axes[0].get_ylabel().startswith("gamma0")
+    assert len(small.preview(clips=2, frames=5).axes) == 10
 
 
 def swinging_disc(path, seconds=8.0, fps=30):
@@ -84,6 +90,9 @@ def test_the_same_answer_as_the_command_line_on_a_video_with_its_options(tmp_pat
     assert [p["estimate"] for p in got.report["parameters"]] == [p["estimate"] for p in want["parameters"]]
     assert got.report["recording"]["start"] == want["recording"]["start"] == 1.0
     assert got.track is not None and len(got.track["t"]) == len(want["track"]["track"]["t"])
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    assert got.plot().axes[-1].get_xlabel() == "time (s)", "the track's panel"
 
 
 def test_every_option_of_the_command_line_is_a_keyword(small):
