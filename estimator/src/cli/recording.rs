@@ -28,7 +28,8 @@ pub struct RecordingArgs {
     /// frame (W, H ≥ 4); `full` for the whole frame; `auto` (the default for videos) for the
     /// region where the picture moves, found by a quick low-resolution pass (an object that
     /// crosses once, as a fall, along its whole way; report.html shows it; an image folder
-    /// keeps its whole frame).
+    /// keeps its whole frame). Without --crop, where the object's track guides the run (see
+    /// --model), the object's path over the track's span.
     #[arg(long, value_parser = parse_crop, value_name = "X,Y,W,H|auto|full")]
     pub crop: Option<Framing>,
     /// First second to use (of the file's own timeline) [default: where the motion starts:
