@@ -55,11 +55,17 @@ def test_generate_then_estimate_recovers_gamma0_and_gamma1(small):
 
 def swinging_disc(path, seconds=8.0, fps=30):
     """A bright disc on a grey wall oscillating along x, x = 40 + 15 cos(2π t) e^(−0.05 t), as a
-    lossless video (ffmpeg reads the frames from a pipe)."""
+    lossless video, or as PNG images where `path` is a folder's (`frame%03d.png` in it); ffmpeg
+    reads the frames from a pipe."""
     import shutil
 
     if shutil.which("ffmpeg") is None:
         pytest.skip("ffmpeg is not installed (scripts/setup.sh installs it)")
+    if path.suffix == "":
+        path.mkdir()
+        target = path / "frame%03d.png"
+    else:
+        target = path
     t = np.arange(int(seconds * fps)) / fps
     rows, cols = np.mgrid[0:60, 0:80]
     frames = np.full((len(t), 60, 80), 120, np.uint8)
@@ -68,7 +74,7 @@ def swinging_disc(path, seconds=8.0, fps=30):
         frames[k][(cols - x) ** 2 + (rows - 30) ** 2 < 16] = 230
     done = subprocess.run(
         ["ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "gray", "-s", "80x60",
-         "-r", str(fps), "-i", "-", "-c:v", "ffv1", str(path)],
+         "-r", str(fps), "-i", "-", *(["-c:v", "ffv1"] if path.suffix else []), str(target)],
         input=frames.tobytes(), capture_output=True,
     )
     assert done.returncode == 0, done.stderr
@@ -93,6 +99,21 @@ def test_the_same_answer_as_the_command_line_on_a_video_with_its_options(tmp_pat
     matplotlib = pytest.importorskip("matplotlib")
     matplotlib.use("Agg")
     assert got.plot().axes[-1].get_xlabel() == "time (s)", "the track's panel"
+
+
+def test_the_same_answer_as_the_command_line_on_an_image_folder(tmp_path):
+    folder = swinging_disc(tmp_path / "frames", seconds=6.0)
+    flags = ["--model", "damped-oscillator", "--fps", "30", "--epochs", "10", "--threads", "2"]
+    done = cli("estimate", folder, *flags, "--out", tmp_path / "cli", "--quiet")
+    assert done.returncode in (0, 4), done.stderr
+    want = json.loads((tmp_path / "cli" / "report.json").read_text())
+    try:
+        got = physvid.estimate(folder, model="damped-oscillator", fps=30, epochs=10, threads=2,
+                               progress=False)
+    except physvid.UnreliableError as e:
+        got = e.result
+    assert [p["estimate"] for p in got.report["parameters"]] == [p["estimate"] for p in want["parameters"]]
+    assert got.track is None, "an image folder has no track"
 
 
 def test_every_option_of_the_command_line_is_a_keyword(small):
