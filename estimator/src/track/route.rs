@@ -79,10 +79,10 @@ impl TrackRoute {
         (f[l.first], f[l.first + l.samples - 1])
     }
 
-    /// The rectangle of the displayed frame the object keeps to over the
-    /// span `l`: its path's box widened on each side by [`FRAME_SIZES`] of the object's size, or
-    /// by [`FRAME_SHARE`] of the frame's short side where that is more (the blob is the part of
-    /// the object that differs in its sense: a card or a string beside it may not).
+    /// The rectangle of the displayed frame the object keeps to over the span `l`: its path's
+    /// box widened on each side by [`FRAME_SIZES`] of the object's size, or by [`FRAME_SHARE`]
+    /// of the frame's short side where that is more (the blob is the part of the object that
+    /// differs in its sense: a card or a string beside it may not).
     pub fn frame_of(&self, l: &LawSpan) -> Crop {
         let t = &self.track;
         let (width, height) = t.picture;
