@@ -1,7 +1,7 @@
 //! The damped oscillation c + e^(−ζt)(a cos ωt + b sin ωt) by variable projection: ω and ζ
 //! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each.
 
-use super::{covariance, linear, Fitted, Value};
+use super::{covariance, linear, sum_sq, Fitted, Value};
 use physvid_shared::linalg::solve;
 
 /// The oscillation's columns at decay `z` and angular frequency `w`.
@@ -12,10 +12,6 @@ fn basis(t: &[f64], z: f64, w: f64) -> Vec<Vec<f64>> {
         t.iter().zip(&e).map(|(&s, e)| e * (w * s).cos()).collect(),
         t.iter().zip(&e).map(|(&s, e)| e * (w * s).sin()).collect(),
     ]
-}
-
-fn sum_sq(r: &[f64]) -> f64 {
-    r.iter().map(|v| v * v).sum()
 }
 
 /// The undamped angular frequency on a log grid from half a cycle in `span` to the samples'
