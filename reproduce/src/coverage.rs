@@ -1,6 +1,7 @@
 //! Is `--ensemble`'s spread honest? Twenty intensity sets (gen seeds 0–19), each estimated by an
 //! ensemble of five trainings with the exact block: how often the truth lies within mean ± 2 std.
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
@@ -21,14 +22,13 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         ],
     );
     r.begin("coverage", sets as usize);
-    let ks = k.to_string();
     let (mut hits0, mut hits1) = (0, 0);
     let mut truth = (f64::NAN, f64::NAN);
     let jobs: Vec<Job> = (0..sets)
         .map(|seed| {
             let mut spec = DataSpec::new("intensity", r.quick());
             spec.seed = seed;
-            Job::new(spec, &["--ensemble", &ks])
+            Job::new(spec, vec![Opt::Ensemble(k)])
         })
         .collect();
     let runs = r.estimate_all(&jobs)?;

@@ -4,6 +4,7 @@
 //! took to first get there. Our default (a second start read off the frames) against the
 //! paper's single start.
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 use crate::worker::Run;
@@ -44,9 +45,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             5,
         )
     };
-    let modes: [(&str, &[&str]); 2] = [
+    let modes: [(&str, &[Opt]); 2] = [
         ("ours (2 starts)", &[]),
-        ("single start", &["--single-start"]),
+        ("single start", &[Opt::SingleStart]),
     ];
     let mut t = Table::new(
         "init",
@@ -73,14 +74,16 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     for &scene in scenes {
         let spec = DataSpec::new(scene, r.quick());
         specs.push(format!("`{}`", spec.command()));
-        for (_, mode_flags) in modes {
+        for (_, mode) in modes {
             for &g0 in starts {
-                let init = format!("gamma0={g0},gamma1={}", g0 / 50.0);
+                let init = vec![
+                    ("gamma0".to_string(), g0),
+                    ("gamma1".to_string(), g0 / 50.0),
+                ];
                 for seed in 0..seeds {
-                    let seed = seed.to_string();
-                    let mut flags = vec!["--init", &init, "--seed", &seed];
-                    flags.extend(mode_flags);
-                    jobs.push(Job::new(spec.clone(), &flags));
+                    let mut opts = vec![Opt::Init(init.clone()), Opt::Seed(seed)];
+                    opts.extend(mode.iter().cloned());
+                    jobs.push(Job::new(spec.clone(), opts));
                 }
             }
         }

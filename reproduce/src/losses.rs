@@ -2,12 +2,14 @@
 //! difference ODE residual plus a floor on each clip's latent spread (`--loss residual+floor`),
 //! on the three scenes: accuracy and time.
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
+use estimator::loss::LossKind;
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let scenes = ["intensity", "position", "scale"];
-    let losses = ["mse+kl", "residual+floor"];
+    let losses = [LossKind::MseKl, LossKind::ResidualFloor];
     let mut t = Table::new(
         "losses",
         "Loss: MSE+KL rollout against residual+floor",
@@ -30,7 +32,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         let spec = DataSpec::new(scene, r.quick());
         specs.push(format!("`{}`", spec.command()));
         for loss in losses {
-            jobs.push(Job::new(spec.clone(), &["--loss", loss]));
+            jobs.push(Job::new(spec.clone(), vec![Opt::Loss(loss)]));
         }
     }
     let runs = r.estimate_all(&jobs)?;
@@ -41,7 +43,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             let (g0, g1) = (rep.value("gamma0"), rep.value("gamma1"));
             t.push(vec![
                 Cell::text(scene),
-                Cell::text(loss),
+                Cell::text(loss.name()),
                 Cell::num(g0.map(|p| p.estimate), 4),
                 Cell::rel(g0.and_then(|p| p.relative_error)),
                 Cell::num(g1.map(|p| p.estimate), 4),

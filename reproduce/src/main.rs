@@ -8,6 +8,7 @@ mod init;
 mod losses;
 mod model_choice;
 mod noise;
+mod options;
 mod others;
 mod real;
 mod robustness;
@@ -128,8 +129,8 @@ impl TableKind {
 /// Regenerate the paper's tables, and ours beyond them, with one command each.
 ///
 /// Each table renders its synthetic datasets with gen's library (seeded: seed 0 unless the table
-/// varies it) into a temporary directory, trains with `estimate`'s own arguments (every row
-/// names them), and writes OUT/TABLE.md and OUT/TABLE.csv, the paper's values and the ground
+/// varies it) into a temporary directory, trains with `estimate`'s own options (every row
+/// names them as flags), and writes OUT/TABLE.md and OUT/TABLE.csv, the paper's values and the ground
 /// truth in their own columns. `all` also writes OUT/RESULTS.md. Deterministic on CPU. Full
 /// set: about 2 hours on 2 cores without model-choice (each table's own time is printed under
 /// it; docs/status.md lists them); --quick: about 2.5 minutes.

@@ -4,6 +4,7 @@
 //! over seeds; the share chosen right and the confusion matrix. meta.json still gives each set's
 //! calibration (a sliding block's incline, a fall's start times), never its model.
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 use std::collections::BTreeMap;
@@ -73,7 +74,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     }
     let jobs: Vec<Job> = cases
         .iter()
-        .map(|(_, spec)| Job::new(spec.clone(), &["--model", "auto"]))
+        .map(|(_, spec)| Job::new(spec.clone(), vec![Opt::Model("auto")]))
         .collect();
     let runs = r.estimate_all(&jobs)?;
     let mut confusion: BTreeMap<(&str, String), usize> = BTreeMap::new();

@@ -1,8 +1,10 @@
 //! Accuracy as Gaussian pixel noise rises (σ = 0 … 0.4 grey levels, `gen --noise`), per scene,
 //! each estimate an ensemble of independently seeded trainings (`estimate --ensemble K`).
 
+use crate::options::{value_name, Opt};
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
+use estimator::physics::RolloutStart;
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let (scenes, sigmas, k): (&[&str], &[f64], usize) = if r.quick() {
@@ -31,9 +33,8 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("wall s", "wall_s"),
         ],
     );
-    let starts = ["fit", "frames"];
+    let starts = [RolloutStart::Fit, RolloutStart::Frames];
     r.begin("noise", scenes.len() * sigmas.len() * starts.len());
-    let ks = k.to_string();
     let mut jobs = Vec::new();
     for &scene in scenes {
         for &sigma in sigmas {
@@ -42,7 +43,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             for start in starts {
                 jobs.push(Job::new(
                     spec.clone(),
-                    &["--ensemble", &ks, "--rollout-start", start],
+                    vec![Opt::Ensemble(k), Opt::RolloutStart(start)],
                 ));
             }
         }
@@ -62,7 +63,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 t.push(vec![
                     Cell::text(scene),
                     Cell::num(Some(sigma), 2),
-                    Cell::text(start),
+                    Cell::text(value_name(&start)),
                     Cell::num(g0.map(|v| v.mean), 4),
                     Cell::num(g0.map(|v| v.std), 4),
                     Cell::rel(rel(g0)),

@@ -8,6 +8,7 @@
 //! not graded ok, the false-alarm rate the share of right answers not graded ok. Not used to
 //! tune any check (a held-out measure).
 
+use crate::options::Opt;
 use crate::runner::Runner;
 use crate::table::{self, Cell, Table};
 use crate::worker::Run;
@@ -104,7 +105,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     r.begin("others", renders.len());
     let mut answers = Vec::new();
     for path in &renders {
-        let run = r.estimate(path, &["--seed", "0"])?;
+        let run = r.estimate(path, &[Opt::Seed(0)])?;
         let name = path
             .file_stem()
             .map_or_else(String::new, |s| s.to_string_lossy().into_owned());

@@ -7,6 +7,7 @@
 //! wrong). The detection rate is the share of wrong answers not graded ok, the false-alarm rate
 //! the share of right answers not graded ok, over the chosen answers and over every candidate.
 
+use crate::options::Opt;
 use crate::runner::Runner;
 use crate::table::{self, Cell, Table};
 use estimator::digits::sig;
@@ -21,10 +22,10 @@ struct Known {
     bar: f64,
 }
 
-/// A shared recording: its file, the readings its README offers (as flags), what is known.
+/// A shared recording: its file, the readings its README offers (as options), what is known.
 struct Recording {
     file: &'static str,
-    readings: &'static [&'static str],
+    readings: &'static [Opt],
     known: &'static [Known],
     /// Where the known values come from.
     source: &'static str,
@@ -78,23 +79,21 @@ const RECORDINGS: [Recording; 7] = [
     Recording {
         file: "incline-roll10.avi",
         readings: &[
-            "--incline-deg",
-            "10.3",
-            "--reference",
-            "0.30s=0.076,0.80s=0.360,1.30s=0.855",
+            Opt::InclineDeg(10.3),
+            Opt::Reference(&[(0.30, 0.076), (0.80, 0.360), (1.30, 0.855)]),
         ],
         known: &[known("sliding-block", "acceleration", 0.843, 0.03)],
         source: "a tracked on the ramp marks' scale, the readings' (about 6 % below the true a: the pipe runs farther from the camera than the marks)",
     },
     Recording {
         file: "freefall-ball.mp4",
-        readings: &["--reference", "3.933s=0,6.5s=1.975"],
+        readings: &[Opt::Reference(&[(3.933, 0.0), (6.5, 1.975)])],
         known: &[known("free-fall", "g", 9.81, 0.03)],
         source: "g (the README: release near frame 118–124, the floor at 200–202)",
     },
     Recording {
         file: "torricelli-500ml.mp4",
-        readings: &["--reference", "3.0s=0.0727,12.0s=0.0373"],
+        readings: &[Opt::Reference(&[(3.0, 0.0727), (12.0, 0.0373)])],
         known: &[known("torricelli", "k", 0.0170, 0.02)],
         source: "k from the two levels read (the README's discharge coefficient, about 0.55, \
                  gives 0.0147 and the bottom reached at 23–24 s gives 0.024: no better truth)",
@@ -136,9 +135,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     r.begin("real", chosen.len());
     let mut answers = Vec::new();
     for rec in &chosen {
-        let mut flags: Vec<&str> = rec.readings.to_vec();
-        flags.extend(["--seed", "0"]);
-        let run = r.estimate(&dir.join(rec.file), &flags)?;
+        let mut opts = rec.readings.to_vec();
+        opts.push(Opt::Seed(0));
+        let run = r.estimate(&dir.join(rec.file), &opts)?;
         // Every candidate where the model was chosen; where the object's track guided the
         // run to one law on its span, that answer alone.
         let tried: Vec<(String, Option<Grade>, String, String, bool)> = match &run.model_choice {

@@ -51,7 +51,10 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             }
         }
     }
-    let jobs: Vec<Job> = cases.iter().map(|c| Job::new(c.4.clone(), &[])).collect();
+    let jobs: Vec<Job> = cases
+        .iter()
+        .map(|c| Job::new(c.4.clone(), Vec::new()))
+        .collect();
     let runs = r.estimate_all(&jobs)?;
     let (mut cells, mut within, mut outside_flagged, mut outside) = (0, 0, 0, 0);
     let mut per_condition: Vec<(usize, usize)> = vec![(0, 0); PERTURBATIONS.len()];

@@ -2,10 +2,11 @@
 //! renders datasets into a scratch directory and runs estimations as `estimate` would, with one
 //! progress bar over a table's runs.
 
+use crate::options::{request, shown, Opt};
 use crate::shard::{Call, Sharded, Sharding, State};
-use crate::worker::{estimate_apart, estimate_here, Run};
-use clap::ValueEnum;
+use crate::worker::{estimate_apart, Run};
 use estimator::cli::DeviceChoice;
+use estimator::Request;
 use generator::{generate_to_disk, GenArgs, SceneRef};
 use indicatif::ProgressBar;
 use std::collections::HashMap;
@@ -148,18 +149,18 @@ impl Runner {
         }
     }
 
-    /// Trains on `data` as `estimate DATA FLAGS...` would, in this process (quietly, outputs
+    /// Trains on `data` as `estimate DATA OPTIONS...` would, in this process (quietly, outputs
     /// discarded; every candidate with `--model auto`). Sharded, shard 1 runs and records it,
     /// the others stop the table ([`Sharded`]), a merge reads it from the records.
-    pub fn estimate(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
+    pub fn estimate(&self, data: &Path, opts: &[Opt]) -> anyhow::Result<Run> {
         let Some(s) = &self.sharding else {
-            return self.estimate_here(data, flags);
+            return self.estimate_here(data, opts);
         };
-        let what = format!("estimate {} {}", named(data), flags.join(" "));
+        let what = format!("estimate {} {}", named(data), shown(opts));
         let (call, mine) = s.next_one();
         match &s.mode {
             Sharding::Shard(_) if mine => {
-                let run = self.estimate_here(data, flags)?;
+                let run = self.estimate_here(data, opts)?;
                 s.record(call, what, &run);
                 Ok(run)
             }
@@ -169,42 +170,35 @@ impl Runner {
     }
 
     /// [`Runner::estimate`] here and now.
-    fn estimate_here(&self, data: &Path, flags: &[&str]) -> anyhow::Result<Run> {
+    fn estimate_here(&self, data: &Path, opts: &[Opt]) -> anyhow::Result<Run> {
         self.bar
-            .set_message(format!("estimate {} {}", named(data), flags.join(" ")));
-        let flags: Vec<String> = flags.iter().map(|f| f.to_string()).collect();
-        let mut args = vec!["estimate".to_string()];
-        args.extend(self.arguments(data, &flags, &self.scratch.join("run"), self.threads));
-        let run = Run::of(&estimate_here(&args)?)?;
-        self.finished(data, &flags, &run);
+            .set_message(format!("estimate {} {}", named(data), shown(opts)));
+        let req = self.request(data, opts, &self.scratch.join("run"), self.threads)?;
+        let run = Run::of(&estimator::estimation(&req)?.report)?;
+        self.finished(data, opts, &run);
         Ok(run)
     }
 
-    /// `estimate`'s arguments (without the program's name) for `data` and `flags`, into `out`,
-    /// on `threads` CPU threads (all cores: `None`).
-    fn arguments(
+    /// The typed run of `opts` on `data`, quiet, into `out`, on this runner's device and
+    /// `threads` CPU threads (all cores: `None`).
+    fn request(
         &self,
         data: &Path,
-        flags: &[String],
+        opts: &[Opt],
         out: &Path,
         threads: Option<usize>,
-    ) -> Vec<String> {
-        let mut args: Vec<String> = vec![data.display().to_string()];
-        args.extend(flags.iter().cloned());
-        args.extend(["--quiet".into(), "--out".into(), out.display().to_string()]);
-        let device = self
-            .device
-            .to_possible_value()
-            .expect("no skipped variants");
-        args.extend(["--device".into(), device.get_name().into()]);
-        if let Some(t) = threads {
-            args.extend(["--threads".into(), t.to_string()]);
-        }
-        args
+    ) -> anyhow::Result<Request> {
+        let base = |r: &mut Request| {
+            (r.quiet, r.out, r.training.device) = (true, out.to_path_buf(), self.device);
+            if let Some(t) = threads {
+                r.training.threads = t;
+            }
+        };
+        request(data, base, opts)
     }
 
     /// Counts a finished run on `data` (a line of its own where stderr is not a terminal).
-    fn finished(&self, data: &Path, flags: &[String], run: &Run) {
+    fn finished(&self, data: &Path, opts: &[Opt], run: &Run) {
         self.bar.inc(1);
         if self.lines {
             eprintln!(
@@ -213,7 +207,7 @@ impl Runner {
                 self.bar.position(),
                 self.bar.length().unwrap_or(0),
                 named(data),
-                flags.join(" "),
+                shown(opts),
                 run.wall_time_s
             );
         }
@@ -227,11 +221,7 @@ impl Runner {
         };
         let what = |j: &Job| {
             let file = j.file.map_or(String::new(), |f| format!("/{f}"));
-            format!(
-                "{}{file} · estimate {}",
-                j.data.command(),
-                j.flags.join(" ")
-            )
+            format!("{}{file} · estimate {}", j.data.command(), shown(&j.opts))
         };
         if !s.records() {
             return (0..jobs.len())
@@ -264,20 +254,14 @@ impl Runner {
             };
             let data = jobs[i].file.map_or(dir.clone(), |f| dir.join(f));
             let run = if self.jobs > 1 {
-                self.bar.set_message(format!(
-                    "estimate {} {}",
-                    named(&data),
-                    jobs[i].flags.join(" ")
-                ));
-                let run = estimate_apart(
-                    &self.arguments(&data, &jobs[i].flags, out, Some(self.job_threads)),
-                    &out.with_extension("cbor"),
-                )?;
-                self.finished(&data, &jobs[i].flags, &run);
+                let what = format!("estimate {} {}", named(&data), shown(&jobs[i].opts));
+                self.bar.set_message(what.clone());
+                let req = self.request(&data, &jobs[i].opts, out, Some(self.job_threads))?;
+                let run = estimate_apart(&req, &out.with_extension("cbor"), &what)?;
+                self.finished(&data, &jobs[i].opts, &run);
                 run
             } else {
-                let flags: Vec<&str> = jobs[i].flags.iter().map(String::as_str).collect();
-                self.estimate_here(&data, &flags)?
+                self.estimate_here(&data, &jobs[i].opts)?
             };
             let mut uses = uses.lock().expect("no job panicked");
             let left = uses.get_mut(&dirs[i]).expect("every job's dataset counted");
@@ -319,21 +303,21 @@ impl Runner {
     }
 }
 
-/// One estimation of a table: `estimate DATA FLAGS...` on the dataset `data` renders (or on
+/// One estimation of a table: `estimate DATA OPTIONS...` on the dataset `data` renders (or on
 /// one of its files, `file`).
 #[derive(Debug, Clone)]
 pub struct Job {
     pub data: DataSpec,
-    pub flags: Vec<String>,
+    pub opts: Vec<Opt>,
     /// A file of the dataset's to read instead of its directory (`frames.npy`: a bare array).
     pub file: Option<&'static str>,
 }
 
 impl Job {
-    pub fn new(data: DataSpec, flags: &[&str]) -> Job {
+    pub fn new(data: DataSpec, opts: Vec<Opt>) -> Job {
         Job {
             data,
-            flags: flags.iter().map(|f| f.to_string()).collect(),
+            opts,
             file: None,
         }
     }

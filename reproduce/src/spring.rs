@@ -2,6 +2,7 @@
 //! the backdrop's clutter, in colour, and on a bare `.npy` of 30-frame clips, beside the
 //! official code's and the baselines' figures (read off the official repository's traces).
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
 
@@ -21,12 +22,12 @@ const OTHERS: [(&str, &str, &str); 3] = [
 ];
 
 /// One row: its label, the dataset, the file of it to read instead (the bare `.npy`), the
-/// extra flags.
+/// options.
 struct Case {
     label: &'static str,
     spec: DataSpec,
     file: Option<&'static str>,
-    flags: &'static [&'static str],
+    opts: Vec<Opt>,
 }
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
@@ -47,31 +48,31 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             label: "default start (k = 1)",
             spec: base.clone(),
             file: None,
-            flags: &[],
+            opts: vec![],
         },
         Case {
             label: "start k = 10",
             spec: base.clone(),
             file: None,
-            flags: &["--init", "k=10"],
+            opts: vec![Opt::Init(vec![("k".into(), 10.0)])],
         },
         Case {
             label: "no clutter",
             spec: with(vec!["--set", "clutter=0"], None, base.samples),
             file: None,
-            flags: &[],
+            opts: vec![],
         },
         Case {
             label: "colour (--color)",
             spec: with(vec!["--color"], None, base.samples),
             file: None,
-            flags: &[],
+            opts: vec![],
         },
         Case {
             label: "bare .npy, 30-frame clips",
             spec: with(Vec::new(), Some(30), if quick { 30 } else { 200 }),
             file: Some("frames.npy"),
-            flags: &["--model", "spring", "--dt", "0.3"],
+            opts: vec![Opt::Model("spring"), Opt::Dt(0.3)],
         },
     ];
     let mut t = Table::new(
@@ -90,14 +91,14 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("wall s", "wall_s"),
         ],
     );
-    let epochs: &[&str] = if quick { &["--epochs", "4"] } else { &[] };
+    let epochs = quick.then_some(Opt::Epochs(4));
     let jobs: Vec<Job> = cases
         .iter()
         .map(|case| {
-            let flags: Vec<&str> = case.flags.iter().chain(epochs).copied().collect();
+            let opts = case.opts.iter().chain(&epochs).cloned().collect();
             Job {
                 file: case.file,
-                ..Job::new(case.spec.clone(), &flags)
+                ..Job::new(case.spec.clone(), opts)
             }
         })
         .collect();

@@ -2,14 +2,17 @@
 //! the paper's Euler block and the exact one, all from the same single start (the paper's
 //! protocol), so that where MSE only leaves the parameters is visible.
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
+use estimator::loss::LossKind;
+use estimator::physics::{Integrator, RolloutStart};
 
 /// The paper's values: (loss, γ0, γ1).
-const PAPER: [(&str, f64, f64); 2] = [("mse+kl", 3.99, 0.08), ("mse", 5.7, 6.6)];
+const PAPER: [(LossKind, f64, f64); 2] = [(LossKind::MseKl, 3.99, 0.08), (LossKind::Mse, 5.7, 6.6)];
 
 /// Ours (the exact integrator) and the paper's block (Euler).
-const INTEGRATORS: [&str; 2] = ["exact", "euler"];
+const INTEGRATORS: [Integrator; 2] = [Integrator::Exact, Integrator::Euler];
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let spec = DataSpec::new("intensity", r.quick());
@@ -38,21 +41,18 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     for (loss, _, _) in PAPER {
         for integrator in INTEGRATORS {
             // The Euler rows are the paper's block: rolled out from the first two frames.
-            let start = if integrator == "euler" {
-                "frames"
+            let start = if integrator == Integrator::Euler {
+                RolloutStart::Frames
             } else {
-                "fit"
+                RolloutStart::Fit
             };
             jobs.push(Job::new(
                 spec.clone(),
-                &[
-                    "--single-start",
-                    "--loss",
-                    loss,
-                    "--integrator",
-                    integrator,
-                    "--rollout-start",
-                    start,
+                vec![
+                    Opt::SingleStart,
+                    Opt::Loss(loss),
+                    Opt::Integrator(integrator),
+                    Opt::RolloutStart(start),
                 ],
             ));
         }
@@ -64,8 +64,8 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             let rep = runs.next().expect("a run for every job");
             let (g0, g1) = (rep.value("gamma0"), rep.value("gamma1"));
             t.push(vec![
-                Cell::text(loss),
-                Cell::text(integrator),
+                Cell::text(loss.name()),
+                Cell::text(integrator.name()),
                 Cell::num(g0.map(|p| p.estimate), 4),
                 Cell::num(Some(g0_paper), 2),
                 Cell::num(g0.and_then(|p| p.truth), 4),

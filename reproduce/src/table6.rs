@@ -3,14 +3,16 @@
 //! with the paper's Euler block and ours, beside the paper's values and, for intensity, the
 //! value an exact Euler fit must converge to (paper-notes: its discretisation bias).
 
+use crate::options::Opt;
 use crate::runner::{DataSpec, Job, Runner};
 use crate::table::{Cell, Table};
+use estimator::physics::{Integrator, RolloutStart};
 
 /// Each dt with the paper's value there.
 type PaperValues = [(f64, Option<f64>); 3];
 
 /// The paper's block (Euler from the first two frames) and ours (the exact integrator).
-const INTEGRATORS: [&str; 2] = ["euler", "exact"];
+const INTEGRATORS: [Integrator; 2] = [Integrator::Euler, Integrator::Exact];
 
 /// (scene, reported parameter, its symbol, dt and the paper's value at each).
 const ROWS: [(&str, &str, &str, PaperValues); 4] = [
@@ -87,14 +89,14 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             specs.push(spec.command());
             for integrator in INTEGRATORS {
                 // euler: the paper's block (from the first two frames); exact: ours, defaults.
-                let mut flags = vec!["--integrator", integrator];
-                if integrator == "euler" {
-                    flags.extend(["--rollout-start", "frames"]);
+                let mut opts = vec![Opt::Integrator(integrator)];
+                if integrator == Integrator::Euler {
+                    opts.push(Opt::RolloutStart(RolloutStart::Frames));
                 }
                 if r.quick() && scenario == "pendulum" {
-                    flags.extend(["--epochs", "40"]);
+                    opts.push(Opt::Epochs(40));
                 }
-                jobs.push(Job::new(spec.clone(), &flags));
+                jobs.push(Job::new(spec.clone(), opts));
             }
         }
     }
@@ -108,19 +110,20 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
                 let rep = runs.next().expect("a run for every job");
                 for row in &rows {
                     let p = rep.value(row.1);
-                    let fixed = (scenario == "intensity" && integrator == "euler").then(|| {
-                        let (g0, g1) = euler_fixed_point(2.0, 0.04, dt);
-                        if row.1 == "gamma0" {
-                            g0
-                        } else {
-                            g1
-                        }
-                    });
+                    let fixed =
+                        (scenario == "intensity" && integrator == Integrator::Euler).then(|| {
+                            let (g0, g1) = euler_fixed_point(2.0, 0.04, dt);
+                            if row.1 == "gamma0" {
+                                g0
+                            } else {
+                                g1
+                            }
+                        });
                     t.push(vec![
                         Cell::text(scenario),
                         Cell::text(row.2),
                         Cell::num(Some(dt), 1),
-                        Cell::text(integrator),
+                        Cell::text(integrator.name()),
                         Cell::num(p.map(|p| p.estimate), 4),
                         Cell::num(p.and_then(|p| p.truth), 4),
                         Cell::rel(p.and_then(|p| p.relative_error)),

@@ -4,6 +4,7 @@
 //! damping). The false-alarm rate is the share of runs within their accuracy bars that are
 //! not graded `ok`; a constructed failure must never be graded `ok`.
 
+use crate::options::{shown, Opt};
 use crate::runner::{DataSpec, Runner};
 use crate::table::{self, Cell, Table};
 use crate::worker::Run;
@@ -86,8 +87,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         for seed in 0..disc_seeds {
             let mut spec = DataSpec::new(scene, quick);
             spec.seed = seed;
-            let seed_flag = seed.to_string();
-            rows.push(right(r, &spec, &["--seed", &seed_flag])?);
+            rows.push(right(r, &spec, &[Opt::Seed(seed)])?);
         }
     }
     for scene in [
@@ -101,8 +101,7 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             for seed in 0..delfys_seeds {
                 let mut spec = DataSpec::new(scene, quick);
                 (spec.setting, spec.seed) = (setting, seed);
-                let seed_flag = seed.to_string();
-                rows.push(right(r, &spec, &["--seed", &seed_flag])?);
+                rows.push(right(r, &spec, &[Opt::Seed(seed)])?);
             }
         }
     }
@@ -168,16 +167,16 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
 }
 
 /// A default run on `spec`.
-fn right(r: &Runner, spec: &DataSpec, flags: &[&str]) -> anyhow::Result<Row> {
+fn right(r: &Runner, spec: &DataSpec, opts: &[Opt]) -> anyhow::Result<Row> {
     let data = r.dataset(spec)?;
-    let report = r.estimate(&data, flags)?;
+    let report = r.estimate(&data, opts)?;
     Ok(Row {
         case: format!(
             "{} setting {} seed {}",
             spec.scenario, spec.setting, spec.seed
         ),
         constructed: false,
-        command: format!("{} · estimate DATA {}", spec.command(), flags.join(" ")),
+        command: format!("{} · estimate DATA {}", spec.command(), shown(opts)),
         report,
     })
 }
@@ -193,25 +192,27 @@ fn altered(r: &Runner, data: &Path, name: &str, failure: Failure) -> anyhow::Res
 fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
     let quick = r.quick();
     let mut rows = Vec::new();
-    let mut run =
-        |case: &str, data: &Path, command: String, flags: &[&str]| -> anyhow::Result<()> {
-            let report = r.estimate(data, flags)?;
-            rows.push(Row {
-                case: case.to_string(),
-                constructed: true,
-                command: format!("{command} · estimate DATA {}", flags.join(" ")),
-                report,
-            });
-            Ok(())
-        };
-    let osc = ["--dt", "0.2", "--model", "damped-oscillator"];
+    let mut run = |case: &str, data: &Path, command: String, opts: &[Opt]| -> anyhow::Result<()> {
+        let report = r.estimate(data, opts)?;
+        rows.push(Row {
+            case: case.to_string(),
+            constructed: true,
+            command: format!("{command} · estimate DATA {}", shown(opts)),
+            report,
+        });
+        Ok(())
+    };
+    let osc = [Opt::Dt(0.2), Opt::Model("damped-oscillator")];
     let rod = DataSpec::new("rod", quick);
     let data = r.dataset(&rod)?;
     run(
         "the oscillator forced onto its 2ω harmonic",
         &data,
         rod.command(),
-        &["--single-start", "--init", "gamma0=16,gamma1=0.16"],
+        &[
+            Opt::SingleStart,
+            Opt::Init(vec![("gamma0".into(), 16.0), ("gamma1".into(), 0.16)]),
+        ],
     )?;
     let intensity = DataSpec::new("intensity", quick);
     let data = r.dataset(&intensity)?;
@@ -244,7 +245,7 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
         "Torricelli's tank read as an LED",
         &data.join("frames.npy"),
         format!("{} (frames.npy)", tank.command()),
-        &["--dt", "1", "--model", "led"],
+        &[Opt::Dt(1.0), Opt::Model("led")],
     )?;
     let fall = DataSpec::new("free-fall", quick);
     let data = r.dataset(&fall)?;
@@ -252,7 +253,7 @@ fn constructed(r: &Runner) -> anyhow::Result<Vec<Row>> {
         "a free fall read as an oscillator",
         &data.join("frames.npy"),
         format!("{} (frames.npy)", fall.command()),
-        &["--dt", "0.0333333", "--model", "damped-oscillator"],
+        &[Opt::Dt(0.0333333), Opt::Model("damped-oscillator")],
     )?;
     let mut short = DataSpec::new("intensity", quick);
     (short.samples, short.frames, short.dt) = (20, Some(6), Some(0.05));

@@ -1,13 +1,11 @@
 //! One estimation as the tables read it ([`Run`]), and the process that runs one on its own for
 //! `--jobs N`: libtorch's seed is process-wide, so estimations side by side in one process
-//! would draw from one generator and lose their determinism. The parent turns a table row's
-//! `estimate` arguments into a typed `Request` once (as the CLI would), writes it beside the
-//! report's path in JSON and starts this same binary with [`WORKER`] set to that path; the
-//! worker reads the request (no command line to parse), runs it, and writes the report there
-//! in CBOR (its floats as they are: JSON would write a NaN as null, and read it back as no
+//! would draw from one generator and lose their determinism. The parent writes a table row's
+//! typed `Request` (`options::request`) beside the report's path in JSON and starts this same
+//! binary with [`WORKER`] set to that path; the worker reads the request, runs it, and writes
+//! the report there in CBOR (its floats as they are: JSON would write a NaN as null, and read it back as no
 //! number), which the parent reads back.
 
-use clap::Parser;
 use estimator::analysis::ensemble::Ensemble;
 use estimator::analysis::parameters::ParameterResult;
 use estimator::analysis::truth::LatentVsTruth;
@@ -15,7 +13,7 @@ use estimator::choice::candidate::ModelChoice;
 use estimator::report::Report;
 use estimator::train::outcome::EpochRecord;
 use estimator::verdict::Verdict;
-use estimator::{estimation, EstimateArgs, Request};
+use estimator::{estimation, Request};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};
@@ -65,19 +63,6 @@ fn encoded(report: &Report) -> anyhow::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// The typed request of `args` (`estimate`'s, the program's name first), as the CLI makes it.
-pub fn request_of(args: &[String]) -> anyhow::Result<Request> {
-    let args = EstimateArgs::try_parse_from(args)
-        .map_err(|e| anyhow::anyhow!("internal flags {args:?}: {e}"))?
-        .validate()?;
-    Ok(args.request()?)
-}
-
-/// Runs `args` (`estimate`'s, the program's name first) in this process.
-pub fn estimate_here(args: &[String]) -> anyhow::Result<Report> {
-    Ok(estimation(&request_of(args)?)?.report)
-}
-
 /// A worker's whole life: the estimation of the request beside `report`, its report written
 /// to `report`.
 pub fn main(report: &Path) -> ExitCode {
@@ -93,17 +78,11 @@ pub fn main(report: &Path) -> ExitCode {
     estimator::error::exit_with("reproduce (worker)", result)
 }
 
-/// Runs `args` (`estimate`'s, without the program's name) in a worker process, handed as a
-/// typed request, and reads its run back from `report`.
-pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
-    let line: Vec<String> = std::iter::once("estimate".to_string())
-        .chain(args.iter().cloned())
-        .collect();
+/// Runs `req` in a worker process, handed over in JSON, and reads its run back from `report`;
+/// `what` names it in an error.
+pub fn estimate_apart(req: &Request, report: &Path, what: &str) -> anyhow::Result<Run> {
     let request = request_path(report);
-    physvid_shared::write_atomic(
-        &request,
-        serde_json::to_string(&request_of(&line)?)?.as_bytes(),
-    )?;
+    physvid_shared::write_atomic(&request, serde_json::to_string(req)?.as_bytes())?;
     let exe = std::env::current_exe()?;
     let mut command = Command::new(exe);
     command.env(WORKER, report);
@@ -117,12 +96,7 @@ pub fn estimate_apart(args: &[String], report: &Path) -> anyhow::Result<Run> {
     let out = out?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
-        anyhow::bail!(
-            "estimate {} failed ({}): {}",
-            args.join(" "),
-            out.status,
-            stderr.trim()
-        );
+        anyhow::bail!("{what} failed ({}): {}", out.status, stderr.trim());
     }
     let bytes = std::fs::read(report)?;
     let run = ciborium::from_reader(bytes.as_slice())

@@ -3,8 +3,8 @@
 //! here knows the data: `EstimateArgs::request` turns the flags into a typed
 //! `config::Request`, which `config::RunConfig::resolve` completes with a probe of the input
 //! (the model, dt, the load's plan). Help for `--model`, `--init` and the per-model defaults is
-//! generated from `physics::MODELS`. `reproduce` builds its runs from the same arguments, so
-//! each table row is a command a user can type.
+//! generated from `physics::MODELS`. `reproduce` builds its runs' requests field by field and
+//! shows each as the command a user can type, checked against these flags in its tests.
 
 mod batch;
 mod candidate;
