@@ -113,9 +113,9 @@ pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimat
 }
 
 /// Whether `req` chooses its model: asked to (`choose`), or no model named on an input that
-/// names none (a recording or a bare `.npy`; a data set's meta.json names its model).
+/// names none (`choice::names_no_model`).
 pub fn chooses(req: &Request) -> bool {
-    req.choose || (req.load.model.is_none() && choice::chosen_without_model(req.input()))
+    req.choose || (req.load.model.is_none() && choice::names_no_model(&req.load))
 }
 
 /// Fits every candidate model and keeps the one the evidence favours (`choice`), with the

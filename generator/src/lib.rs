@@ -6,6 +6,7 @@ pub mod cli;
 pub mod config;
 pub mod error;
 pub mod generate;
+pub mod memory;
 pub mod perturb;
 pub mod render;
 pub mod sampling;
@@ -16,6 +17,7 @@ pub use cli::GenArgs;
 pub use config::GenConfig;
 pub use error::ConfigError;
 pub use generate::{generate, generate_samples, Generated};
+pub use memory::{generate_in_memory, InMemory};
 pub use scenes::{SceneRef, SCENES};
 pub use write::{dataset_meta, generate_to_disk, preview_png, GENERATOR_VERSION};
 

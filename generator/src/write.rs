@@ -56,8 +56,36 @@ pub fn dataset_meta(cfg: &GenConfig, g: &Generated) -> DatasetMeta {
     }
 }
 
-/// The refusal of a data set whose clip `clip` shows no motion within the frame, naming the
-/// flags that set the motion.
+/// The refusal of a data set with a clip that shows no motion within the frame (`still`: the
+/// clip and its largest change) or whose motion overflows (`overflow`), naming the flags that
+/// set the motion.
+pub(crate) fn refused(
+    cfg: &GenConfig,
+    still: Option<(usize, f32)>,
+    overflow: Option<usize>,
+) -> Result<(), ConfigError> {
+    if let Some(clip) = overflow {
+        return Err(refusal(
+            cfg,
+            format!(
+                "clip {clip}'s motion is not finite at these values (it overflows): the data \
+                 set would hold no number for it; choose values nearer the physical range"
+            ),
+        ));
+    }
+    if let Some((clip, change)) = still {
+        return Err(refusal(
+            cfg,
+            format!(
+                "clip {clip} shows no motion within the frame (no pixel changes by more than \
+                 1/512 of the grey range, largest change {change:.1e}): the object is outside \
+                 the frame, too small, or does not move within a clip at these values"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A refusal of the data set `cfg` describes for `why`, naming the flag behind its values
 /// (`--set` for the scenes that take it, else `--dt`).
 fn refusal(cfg: &GenConfig, why: String) -> ConfigError {
@@ -128,28 +156,9 @@ pub fn generate_to_disk(cfg: &GenConfig) -> anyhow::Result<DatasetFiles> {
         handle.join().expect("writer thread does not panic")
     });
     let writer = written?;
-    if let Some(clip) = overflow {
-        drop(writer);
-        return Err(refusal(
-            cfg,
-            format!(
-                "clip {clip}'s motion is not finite at these values (it overflows): the data \
-                 set would hold no number for it; choose values nearer the physical range"
-            ),
-        )
-        .into());
-    }
-    if let Some((clip, change)) = still {
-        drop(writer);
-        return Err(refusal(
-            cfg,
-            format!(
-                "clip {clip} shows no motion within the frame (no pixel changes by more than \
-                 1/512 of the grey range, largest change {change:.1e}): the object is outside \
-                 the frame, too small, or does not move within a clip at these values"
-            ),
-        )
-        .into());
+    if let Err(e) = refused(cfg, still, overflow) {
+        drop(writer); // Nothing is renamed into place.
+        return Err(e.into());
     }
     let meta = dataset_meta(cfg, &truth);
     let png = preview_png(cfg, &preview_frames);

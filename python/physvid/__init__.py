@@ -20,8 +20,6 @@ import difflib
 import html
 import json
 import os
-import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Union
@@ -50,32 +48,22 @@ __all__ = [
 
 
 class Dataset:
-    """A data set as ``gen`` writes it: frames ``[N, T, C, H, W]`` float32, ``dt``, the truth
-    and meta.json. It lives in a temporary folder until the object goes; ``save`` copies it."""
+    """A data set as ``gen`` makes it, held in memory: frames ``[N, T, C, H, W]`` float32,
+    ``dt``, the truth and meta.json. Nothing is on disk until ``save`` writes it."""
 
-    def __init__(self, folder: Path, keep: Optional[tempfile.TemporaryDirectory] = None):
-        self.path = Path(folder)
-        self._keep = keep
-        self.meta: Dict[str, Any] = json.loads((self.path / "meta.json").read_text())
+    def __init__(self, frames: np.ndarray, meta: str, preview: bytes):
+        self._meta_text = meta
+        self.meta: Dict[str, Any] = json.loads(meta)
         self.dt: float = float(self.meta["dt"])
         self.truth: Dict[str, float] = dict(self.meta["model"]["parameters"])
-        self._frames: Optional[np.ndarray] = None
+        self.frames: np.ndarray = frames
+        self._preview = preview
 
-    @property
-    def frames(self) -> np.ndarray:
-        """The clips, ``[N, T, C, H, W]`` float32 (read from frames.npy when first asked)."""
-        if self._frames is None:
-            self._frames = np.load(self.path / "frames.npy")
-        return self._frames
-
-    def save(self, folder: Union[str, os.PathLike]) -> Path:
-        """Writes the data set into ``folder`` (created; it must not exist), exactly as ``gen``
-        writes it."""
-        folder = Path(folder)
-        if folder.exists():
-            raise BadInputError(f"{folder}: exists already; save into a new folder")
-        shutil.copytree(self.path, folder)
-        return folder
+    def save(self, folder: Union[str, os.PathLike], force: bool = False) -> Path:
+        """Writes the data set into ``folder`` exactly as ``gen --out FOLDER`` writes it
+        (frames.npy, meta.json, preview.png; ``force``: into a folder this tool did not make)."""
+        _core.save(self.frames, self._meta_text, self._preview, str(folder), force)
+        return Path(folder)
 
     def __repr__(self) -> str:
         shape = "x".join(str(s) for s in self.meta["shape"])
@@ -116,7 +104,8 @@ def generate(
     set: Optional[str] = None,
 ) -> Dataset:
     """A seeded synthetic data set of ``scenario`` (``gen --scenario``), the same bytes as
-    ``gen`` with the same options. ``perturb`` and ``set`` take ``gen``'s text
+    ``gen`` with the same options once saved; rendered in memory, nothing written.
+    ``perturb`` and ``set`` take ``gen``'s text
     (``"shake:3,noise:2"``, ``"omega=2,zeta=0.1"``)."""
     args = ["--scenario", scenario, "--seed", str(seed)]
     for flag, value in [
@@ -131,10 +120,7 @@ def generate(
     ]:
         if value is not None:
             args += [flag, str(value)]
-    keep = tempfile.TemporaryDirectory(prefix="physvid-")
-    folder = Path(keep.name) / scenario
-    _core.generate(args, str(folder))
-    return Dataset(folder, keep)
+    return Dataset(*_core.generate(args))
 
 
 @dataclass(frozen=True)
@@ -390,8 +376,10 @@ def estimate(
     ``estimate --out`` writes. Raises ``BadInputError``, ``NoEstimateError`` or
     ``UnreliableError`` (its ``result`` the graded estimate) as ``estimate`` exits 2, 3 or 4."""
     args = _flags(options)
+    meta = None
     if isinstance(source, Dataset):
-        read: Any = str(source.path)
+        read: Any = source.frames  # in memory, with its meta.json
+        meta = source._meta_text
     elif isinstance(source, (str, os.PathLike)):
         read = str(Path(source))
     else:
@@ -421,6 +409,7 @@ def estimate(
             quiet=not progress,
             out=None if out is None else str(out),
             on_epoch=on_epoch,
+            meta=meta,
         )
     except UnreliableError as e:
         e.result = Result(e.args[2])

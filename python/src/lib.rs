@@ -1,18 +1,20 @@
 //! `physvid._core`: the generator and the estimator called from Python, in process, on the
-//! workspace's typed library API (`generator::GenArgs` for a data set, `estimator::Request` and
+//! workspace's typed library API (`generator::generate_in_memory` for a data set, `estimator::Request` and
 //! `estimator::estimation_watched` for an estimate, `estimator::track` for the object's own
 //! track). The Python package (`physvid/`) wraps
 //! these functions in typed objects; errors arrive as the exception classes below, which mirror
 //! `estimate`'s exit codes.
 
 use clap::Parser;
-use estimator::cli::EstimateArgs;
+use estimator::cli::{EstimateArgs, ModelSpec};
 use estimator::data::Frames;
 use estimator::{estimation_watched, EstimateError, Watch};
-use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::ndarray::Ix5;
+use numpy::{PyArray, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -48,18 +50,49 @@ fn to_py(e: anyhow::Error) -> PyErr {
     }
 }
 
-/// Writes a data set into `out` as `gen ARGS --out OUT` would (seeded, byte for byte), and
-/// returns its meta.json.
+/// A data set in memory as Python receives it: frames, meta.json, preview.png.
+type InMemoryParts<'py> = (Bound<'py, PyArray<f32, Ix5>>, String, Bound<'py, PyBytes>);
+
+/// The data set `gen ARGS` writes, rendered in memory (seeded: the same bytes once saved):
+/// its frames `[N, T, C, H, W]`, its meta.json and its preview.png. Nothing is written.
 #[pyfunction]
-fn generate(py: Python<'_>, args: Vec<String>, out: PathBuf) -> PyResult<String> {
-    let out_text = out.display().to_string();
+fn generate<'py>(py: Python<'py>, args: Vec<String>) -> PyResult<InMemoryParts<'py>> {
+    // `gen` asks for a writable --out; nothing is written to it.
+    let out = std::env::temp_dir().display().to_string();
     let mut line: Vec<&str> = args.iter().map(String::as_str).collect();
-    line.extend(["--out", &out_text]);
+    line.extend(["--out", &out]);
     let cfg = generator::GenArgs::config_from(&line)
         .map_err(|e| BadInputError::new_err(e.to_string()))?;
-    py.allow_threads(|| generator::generate_to_disk(&cfg))
-        .map_err(|e| PhysvidError::new_err(format!("{e:#}")))?;
-    std::fs::read_to_string(out.join("meta.json")).map_err(|e| PhysvidError::new_err(e.to_string()))
+    let data = py
+        .allow_threads(|| generator::generate_in_memory(&cfg))
+        .map_err(|e| BadInputError::new_err(format!("{e:#}")))?;
+    let meta = serde_json::to_string_pretty(&data.meta)
+        .map_err(|e| PhysvidError::new_err(e.to_string()))?;
+    let frames = PyArray::from_vec(py, data.frames).reshape(data.meta.shape)?;
+    Ok((frames, meta, PyBytes::new(py, &data.preview)))
+}
+
+/// Writes a data set held in memory (`generate`'s three parts) into `folder`, as `gen --out
+/// FOLDER` writes it (`force`: into a folder this tool did not make).
+#[pyfunction]
+#[pyo3(signature = (frames, meta, preview, folder, force=false))]
+fn save(
+    py: Python<'_>,
+    frames: PyReadonlyArrayDyn<'_, f32>,
+    meta: &str,
+    preview: Vec<u8>,
+    folder: PathBuf,
+    force: bool,
+) -> PyResult<()> {
+    let meta = serde_json::from_str(meta).map_err(|e| BadInputError::new_err(e.to_string()))?;
+    let data = generator::InMemory {
+        frames: frames.as_array().iter().copied().collect(),
+        meta,
+        preview,
+    };
+    py.allow_threads(|| data.save(&folder, force))
+        .map_err(|e| BadInputError::new_err(format!("{e:#}")))?;
+    Ok(())
 }
 
 /// What an estimate reads: a path, or clips `[N, T, C, H, W]` of float32 in memory.
@@ -70,8 +103,9 @@ enum Source<'py> {
 }
 
 impl Source<'_> {
-    /// The request's input and, for an array, its clips (copied once, in memory).
-    fn load(self) -> PyResult<(PathBuf, Option<Frames>)> {
+    /// The request's input and, for an array, its clips (copied once, in memory), as the data
+    /// set `meta` (its meta.json) describes where given.
+    fn load(self, meta: Option<&str>) -> PyResult<(PathBuf, Option<Frames>)> {
         match self {
             Source::Path(p) => Ok((p, None)),
             Source::Array(a) => {
@@ -84,7 +118,17 @@ impl Source<'_> {
                 let data = a.as_array().iter().copied().collect();
                 let frames = Frames::new(data, shape).map_err(BadInputError::new_err)?;
                 let [n, t, c, h, w] = shape;
-                Ok((format!("<array {n}×{t}×{c}×{h}×{w}>").into(), Some(frames)))
+                let Some(meta) = meta else {
+                    return Ok((format!("<array {n}×{t}×{c}×{h}×{w}>").into(), Some(frames)));
+                };
+                let meta: physvid_shared::DatasetMeta = serde_json::from_str(meta)
+                    .map_err(|e| BadInputError::new_err(format!("meta.json: {e}")))?;
+                let name: PathBuf =
+                    format!("<data set {} {n}×{t}×{c}×{h}×{w}>", meta.scenario).into();
+                let frames = frames
+                    .with_meta(meta, &name)
+                    .map_err(BadInputError::new_err)?;
+                Ok((name, Some(frames)))
             }
         }
     }
@@ -150,13 +194,14 @@ fn options() -> PyResult<String> {
 }
 
 /// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
-/// array `[N, T, C, H, W]` read in memory) with `args`, `estimate`'s flags (what `options`
+/// array `[N, T, C, H, W]` read in memory: a data set's where `meta`, its meta.json, is given)
+/// with `args`, `estimate`'s flags (what `options`
 /// lists), parsed and resolved by the command line's own code (`cli::EstimateArgs`: the same
 /// defaults, the same checks, the same errors), and returns the `Fitted` estimation; with
 /// `out`, writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C
 /// stops it between epochs and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (source, args, quiet=false, out=None, on_epoch=None))]
+#[pyo3(signature = (source, args, quiet=false, out=None, on_epoch=None, meta=None))]
 fn estimate(
     py: Python<'_>,
     source: Source,
@@ -164,9 +209,11 @@ fn estimate(
     quiet: bool,
     out: Option<PathBuf>,
     on_epoch: Option<Py<PyAny>>,
+    meta: Option<&str>,
 ) -> PyResult<Fitted> {
     let writes = out.is_some();
-    let (input, frames) = source.load()?;
+    let (input, frames) = source.load(meta)?;
+    let data_set = frames.as_ref().is_some_and(|f| f.meta.is_some());
     let mut line: Vec<OsString> = vec!["estimate".into(), input.into_os_string()];
     line.extend(args.into_iter().map(OsString::from));
     if quiet {
@@ -181,7 +228,17 @@ fn estimate(
         BadInputError::new_err(first.trim_start_matches("error: ").to_string())
     })?;
     let parsed = parsed.validate().map_err(|e| to_py(e.into()))?;
+    let auto = matches!(parsed.model.model, Some(ModelSpec::Auto));
     let mut req = parsed.request().map_err(|e| to_py(e.into()))?;
+    if data_set && !auto {
+        // A data set's meta.json names its model, in memory as in its folder.
+        if !req.candidates.is_empty() {
+            return Err(BadInputError::new_err(
+                "--candidate: tried only when the model is chosen: pass model=\"auto\"",
+            ));
+        }
+        req.choose = false;
+    }
     req.load.frames = frames.map(std::sync::Arc::new);
     if writes {
         estimator::output::check_out(&req.out, Some(req.input()), req.force)
@@ -270,6 +327,7 @@ fn track(
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate, m)?)?;
+    m.add_function(wrap_pyfunction!(save, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(track, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;

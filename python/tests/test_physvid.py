@@ -2,6 +2,7 @@
 answers and files as the `gen` and `estimate` binaries, the object's track, a notebook's view,
 typed errors, and docs/python.md's example. Run by scripts/test.sh after `cargo test` has built the binaries."""
 import json
+import os
 import re
 import subprocess
 from pathlib import Path
@@ -152,11 +153,15 @@ def test_track_follows_the_object_and_fits_its_law(tmp_path):
 
 def test_the_same_answer_as_the_command_line_on_a_path_an_array_and_a_tensor(tmp_path, small):
     out = tmp_path / "cli"
-    done = cli("estimate", small.path, "--threads", "2", "--epochs", "30", "--out", out, "--quiet")
+    folder = small.save(tmp_path / "set")
+    done = cli("estimate", folder, "--threads", "2", "--epochs", "30", "--out", out, "--quiet")
     assert done.returncode == 0, done.stderr
     want = {p["name"]: p["estimate"] for p in json.loads((out / "report.json").read_text())["parameters"]}
-    r = physvid.estimate(small.path, threads=2, epochs=30, progress=False)
-    assert {n: p.value for n, p in r.parameters.items()} == want
+    # The saved folder, and the data set in memory (its meta.json naming the model and truth).
+    for source in (folder, small):
+        r = physvid.estimate(source, threads=2, epochs=30, progress=False)
+        assert {n: p.value for n, p in r.parameters.items()} == want
+        assert r.parameters["gamma0"].truth == small.truth["gamma0"]
 
     # A bare array: the CLI on the same values saved as .npy, with --dt.
     frames = small.frames[:120]
@@ -185,11 +190,27 @@ def test_save_writes_what_gen_writes(tmp_path):
         assert (saved / name).read_bytes() == (tmp_path / "gen" / name).read_bytes(), name
 
 
+def test_generate_writes_nothing_until_saved(tmp_path):
+    import sys
+
+    # In a process of its own whose temporary folder and working folder start empty.
+    (tmp_path / "tmp").mkdir()
+    (tmp_path / "here").mkdir()
+    script = "import physvid; d = physvid.generate('led', samples=4, size=16); print(d.frames.shape)"
+    env = dict(os.environ, TMPDIR=str(tmp_path / "tmp"))
+    done = subprocess.run([sys.executable, "-c", script], cwd=tmp_path / "here", env=env,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("(4, "), done.stdout
+    assert list((tmp_path / "tmp").iterdir()) == [] and list((tmp_path / "here").iterdir()) == []
+
+
 def test_out_and_save_write_what_estimate_writes(tmp_path, small):
     out = tmp_path / "run"
     r = physvid.estimate(small, threads=2, epochs=5, progress=False, out=out)
     saved = r.save(tmp_path / "saved")
-    done = cli("estimate", small.path, "--threads", "2", "--epochs", "5", "--out", tmp_path / "cli", "--quiet")
+    folder = small.save(tmp_path / "set")
+    done = cli("estimate", folder, "--threads", "2", "--epochs", "5", "--out", tmp_path / "cli", "--quiet")
     assert done.returncode == 0, done.stderr
     for name in ["report.json", "report.html", "metrics.csv", "parameters.png", "latents.png"]:
         assert (out / name).is_file() and (saved / name).is_file(), name

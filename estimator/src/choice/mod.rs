@@ -44,6 +44,8 @@ pub struct ChoiceRequest {
     pub files: Vec<ModelRef>,
     /// The clips are in memory (`LoadRequest::frames`): `input` only names them.
     pub in_memory: bool,
+    /// Their meta.json, where they are a data set's.
+    pub memory_meta: Option<DatasetMeta>,
 }
 
 /// `req` for trying `model` in a choice (on the `cut` shared by all, unless it is
@@ -82,6 +84,7 @@ impl ChoiceRequest {
             incline: req.calibration.incline_deg.is_some(),
             files: req.candidates.clone(),
             in_memory: req.load.frames.is_some(),
+            memory_meta: req.load.frames.as_ref().and_then(|f| f.meta.clone()),
         }
     }
 }
@@ -98,9 +101,10 @@ pub fn chosen_without_model(input: &Path) -> bool {
 pub fn candidates(
     req: &ChoiceRequest,
 ) -> Result<(Vec<ModelRef>, Option<CommonCut>), EstimateError> {
-    // Clips in memory are a bare array's: no meta.json, no recording to cut.
+    // Clips in memory are an array's or a data set's: their meta.json, if any, no recording
+    // to cut.
     let meta = match req.in_memory {
-        true => None,
+        true => req.memory_meta.clone(),
         false => {
             physvid_shared::input::check_kind(&req.input).map_err(input_error)?;
             meta_of(&req.input)
@@ -130,6 +134,15 @@ pub fn candidates(
         false => cut::common_cut(&req.input, &req.recording)?,
     };
     Ok((models, cut))
+}
+
+/// Whether `load`'s input names no model: a recording, a bare `.npy` or an array in memory do
+/// not; a data set, in its folder or in memory, names its model in its meta.json.
+pub fn names_no_model(load: &crate::data::LoadRequest) -> bool {
+    match &load.frames {
+        Some(f) => f.meta.is_none(),
+        None => chosen_without_model(&load.input),
+    }
 }
 
 /// Whether `input` is a data set directory (whose meta.json names its model), not a

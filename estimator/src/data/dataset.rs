@@ -23,7 +23,7 @@ pub(crate) fn probe(req: &LoadRequest) -> Result<Probe, EstimateError> {
     let header = match &req.frames {
         Some(f) => DatasetHeader {
             shape: f.shape,
-            meta: None,
+            meta: f.meta.clone(),
             frames_path: req.input.clone(),
         },
         None => read_dataset_header(&req.input)?,
@@ -123,8 +123,8 @@ pub(crate) fn dataset_source(
         return Ok(Source {
             frames: f.data.clone(),
             shape: f.shape,
-            meta: None,
-            start_times: None,
+            meta: f.meta.clone(),
+            start_times: f.meta.as_ref().and_then(|m| m.clip_start_times.clone()),
             clip_index: None,
             recording: None,
             warnings: Vec::new(),

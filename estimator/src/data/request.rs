@@ -22,18 +22,21 @@ pub struct LoadRequest {
     /// `--dt`, when given.
     pub dt: Option<f64>,
     pub recording: RecordingRequest,
-    /// Clips held in memory by a library caller (a Python array): read instead of `input`,
-    /// which then only names them in messages, like a bare `.npy` (no meta.json: `dt` and the
-    /// model given, or the model chosen). Never serialised.
+    /// Clips held in memory by a library caller (a Python array or data set): read instead of
+    /// `input`, which then only names them in messages, like a bare `.npy` (no meta.json: `dt`
+    /// and the model given, or the model chosen) or, with their meta.json, like a data set's
+    /// folder. Never serialised.
     #[serde(skip)]
     pub frames: Option<std::sync::Arc<Frames>>,
 }
 
-/// Clips `[N, T, C, H, W]` of float32 in memory.
+/// Clips `[N, T, C, H, W]` of float32 in memory: a bare array's, or a `gen` data set's with
+/// its meta.json (`meta`), read as its folder would be.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Frames {
     pub data: Vec<f32>,
     pub shape: [usize; 5],
+    pub meta: Option<physvid_shared::DatasetMeta>,
 }
 
 impl Frames {
@@ -47,7 +50,27 @@ impl Frames {
                 data.len()
             ));
         }
-        Ok(Frames { data, shape })
+        Ok(Frames {
+            data,
+            shape,
+            meta: None,
+        })
+    }
+
+    /// These clips as the data set `meta` describes (checked against their shape as a data
+    /// set's folder is; `name` stands for its folder in messages).
+    pub fn with_meta(
+        self,
+        meta: physvid_shared::DatasetMeta,
+        name: &std::path::Path,
+    ) -> Result<Frames, String> {
+        let meta_path = name.join(physvid_shared::dataset::META_FILE);
+        physvid_shared::dataset::validate_meta(&meta, &meta_path, name, self.shape)
+            .map_err(|e| e.to_string())?;
+        Ok(Frames {
+            meta: Some(meta),
+            ..self
+        })
     }
 }
 
