@@ -13,8 +13,13 @@ scripts/check_layout.sh
 # Release profile throughout, so the libtorch bindings are compiled once for clippy and tests.
 cargo clippy --release --workspace --all-targets -- -D warnings
 cargo test --release --workspace
-# The Python package (python/, maturin): built into .venv, then its pytest tests, which compare
-# it with the binaries just built.
-PATH="$root/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
-    --no-build-isolation ./python
-.venv/bin/python -m pytest -q python/tests
+# The Python package (python/, maturin): its wheel built once (on the libtorch just compiled),
+# installed into .venv, then its pytest tests, which compare it with the binaries just built and
+# install the same wheel into a fresh venv.
+rm -rf target/wheels
+PATH="$root/.venv/bin:$PATH" .venv/bin/maturin build --quiet --release -m python/Cargo.toml \
+    --auditwheel skip -o target/wheels
+wheel="$(ls target/wheels/physvid-*.whl)"
+.venv/bin/python -m pip install --quiet --disable-pip-version-check --no-deps --force-reinstall \
+    "$wheel"
+PHYSVID_WHEEL="$root/$wheel" .venv/bin/python -m pytest -q python/tests
