@@ -16,7 +16,6 @@ from __future__ import annotations
 # libtorch comes from the torch wheel: torch is loaded first, so the module finds it.
 import torch  # noqa: F401
 
-import difflib
 import html
 import json
 import os
@@ -27,6 +26,7 @@ from typing import Any, Callable, Dict, List, Optional, Union
 import numpy as np
 
 from . import _core
+from ._options import Option, Request, _flags, options
 from ._core import BadInputError, NoEstimateError, PhysvidError, UnreliableError
 
 __all__ = [
@@ -35,6 +35,7 @@ __all__ = [
     "track",
     "options",
     "Option",
+    "Request",
     "Dataset",
     "Result",
     "Parameter",
@@ -293,76 +294,27 @@ class Result:
 Source = Union[str, os.PathLike, Dataset, np.ndarray, "torch.Tensor"]
 
 
-@dataclass(frozen=True)
-class Option:
-    """One of ``estimate``'s options as a keyword: its command-line flag, whether it takes a
-    value (else ``True`` sets it) and may be given several times (a list then), its default as
-    the command line prints it, and its help."""
-
-    keyword: str
-    flag: str
-    takes_value: bool
-    repeats: bool
-    default: Optional[str]
-    help: str
-
-
-_OPTIONS: Optional[Dict[str, Option]] = None
-
-# Keywords of earlier versions, still read.
-_ALIASES = {"references": "reference"}
-
-
-def options() -> Dict[str, Option]:
-    """Every option of ``estimate`` that ``physvid.estimate`` takes as a keyword, by keyword:
-    read from the one definition the command line parses, so the two cannot drift. Left out:
-    the input (``source``), ``--out``/``--force`` (``out=``, ``Result.save``), ``--quiet``
-    (``progress=False``) and a batch's ``--batch``/``--shard``/``--merge`` (a Python loop)."""
-    global _OPTIONS
-    if _OPTIONS is None:
-        _OPTIONS = {o["keyword"]: Option(**o) for o in json.loads(_core.options())}
-    return _OPTIONS
-
-
-def _flags(given: Dict[str, Any]) -> List[str]:
-    """The command line's flags for the keywords ``given`` (``None`` leaves an option at its
-    default; ``True``/``False`` sets or leaves a switch; a list repeats an option that repeats,
-    and is joined by commas for one that takes a list in one value)."""
-    known = options()
-    args: List[str] = []
-    for key, value in given.items():
-        key = _ALIASES.get(key, key)
-        o = known.get(key)
-        if o is None:
-            close = difflib.get_close_matches(key, list(known), n=3)
-            hint = f"; did you mean {', '.join(close)}?" if close else "; physvid.options() lists them"
-            raise TypeError(f"estimate() got an unexpected keyword argument '{key}'{hint}")
-        if value is None or value is False and not o.takes_value:
-            continue
-        if not o.takes_value:
-            if value is not True:
-                raise TypeError(f"{key}: a switch, True or False (got {value!r})")
-            args.append(o.flag)
-        elif isinstance(value, (list, tuple)):
-            if o.repeats:
-                for v in value:
-                    args += [o.flag, str(v)]
-            else:
-                args += [o.flag, ",".join(str(v) for v in value)]
-        else:
-            args += [o.flag, str(value)]
-    return args
+def _source(source: Source):
+    """What the module reads for ``source``: a path, or float32 clips in memory (with their
+    meta.json for a ``Dataset``)."""
+    if isinstance(source, Dataset):
+        return source.frames, source._meta_text  # in memory, with its meta.json
+    if isinstance(source, (str, os.PathLike)):
+        return str(Path(source)), None
+    # Read in memory (a CPU tensor's numpy view costs no copy; the module copies once).
+    array = source.detach().cpu().numpy() if isinstance(source, torch.Tensor) else source
+    return np.ascontiguousarray(array, dtype=np.float32), None
 
 
 def estimate(
-    source: Source,
+    source: Union[Source, Request],
     *,
     progress: Union[bool, Callable[[Epoch], None]] = True,
     out: Union[str, os.PathLike, None] = None,
     **options: Any,
 ) -> Result:
     """Estimates on ``source``: a path (data set folder, ``.npy``, video, image folder), a
-    ``Dataset``, or an array / tensor ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy``
+    ``Dataset``, a ``Request`` (its source and options, then these), or an array / tensor ``[N, T, C, H, W]`` (read in memory, as a bare ``.npy``
     would be: ``dt`` is needed). Every option of ``estimate`` is a keyword of the same name and
     default (``physvid.options()`` lists them with their help): ``model`` (a built-in's name or
     a model file; ``None``: the one a data set's meta.json names, else chosen by the evidence;
@@ -375,17 +327,10 @@ def estimate(
     lines; ``False`` nothing; a function is called with each ``Epoch``. With ``out``, writes what
     ``estimate --out`` writes. Raises ``BadInputError``, ``NoEstimateError`` or
     ``UnreliableError`` (its ``result`` the graded estimate) as ``estimate`` exits 2, 3 or 4."""
+    if isinstance(source, Request):
+        source, options = source.source, {**source.options, **options}
     args = _flags(options)
-    meta = None
-    if isinstance(source, Dataset):
-        read: Any = source.frames  # in memory, with its meta.json
-        meta = source._meta_text
-    elif isinstance(source, (str, os.PathLike)):
-        read = str(Path(source))
-    else:
-        # Read in memory (a CPU tensor's numpy view costs no copy; the module copies once).
-        array = source.detach().cpu().numpy() if isinstance(source, torch.Tensor) else source
-        read = np.ascontiguousarray(array, dtype=np.float32)
+    read, meta = _source(source)
     on_epoch, bar = None, None
     if callable(progress):
         on_epoch = lambda e, most, err, values: progress(Epoch(e, most, err, dict(values)))  # noqa: E731

@@ -5,16 +5,16 @@
 //! these functions in typed objects; errors arrive as the exception classes below, which mirror
 //! `estimate`'s exit codes.
 
+mod dataset;
+
 use clap::Parser;
 use estimator::cli::{EstimateArgs, ModelSpec};
 use estimator::data::Frames;
 use estimator::{estimation_watched, EstimateError, Watch};
-use numpy::ndarray::Ix5;
-use numpy::{PyArray, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -48,51 +48,6 @@ fn to_py(e: anyhow::Error) -> PyErr {
         Some(inner) if inner.is_bad_input() => BadInputError::new_err(text),
         _ => PhysvidError::new_err(text),
     }
-}
-
-/// A data set in memory as Python receives it: frames, meta.json, preview.png.
-type InMemoryParts<'py> = (Bound<'py, PyArray<f32, Ix5>>, String, Bound<'py, PyBytes>);
-
-/// The data set `gen ARGS` writes, rendered in memory (seeded: the same bytes once saved):
-/// its frames `[N, T, C, H, W]`, its meta.json and its preview.png. Nothing is written.
-#[pyfunction]
-fn generate<'py>(py: Python<'py>, args: Vec<String>) -> PyResult<InMemoryParts<'py>> {
-    // `gen` asks for a writable --out; nothing is written to it.
-    let out = std::env::temp_dir().display().to_string();
-    let mut line: Vec<&str> = args.iter().map(String::as_str).collect();
-    line.extend(["--out", &out]);
-    let cfg = generator::GenArgs::config_from(&line)
-        .map_err(|e| BadInputError::new_err(e.to_string()))?;
-    let data = py
-        .allow_threads(|| generator::generate_in_memory(&cfg))
-        .map_err(|e| BadInputError::new_err(format!("{e:#}")))?;
-    let meta = serde_json::to_string_pretty(&data.meta)
-        .map_err(|e| PhysvidError::new_err(e.to_string()))?;
-    let frames = PyArray::from_vec(py, data.frames).reshape(data.meta.shape)?;
-    Ok((frames, meta, PyBytes::new(py, &data.preview)))
-}
-
-/// Writes a data set held in memory (`generate`'s three parts) into `folder`, as `gen --out
-/// FOLDER` writes it (`force`: into a folder this tool did not make).
-#[pyfunction]
-#[pyo3(signature = (frames, meta, preview, folder, force=false))]
-fn save(
-    py: Python<'_>,
-    frames: PyReadonlyArrayDyn<'_, f32>,
-    meta: &str,
-    preview: Vec<u8>,
-    folder: PathBuf,
-    force: bool,
-) -> PyResult<()> {
-    let meta = serde_json::from_str(meta).map_err(|e| BadInputError::new_err(e.to_string()))?;
-    let data = generator::InMemory {
-        frames: frames.as_array().iter().copied().collect(),
-        meta,
-        preview,
-    };
-    py.allow_threads(|| data.save(&folder, force))
-        .map_err(|e| BadInputError::new_err(format!("{e:#}")))?;
-    Ok(())
 }
 
 /// What an estimate reads: a path, or clips `[N, T, C, H, W]` of float32 in memory.
@@ -193,25 +148,16 @@ fn options() -> PyResult<String> {
     serde_json::to_string(&list).map_err(|e| PhysvidError::new_err(e.to_string()))
 }
 
-/// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
-/// array `[N, T, C, H, W]` read in memory: a data set's where `meta`, its meta.json, is given)
-/// with `args`, `estimate`'s flags (what `options`
-/// lists), parsed and resolved by the command line's own code (`cli::EstimateArgs`: the same
-/// defaults, the same checks, the same errors), and returns the `Fitted` estimation; with
-/// `out`, writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C
-/// stops it between epochs and raises KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (source, args, quiet=false, out=None, on_epoch=None, meta=None))]
-fn estimate(
-    py: Python<'_>,
+/// The typed request `estimate` runs for `source` (a data set's where `meta` is given) with
+/// `args`, parsed and checked by the command line's own code, into `out` (the temporary folder,
+/// never written, without it).
+fn request_of(
     source: Source,
+    meta: Option<&str>,
     args: Vec<String>,
     quiet: bool,
     out: Option<PathBuf>,
-    on_epoch: Option<Py<PyAny>>,
-    meta: Option<&str>,
-) -> PyResult<Fitted> {
-    let writes = out.is_some();
+) -> PyResult<estimator::Request> {
     let (input, frames) = source.load(meta)?;
     let data_set = frames.as_ref().is_some_and(|f| f.meta.is_some());
     let mut line: Vec<OsString> = vec!["estimate".into(), input.into_os_string()];
@@ -240,6 +186,38 @@ fn estimate(
         req.choose = false;
     }
     req.load.frames = frames.map(std::sync::Arc::new);
+    Ok(req)
+}
+
+/// The typed request (as JSON) that `estimate` would run for `source` and `args`: every option
+/// resolved to its value, defaults included; a refused option raises as `estimate` would.
+#[pyfunction]
+#[pyo3(signature = (source, args, meta=None))]
+fn request(source: Source, args: Vec<String>, meta: Option<&str>) -> PyResult<String> {
+    let req = request_of(source, meta, args, false, None)?;
+    serde_json::to_string(&req).map_err(|e| PhysvidError::new_err(e.to_string()))
+}
+
+/// Estimates on `source` (a data set folder, a `.npy`, a video, an image folder, or a float32
+/// array `[N, T, C, H, W]` read in memory: a data set's where `meta`, its meta.json, is given)
+/// with `args`, `estimate`'s flags (what `options`
+/// lists), parsed and resolved by the command line's own code (`cli::EstimateArgs`: the same
+/// defaults, the same checks, the same errors), and returns the `Fitted` estimation; with
+/// `out`, writes what `estimate --out OUT` writes. The GIL is released while it trains; Ctrl-C
+/// stops it between epochs and raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (source, args, quiet=false, out=None, on_epoch=None, meta=None))]
+fn estimate(
+    py: Python<'_>,
+    source: Source,
+    args: Vec<String>,
+    quiet: bool,
+    out: Option<PathBuf>,
+    on_epoch: Option<Py<PyAny>>,
+    meta: Option<&str>,
+) -> PyResult<Fitted> {
+    let writes = out.is_some();
+    let req = request_of(source, meta, args, quiet, out)?;
     if writes {
         estimator::output::check_out(&req.out, Some(req.input()), req.force)
             .map_err(|e| to_py(e.into()))?;
@@ -326,8 +304,9 @@ fn track(
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(generate, m)?)?;
-    m.add_function(wrap_pyfunction!(save, m)?)?;
+    m.add_function(wrap_pyfunction!(dataset::generate, m)?)?;
+    m.add_function(wrap_pyfunction!(dataset::save, m)?)?;
+    m.add_function(wrap_pyfunction!(request, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(track, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;

@@ -218,6 +218,15 @@ def test_out_and_save_write_what_estimate_writes(tmp_path, small):
         mine = json.loads((folder / "report.json").read_text())
         theirs = json.loads((tmp_path / "cli" / "report.json").read_text())
         assert [p["estimate"] for p in mine["parameters"]] == [p["estimate"] for p in theirs["parameters"]]
+    # The same run built step by step: the same answer.
+    req = physvid.Request(small, threads=2)
+    req.epochs = 5
+    assert req.epochs == 5 and req.seed is None and req.resolved()["training"]["epochs"] == 5
+    assert req.resolved()["training"]["seed"] == 0  # the default, from the command line's parser
+    with pytest.raises(TypeError, match="epochs"):
+        req.epochz = 3
+    again = req.run(progress=False)
+    assert {n: p.value for n, p in again.parameters.items()} == {n: p.value for n, p in r.parameters.items()}
     assert (saved / "metrics.csv").read_text().splitlines()[0] == (tmp_path / "cli" / "metrics.csv").read_text().splitlines()[0]
     # A folder this tool did not make, not empty: refused, as by the command line.
     (tmp_path / "mine").mkdir()
