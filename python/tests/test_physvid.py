@@ -263,6 +263,19 @@ def test_the_documented_example_runs():
     exec(compile(blocks[0], "docs/python.md", "exec"), {})
 
 
+def test_the_worked_example_on_a_recording_runs(tmp_path, monkeypatch):
+    recording = ROOT.parent / "shared" / "real-videos" / "spring-k525.mp4"
+    if not recording.exists():
+        pytest.skip(f"{recording} is absent (the shared recordings)")
+    text = (ROOT / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) >= 2, "docs/python.md has a worked example on a recording"
+    (tmp_path / "spring-k525.mp4").symlink_to(recording)
+    monkeypatch.chdir(tmp_path)
+    exec(compile(blocks[1], "docs/python.md", "exec"), {})
+    assert (tmp_path / "spring-k525.png").stat().st_size > 10_000
+
+
 def test_ctrl_c_stops_training_promptly_and_writes_nothing(tmp_path):
     import signal
     import sys
