@@ -136,7 +136,10 @@ fn a_spring_held_by_hand_is_read_once_the_hand_has_left() {
     let page = std::fs::read_to_string(run.join("report.html")).unwrap();
     assert!(page.contains("id=\"track-line\""), "report.html");
     // The tracked period, 0.537–0.542 s, gives γ0 = 134.4–136.9 s⁻²: the track within it (to
-    // 0.5 %), the latent within 2 % of it and of the track's answer, graded ok.
+    // 0.5 %), the latent within 2 % of it and of the track's answer; graded ok where the two
+    // routes agree within three joint standard errors, doubtful with both named where they do
+    // not (at present the latent's 132.9 ± 0.4 lies 3.7 of them from the track's 134.4 ± 0.2,
+    // 2.0 % under the period's middle).
     let g0 = track_rate(&r);
     assert!(
         (134.4 * 0.995..136.9 * 1.005).contains(&g0),
@@ -148,7 +151,29 @@ fn a_spring_held_by_hand_is_read_once_the_hand_has_left() {
         "{}: {latent}: {err}",
         r["model"]
     );
-    assert_eq!(r["verdict"]["grade"], "ok", "{err}");
+    let track_error = r["track"]["laws"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["law"] == r["track"]["chosen"])
+        .and_then(|l| l["values"].as_array().unwrap().first().cloned())
+        .unwrap()["error"]
+        .as_f64()
+        .unwrap();
+    let latent_error = r["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "gamma0")
+        .unwrap()["standard_error"]
+        .as_f64()
+        .unwrap();
+    let apart = (latent - g0).abs() > 3.0 * latent_error.hypot(track_error);
+    let reasons = r["verdict"]["reasons"].as_array().unwrap();
+    let routes = reasons.iter().find(|x| x["check"] == "routes");
+    assert_eq!(routes.is_some(), apart, "{}", r["verdict"]);
+    let want = if apart { "doubtful" } else { "ok" };
+    assert_eq!(r["verdict"]["grade"], want, "{}", r["verdict"]);
 }
 
 #[test]

@@ -1,8 +1,10 @@
 //! The two routes compared: where the object's own track (`track`) oscillates clearly
 //! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a measurement of the same γ0 (or g/L) the latent's answer gives, with no
 //! encoder between the picture and the law. An answer whose model does not oscillate, or whose
-//! rate lies away from the track's by more than both errors allow and more than the 2 % that
-//! separates a right answer from a wrong one, is doubtful, and the reason names both.
+//! rate lies away from the track's by more than both errors allow (two measurements of one
+//! number that disagree: one of them is wrong), is doubtful, and the reason names both; a
+//! latent rate without a standard error is held to the 2 % that separates a right answer from
+//! a wrong one.
 
 use super::{Check, Grade, Reason};
 use crate::analysis::Run;
@@ -11,9 +13,11 @@ use physvid_shared::cli::approx;
 
 pub struct Routes;
 
-/// Rates further apart than this share, and than [`ERRORS`] joint standard errors, disagree.
-pub const APART: f64 = 0.02;
+/// Rates further apart than [`ERRORS`] joint standard errors disagree (the usual three: a
+/// chance of about 0.3 % for two right answers with errors as stated)…
 pub const ERRORS: f64 = 3.0;
+/// …or, where the latent's rate has no standard error, further apart than this share.
+pub const APART: f64 = 0.02;
 
 /// The names a rate² goes by among the models' values.
 const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
@@ -61,7 +65,13 @@ impl Check for Routes {
         let gap = (p.estimate - g.value).abs();
         let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
         let share = gap / g.value.abs().max(f64::MIN_POSITIVE);
-        if share <= APART || gap <= ERRORS * joint {
+        // The figure held against its limit: joint standard errors apart, or the share.
+        let (measured, limit) = match p.standard_error {
+            Some(_) if joint > 0.0 => (gap / joint, ERRORS),
+            Some(_) => (if gap > 0.0 { f64::INFINITY } else { 0.0 }, ERRORS),
+            None => (share, APART),
+        };
+        if measured <= limit {
             return Vec::new();
         }
         vec![Reason::new(
@@ -81,6 +91,6 @@ impl Check for Routes {
                 })
             ),
         )
-        .measured(share, APART)]
+        .measured(measured, limit)]
     }
 }
