@@ -44,6 +44,13 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         }
         Some(_) => String::new(),
     };
+    // Started from the track's answer (the oscillator's values by the same names).
+    g.init = span
+        .values
+        .iter()
+        .filter(|v| model.parameters().iter().any(|p| p.name == v.name))
+        .map(|v| (v.name.to_string(), v.value))
+        .collect();
     g.load.recording.start = Some(first);
     // The end is excluded: half a frame past the last sample.
     let step = (last - first) / (span.samples.max(2) - 1) as f64;

@@ -111,10 +111,18 @@ fn a_spring_pulled_down_and_let_go_by_hand_is_read_from_its_release() {
         "{}: {g0}: {err}",
         r["model"]
     );
-    // Not unreliable. (Graded doubtful at present: the latent's γ0 refitted on the first and
-    // the second half of the clips, 36.3 and 35.4, differ by 5.6 standard errors where the
-    // track's law holds over the whole span; docs/status.md.)
-    assert_ne!(r["verdict"]["grade"], "unreliable", "{err}");
+    // Graded ok: the latent's γ0 refitted on the first and the second half of the clips (36.3
+    // and 35.4) differ by more than five standard errors, but the track's own halves agree
+    // (35.71 and 35.74) and its whole γ0 is the latent's: the law holds alike, read with no
+    // encoder, so the halves' gap is the encoder's and not held against the answer.
+    let halves = &r["track"]["laws"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["law"] == "oscillation")
+        .unwrap()["halves"];
+    assert_eq!(halves.as_array().map(Vec::len), Some(2), "{err}");
+    assert_eq!(r["verdict"]["grade"], "ok", "{}", r["verdict"]);
 }
 
 #[test]

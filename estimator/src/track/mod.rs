@@ -259,6 +259,7 @@ fn route_of(
         .filter_map(|&law| {
             let s = longest(&samples, law, least_window(law, t.len()), sigma)?;
             Some(LawSpan {
+                halves: segment::halves(&samples, law, &s),
                 law,
                 holds: s.holds,
                 first_s: t[s.first],

@@ -17,6 +17,10 @@ pub struct LawSpan {
     pub last_s: f64,
     pub samples: usize,
     pub values: Vec<Value>,
+    /// The values refitted on the span's earlier and later half (`segment::halves`; empty
+    /// where a half gives no fit).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub halves: Vec<Vec<Value>>,
     pub rms_px: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub periods: Option<f64>,
@@ -206,6 +210,7 @@ mod tests {
             last_s: 0.7,
             samples: 6,
             values: Vec::new(),
+            halves: Vec::new(),
             rms_px: 0.1,
             periods: Some(3.0),
             curve: Vec::new(),

@@ -3,7 +3,7 @@
 //! best. The free motion is where the law holds: a hand holding or letting go, an impact, a
 //! bounce or an exit from the frame end it, whatever the picture does around it.
 
-use super::laws::{Fitted, TrackLaw};
+use super::laws::{Fitted, TrackLaw, Value};
 
 /// A span's residuals may be this many times the track's noise (root mean square)…
 const SPREADS: f64 = 3.0;
@@ -78,6 +78,19 @@ impl Samples<'_> {
     fn fit(&self, law: TrackLaw, a: usize, b: usize, near: Option<&Fitted>) -> Option<Fitted> {
         law.fit(&self.t[a..b], &self.u[a..b], &self.xy[a..b], near)
     }
+}
+
+/// The values of `law` refitted on the earlier and the later half of `span` (each started from
+/// the whole span's fit): whether the law holds alike over it, measured with no encoder. Empty
+/// where a half gives no fit.
+pub fn halves(s: &Samples, law: TrackLaw, span: &Span) -> Vec<Vec<Value>> {
+    let middle = (span.first + span.last) / 2;
+    let parts = [(span.first, middle), (middle, span.last)];
+    let fits: Option<Vec<Vec<Value>>> = parts
+        .iter()
+        .map(|&(a, b)| Some(s.fit(law, a, b, Some(&span.fitted))?.values))
+        .collect();
+    fits.unwrap_or_default()
 }
 
 /// The longest span where `law` explains `s` within `noise`: the window of `least` samples whose

@@ -9,6 +9,10 @@
 //! pin the value better than all the data, and a half of a short recording has few blocks of
 //! time to estimate its own error from (a roll of 44 frames: halves at ±0.066 and ±0.0068
 //! m/s², the whole ±0.11).
+//! Where the object's track guides the run and corroborates the rate (its own halves agree by
+//! this same rule and its whole rate is the latent's: `routes::corroborates`), the latent's
+//! halves that disagree are its encoder's gain over the motion's range, not the law's, and are
+//! not held against the answer.
 
 use super::{Check, Grade, Reason};
 use crate::analysis::Run;
@@ -71,6 +75,10 @@ impl Check for Halves {
             let Some((z, limit, s)) = worst else {
                 continue;
             };
+            // The track's halves agree and its rate is the latent's: the law holds alike.
+            if super::routes::corroborates(r, p) {
+                continue;
+            }
             let [first, second] = s.by.halves();
             out.push(
                 Reason::new(
@@ -98,7 +106,7 @@ impl Check for Halves {
 /// crossed, where they disagree: beyond [`DISAGREE`] errors and [`MATERIAL`] of the value, or
 /// beyond [`DISAGREE_LARGE`] errors and [`LARGE`] of it, or beyond [`DISAGREE_VAST`] errors
 /// and [`VAST`] of it.
-fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
+pub(super) fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
     let [a, b] = values;
     let z = (a - b).abs() / errors[0].hypot(errors[1]).max(1e-300);
     let rel = (a - b).abs() / a.abs().max(b.abs()).max(1e-300);
