@@ -225,6 +225,38 @@ mod tests {
         assert!((g0 / (w * w + z * z) - 1.0).abs() < 1e-3, "{g0}");
     }
 
+    /// The halves of a span give the law's rate alike where it holds alike, and apart where the
+    /// rate drifts (a spring whose period lengthens by 3 % over the span).
+    #[test]
+    fn halves_refit_the_rate_on_either_half() {
+        let t: Vec<f64> = (0..240).map(|i| i as f64 / 30.0).collect();
+        let rates = |drift: f64| {
+            let u: Vec<f64> = t
+                .iter()
+                .map(|&s| 30.0 * (6.0 * s * (1.0 - drift * s / 8.0)).cos())
+                .collect();
+            let xy: Vec<(f64, f64)> = u.iter().map(|&v| (0.0, v)).collect();
+            let s = Samples {
+                t: &t,
+                u: &u,
+                xy: &xy,
+            };
+            let span = Span {
+                first: 0,
+                last: 240,
+                fitted: s.fit(TrackLaw::Oscillation, 0, 240, None).unwrap(),
+                holds: true,
+            };
+            let h = halves(&s, TrackLaw::Oscillation, &span);
+            let g0 = |v: &[Value]| v.iter().find(|v| v.name == "gamma0").unwrap().value;
+            (g0(&h[0]), g0(&h[1]))
+        };
+        let (a, b) = rates(0.0);
+        assert!((a / 36.0 - 1.0).abs() < 1e-6 && (b / 36.0 - 1.0).abs() < 1e-6, "{a} {b}");
+        let (a, b) = rates(0.015);
+        assert!(b < a * 0.98, "a slowing spring: {a} then {b}");
+    }
+
     #[test]
     fn the_noise_of_a_smooth_motion_is_its_added_noise() {
         // A slow sine with an alternating ±0.5 px: the smoother leaves it all.
