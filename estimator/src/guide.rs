@@ -13,13 +13,11 @@ use crate::verdict;
 use physvid_shared::video;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
-/// no model files, no
-/// `--start`/`--end`, no `--init`) and the track oscillates clearly (`TrackRoute::guiding`):
-/// the request for the latent route on the oscillator over the track's span, with the warning
-/// that says so. The latent starts from its own starts, not the track's answer: the two routes
-/// stay independent measurements for the verdict to compare (`verdict::routes`), and a run that
-/// starts at its answer never improves, which the training check reads as a latent that did
-/// not learn.
+/// no model files, no `--start`/`--end`, no `--init`) and the track oscillates clearly
+/// (`TrackRoute::guiding`): the request for the latent route on the oscillator over the track's
+/// span, started from the track's answer, with the warning that says so. The latent moves off
+/// that start where its frames say otherwise, so the verdict still compares two measurements
+/// (`verdict::routes`); one that learns nothing is caught by the training, motion and law checks.
 pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     let r = &req.load.recording;
     let free = chooses
@@ -57,8 +55,8 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     g.load.recording.end = Some(last + 0.5 * step);
     let why = format!(
         "the object's track oscillates over {:.2}–{:.2} s of the file ({:.1} periods): the \
-         latent route trained the damped-oscillator there{framed}, from its own starts, as a \
-         measurement independent of the track's (give --model or --start to choose yourself)",
+         latent route trained the damped-oscillator there{framed}, started from the track's \
+         answer (give --model or --start to choose yourself)",
         first,
         last,
         span.periods.unwrap_or(0.0)

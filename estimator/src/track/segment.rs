@@ -252,7 +252,10 @@ mod tests {
             (g0(&h[0]), g0(&h[1]))
         };
         let (a, b) = rates(0.0);
-        assert!((a / 36.0 - 1.0).abs() < 1e-6 && (b / 36.0 - 1.0).abs() < 1e-6, "{a} {b}");
+        assert!(
+            (a / 36.0 - 1.0).abs() < 1e-6 && (b / 36.0 - 1.0).abs() < 1e-6,
+            "{a} {b}"
+        );
         let (a, b) = rates(0.015);
         assert!(b < a * 0.98, "a slowing spring: {a} then {b}");
     }
