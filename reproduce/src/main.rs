@@ -11,6 +11,7 @@ mod noise;
 mod options;
 mod others;
 mod real;
+mod recordings;
 mod robustness;
 mod runner;
 mod shard;

@@ -8,97 +8,11 @@
 //! the share of right answers not graded ok, over the chosen answers and over every candidate.
 
 use crate::options::Opt;
+use crate::recordings::{Recording, RECORDINGS};
 use crate::runner::Runner;
 use crate::table::{self, Cell, Table};
 use estimator::digits::sig;
 use estimator::verdict::Grade;
-
-/// A value known for a recording: the model whose law is the system's, its parameter, the
-/// value, and the bar (relative error).
-struct Known {
-    model: &'static str,
-    parameter: &'static str,
-    value: f64,
-    bar: f64,
-}
-
-/// A shared recording: its file, the readings its README offers (as options), what is known.
-struct Recording {
-    file: &'static str,
-    readings: &'static [Opt],
-    known: &'static [Known],
-    /// Where the known values come from.
-    source: &'static str,
-}
-
-const fn known(model: &'static str, parameter: &'static str, value: f64, bar: f64) -> Known {
-    Known {
-        model,
-        parameter,
-        value,
-        bar,
-    }
-}
-
-/// The shared recordings (their README), the quick set first.
-const RECORDINGS: [Recording; 7] = [
-    Recording {
-        file: "pendulum-redapple.mov",
-        readings: &[],
-        known: &[
-            known("damped-oscillator", "gamma0", 9.15, 0.02),
-            known("pendulum", "g_over_l", 9.15, 0.02),
-        ],
-        source: "g/L from the period of the red bob tracked by hand, 2.077 ± 0.004 s",
-    },
-    Recording {
-        file: "negative-tree.mov",
-        readings: &[],
-        known: &[],
-        source: "a negative control: branches in the wind, no law",
-    },
-    Recording {
-        file: "spring-k705.mp4",
-        readings: &[],
-        known: &[
-            known("damped-oscillator", "gamma0", 35.7, 0.02),
-            known("pendulum", "g_over_l", 35.7, 0.02),
-        ],
-        source: "γ0 from the tracked period 1.051 s (the table's k/m gives 35.0)",
-    },
-    Recording {
-        file: "spring-m515-hand.mp4",
-        readings: &[],
-        known: &[
-            known("damped-oscillator", "gamma0", 135.6, 0.02),
-            known("pendulum", "g_over_l", 135.6, 0.02),
-        ],
-        source: "γ0 from the middle of the tracked periods, 0.537–0.542 s (134.4–136.9; the \
-                 table's k/m gives 136.9), as for the other spring",
-    },
-    Recording {
-        file: "incline-roll10.avi",
-        readings: &[
-            Opt::InclineDeg(10.3),
-            Opt::Reference(&[(0.30, 0.076), (0.80, 0.360), (1.30, 0.855)]),
-        ],
-        known: &[known("sliding-block", "acceleration", 0.843, 0.03)],
-        source: "a tracked on the ramp marks' scale, the readings' (about 6 % below the true a: the pipe runs farther from the camera than the marks)",
-    },
-    Recording {
-        file: "freefall-ball.mp4",
-        readings: &[Opt::Reference(&[(3.933, 0.0), (6.5, 1.975)])],
-        known: &[known("free-fall", "g", 9.81, 0.03)],
-        source: "g (the README: release near frame 118–124, the floor at 200–202)",
-    },
-    Recording {
-        file: "torricelli-500ml.mp4",
-        readings: &[Opt::Reference(&[(3.0, 0.0727), (12.0, 0.0373)])],
-        known: &[known("torricelli", "k", 0.0170, 0.02)],
-        source: "k from the two levels read (the README's discharge coefficient, about 0.55, \
-                 gives 0.0147 and the bottom reached at 23–24 s gives 0.024: no better truth)",
-    },
-];
 
 /// One candidate's answer on a recording, judged.
 struct Answer {
