@@ -130,7 +130,7 @@ pub const RECORDINGS: [Recording; 14] = [
     Recording {
         file: "toss-tracker.mp4",
         readings: &[Opt::Reference(&[(0.37, 0.2008), (0.57, 0.0), (0.90, 0.5467)])],
-        known: &[known("free-fall", "g", 9.80, 0.04)],
+        known: &[known("free-fall", "g", 9.80, 0.03)],
         source: "g; the readings are heights below the apex on the stick's scale (g 10.04 on \
                  it: the ball's plane is nearer the camera), not from rest",
     },
@@ -140,7 +140,7 @@ pub const RECORDINGS: [Recording; 14] = [
             Opt::InclineDeg(17.6),
             Opt::Reference(&[(0.2, 0.035), (0.6, 0.295), (1.1, 0.976)]),
         ],
-        known: &[known("sliding-block", "acceleration", 1.585, 0.05)],
+        known: &[known("sliding-block", "acceleration", 1.585, 0.03)],
         source: "a of a pipe rolling without slipping (1.585 m/s², tracked alike on the marks' \
                  scale, 737–846 px/s² over fit windows: perspective)",
     },
