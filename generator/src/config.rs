@@ -91,6 +91,16 @@ impl GenConfig {
         }
         self.scene
             .validate(&self.params, self.frames, self.dt, self.size)?;
+        // The truth meta.json would hold: what `estimate` reads, refused alike here.
+        let max = physvid_shared::meta::MAX_TRUTH;
+        let truth = self.scene.model_parameters(&self.params);
+        if let Some((name, v)) = truth.iter().find(|(_, v)| v.is_nan() || v.abs() > max) {
+            return Err(invalid(
+                "--set",
+                format!("{name}={}", num(*v)),
+                format!("not a physical value (within ±{max:e}): estimate could not read it"),
+            ));
+        }
         if !(self.noise.is_finite() && (0.0..=1.0).contains(&self.noise)) {
             return Err(invalid(
                 "--noise",

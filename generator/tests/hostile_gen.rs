@@ -97,6 +97,18 @@ fn perturbations_are_levelled_seeded_and_recorded() {
 }
 
 #[test]
+fn a_truth_estimate_could_not_read_is_refused_at_gen() {
+    // An LED dimming at γ = 1e308 went dark from its second frame: written, then refused by
+    // estimate as no physical value. Refused here, with estimate's words, and nothing written.
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x");
+    gen_scene("led", &out)
+        .args(["--set", "gamma=1e308", "--samples", "4"])
+        .bad_input("gamma=1e308: not a physical value (within ±1e15)");
+    assert!(!out.exists(), "a refusal leaves no folder");
+}
+
+#[test]
 fn values_whose_motion_overflows_are_refused_not_written_as_nulls() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("x");

@@ -7,6 +7,10 @@ use std::collections::BTreeMap;
 pub const FORMAT_NAME: &str = "physvid-dataset";
 pub const FORMAT_VERSION: u32 = 1;
 
+/// The largest ground-truth value a data set may hold (a value beyond it is no physical one):
+/// `gen` refuses to write one, `estimate` to read one.
+pub const MAX_TRUTH: f64 = 1e15;
+
 /// The dynamics model behind a dataset and its true parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ModelSpec {

@@ -155,8 +155,7 @@ fn dt_flag_agrees(req: &LoadRequest, meta_dt: f64) -> Result<(), EstimateError> 
     }
 }
 
-/// The largest ground-truth value taken from meta.json.
-pub const MAX_TRUTH: f64 = 1e15;
+pub use physvid_shared::meta::MAX_TRUTH;
 
 /// meta.json's ground truth against its model: when it has any, it names at least one value
 /// the model reports, each finite and within ±[`MAX_TRUTH`], and > 0 where no such system has
