@@ -112,4 +112,15 @@ fn two_spring_bodies_referenced_at_one_point_are_refused() {
         ])
         .out(&tmp.path().join("never"))
         .bad_input("two bodies at one point");
+    // Every frame with the bodies where the first has them: no spread to scale by, refused as
+    // values that are all one are (it was read, and graded doubtful by its fit's R²).
+    Estimate::new(&spring)
+        .args([
+            "--epochs",
+            "1",
+            "--reference",
+            "0:0=20/30/44/30,1:0=20/30/44/30",
+        ])
+        .out(&tmp.path().join("never"))
+        .bad_input("every frame puts the bodies at the same positions");
 }

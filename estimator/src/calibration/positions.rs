@@ -3,6 +3,7 @@
 //! onto it.
 
 use super::Calibration;
+use physvid_shared::cli::num;
 use physvid_shared::SimilarityFit;
 
 impl Calibration {
@@ -41,6 +42,18 @@ impl Calibration {
             {
                 return Err(format!(
                     "{origin} {c2}:{f2} is given twice with different positions"
+                ));
+            }
+        }
+        // As with values: frames that all put the bodies where the first does give no spread
+        // to fit the scale by.
+        if let [(_, _, p), rest @ ..] = self.positions.as_slice() {
+            if !rest.is_empty() && rest.iter().all(|r| r.2 == *p) {
+                let at: Vec<String> = p.iter().map(|v| num(*v)).collect();
+                return Err(format!(
+                    "{origin}: every frame puts the bodies at the same positions ({}); the scale \
+                     needs two or more frames where they differ",
+                    at.join("/")
                 ));
             }
         }
