@@ -64,3 +64,18 @@ proptest! {
         prop_assert!((other.1 - base.1).abs() <= 1e-6 * base.1.abs().max(1e-3), "k {}: {:?} vs {:?}", k, other, base);
     }
 }
+
+/// Issue 64's case: frames below f32's normal range (every value under 1.2e-38, the few bits
+/// such floats keep) were scaled by an infinite factor and ended in "training diverged, lower
+/// --lr". They are read as the same frames, so the estimate is the frames' own, within what
+/// those bits hold.
+#[test]
+fn frames_below_the_normal_float_range_are_read() {
+    let tmp = tempfile::tempdir().unwrap();
+    let npy = small(tmp.path());
+    let base = gammas(&npy, &tmp.path().join("base"));
+    let path = tmp.path().join("tiny.npy");
+    scaled(&npy, 1e-39, &path);
+    let tiny = gammas(&path, &tmp.path().join("tiny"));
+    assert!((tiny.0 / base.0 - 1.0).abs() < 0.01, "{tiny:?} vs {base:?}");
+}

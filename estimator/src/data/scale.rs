@@ -36,8 +36,11 @@ pub fn rescale(frames: &mut [f32]) -> Result<f64, (usize, f32, f64)> {
     }
     let factor = 2f64.powi(-(spread.log2().round() as i32));
     if factor != 1.0 {
-        let f = factor as f32;
-        frames.iter_mut().for_each(|v| *v *= f);
+        // In f64: the factor for values below f32's normal range (under 1.2e-38) is itself
+        // beyond f32's largest, and a power of two times a float is exact in f64.
+        frames
+            .iter_mut()
+            .for_each(|v| *v = (f64::from(*v) * factor) as f32);
     }
     Ok(factor)
 }
@@ -64,6 +67,16 @@ mod tests {
                 .zip(&base)
                 .all(|(a, b)| (a - b * ratio).abs() <= 1e-6 * ratio));
         }
+        // Below f32's normal range (frames of 1e-39): brought back near one, finite, to the
+        // few bits such floats keep (training on them diverged: the factor was infinite).
+        let mut tiny: Vec<f32> = base.iter().map(|v| v * 1e-39).collect();
+        rescale(&mut tiny).unwrap();
+        let ratio = tiny[7] / base[7];
+        assert!((0.5..2.0).contains(&ratio), "{ratio}");
+        assert!(tiny
+            .iter()
+            .zip(&base)
+            .all(|(a, b)| a.is_finite() && (a - b * ratio).abs() <= 1e-4 * ratio));
     }
 
     #[test]
