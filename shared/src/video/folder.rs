@@ -13,10 +13,19 @@ pub(super) fn concat_list(files: &[PathBuf]) -> Result<TempFile, VideoError> {
     let mut text = String::from("ffconcat version 1.0\n");
     for f in files {
         let abs = std::fs::canonicalize(f).map_err(|e| bad(f, e.to_string()))?;
-        text += &format!(
-            "file '{}'\nduration 1\n",
-            abs.to_string_lossy().replace('\'', "'\\''")
-        );
+        // The list is lines of UTF-8 text: a name that is not, or that breaks a line, cannot
+        // be written into it (ffmpeg would look for another file), so the image is named.
+        let name = abs
+            .to_str()
+            .filter(|n| !n.contains(['\n', '\r']))
+            .ok_or_else(|| {
+                bad(
+                    f,
+                    "its name holds a line break or bytes that are not UTF-8, which the list of \
+                     images handed to ffmpeg cannot carry; rename it",
+                )
+            })?;
+        text += &format!("file '{}'\nduration 1\n", name.replace('\'', "'\\''"));
     }
     let scratch = |source| VideoError::Scratch {
         path: std::env::temp_dir(),
@@ -175,6 +184,35 @@ impl TempFile {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_image_whose_name_the_list_cannot_carry_is_named() {
+        use std::os::unix::ffi::OsStrExt;
+        let dir = tempfile::tempdir().unwrap();
+        let img = image::GrayImage::from_pixel(4, 3, image::Luma([90u8]));
+        for name in [
+            std::ffi::OsStr::new("f1\nx.png"),
+            std::ffi::OsStr::from_bytes(b"f2\xff.png"),
+        ] {
+            let good = dir.path().join("f0.png");
+            let odd = dir.path().join(name);
+            img.save(&good).unwrap();
+            img.save_with_format(&odd, image::ImageFormat::Png).unwrap();
+            let e = concat_list(&[good, odd.clone()])
+                .err()
+                .expect("refused")
+                .to_string();
+            assert!(
+                e.contains(&odd.display().to_string()) && e.contains("rename it"),
+                "{e}"
+            );
+            std::fs::remove_file(&odd).unwrap();
+        }
+        // A quote in a name is escaped, not refused.
+        let quoted = dir.path().join("it's.png");
+        img.save(&quoted).unwrap();
+        assert!(concat_list(&[quoted]).is_ok());
+    }
 
     #[test]
     fn the_first_image_that_does_not_decode_is_named() {
