@@ -10,12 +10,14 @@
 //! time to estimate its own error from (a roll of 44 frames: halves at ±0.066 and ±0.0068
 //! m/s², the whole ±0.11).
 //! Where the object's track guides the run and corroborates the rate (its own halves agree by
-//! this same rule and its whole rate is the latent's: `routes::corroborates`), the latent's
+//! this same rule and its whole rate is the latent's: `corroborates`), the latent's
 //! halves that disagree are its encoder's gain over the motion's range, not the law's, and are
 //! not held against the answer.
 
-use super::{Check, Grade, Reason};
+use super::{routes, Check, Grade, Reason};
+use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
+use crate::track::laws::Value;
 use physvid_shared::cli::approx;
 
 pub struct Halves;
@@ -76,7 +78,7 @@ impl Check for Halves {
                 continue;
             };
             // The track's halves agree and its rate is the latent's: the law holds alike.
-            if super::routes::corroborates(r, p) {
+            if corroborates(r, p) {
                 continue;
             }
             let [first, second] = s.by.halves();
@@ -100,6 +102,29 @@ impl Check for Halves {
         }
         out
     }
+}
+
+/// Whether the track corroborates the latent's rate `p` where the latent's own halves disagree:
+/// it guides the run (`TrackRoute::guiding`), its rate refitted on the span's earlier and later
+/// half agrees by the consistency check's own rule (the law holds alike over the span, read
+/// with no encoder between the picture and it), and its whole rate agrees with `p`'s. The
+/// latent's halves then differ by its encoder's gain over the motion's range, not by the law,
+/// and its answer is the one an independent measurement gives.
+pub fn corroborates(r: &Run, p: &ParameterResult) -> bool {
+    let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
+        return false;
+    };
+    let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
+    let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
+        return false;
+    };
+    let (Some(a), Some(b)) = (rate(first), rate(second)) else {
+        return false;
+    };
+    let (measured, limit) = routes::separation(p, &g);
+    routes::RATE_NAMES.contains(&p.name.as_str())
+        && apart([a.value, b.value], [a.error, b.error]).is_none()
+        && measured <= limit
 }
 
 /// How many standard errors halves `values` with `errors` lie apart, and the limit they

@@ -22,12 +22,12 @@ pub const ERRORS: f64 = 3.0;
 pub const APART: f64 = 0.02;
 
 /// The names a rate² goes by among the models' values.
-const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
+pub(super) const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
 
 /// How far the latent's rate `p` lies from the track's `g`, and the limit beyond which they
 /// disagree: joint standard errors against [`ERRORS`], or, where `p` has none, the share of
 /// the value against [`APART`].
-fn separation(p: &ParameterResult, g: &Value) -> (f64, f64) {
+pub(super) fn separation(p: &ParameterResult, g: &Value) -> (f64, f64) {
     let gap = (p.estimate - g.value).abs();
     let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
     match p.standard_error {
@@ -35,29 +35,6 @@ fn separation(p: &ParameterResult, g: &Value) -> (f64, f64) {
         Some(_) => (if gap > 0.0 { f64::INFINITY } else { 0.0 }, ERRORS),
         None => (gap / g.value.abs().max(f64::MIN_POSITIVE), APART),
     }
-}
-
-/// Whether the track corroborates the latent's rate `p` where the latent's own halves disagree:
-/// it guides the run (`TrackRoute::guiding`), its rate refitted on the span's earlier and later
-/// half agrees by the consistency check's own rule (the law holds alike over the span, read
-/// with no encoder between the picture and it), and its whole rate agrees with `p`'s. The
-/// latent's halves then differ by its encoder's gain over the motion's range, not by the law,
-/// and its answer is the one an independent measurement gives.
-pub fn corroborates(r: &Run, p: &ParameterResult) -> bool {
-    let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
-        return false;
-    };
-    let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
-    let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
-        return false;
-    };
-    let (Some(a), Some(b)) = (rate(first), rate(second)) else {
-        return false;
-    };
-    let (measured, limit) = separation(p, &g);
-    RATE_NAMES.contains(&p.name.as_str())
-        && super::consistency::apart([a.value, b.value], [a.error, b.error]).is_none()
-        && measured <= limit
 }
 
 impl Check for Routes {
