@@ -59,7 +59,7 @@ fn what_the_spring_refuses() {
         .args(["--reference", "0:0=3"])
         .bad_input("X1/Y1/X2/Y2");
     run(&spring)
-        .args(["--reference", "0:0=1/2/3/4,9:0=1/2/3/4"])
+        .args(["--reference", "0:0=1/2/3/4,9:0=2/3/4/5"])
         .bad_input("9:0");
     run(&scalar)
         .args(["--encoder", "keypoints"])

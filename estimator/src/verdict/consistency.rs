@@ -110,7 +110,7 @@ impl Check for Halves {
 /// with no encoder between the picture and it), and its whole rate agrees with `p`'s. The
 /// latent's halves then differ by its encoder's gain over the motion's range, not by the law,
 /// and its answer is the one an independent measurement gives.
-pub fn corroborates(r: &Run, p: &ParameterResult) -> bool {
+pub(super) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
     let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
         return false;
     };
@@ -122,7 +122,10 @@ pub fn corroborates(r: &Run, p: &ParameterResult) -> bool {
         return false;
     };
     let (measured, limit) = routes::separation(p, &g);
+    // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
     routes::RATE_NAMES.contains(&p.name.as_str())
+        && a.error.is_finite()
+        && b.error.is_finite()
         && apart([a.value, b.value], [a.error, b.error]).is_none()
         && measured <= limit
 }
@@ -131,7 +134,7 @@ pub fn corroborates(r: &Run, p: &ParameterResult) -> bool {
 /// crossed, where they disagree: beyond [`DISAGREE`] errors and [`MATERIAL`] of the value, or
 /// beyond [`DISAGREE_LARGE`] errors and [`LARGE`] of it, or beyond [`DISAGREE_VAST`] errors
 /// and [`VAST`] of it.
-pub(super) fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
+fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
     let [a, b] = values;
     let z = (a - b).abs() / errors[0].hypot(errors[1]).max(1e-300);
     let rel = (a - b).abs() / a.abs().max(b.abs()).max(1e-300);
