@@ -5,10 +5,11 @@
 
 use crate::choice;
 use crate::config::Request;
-use crate::data::Framing;
+use crate::data::{Framing, TrackedMotion};
+use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use crate::report::Report;
-use crate::track::{self, TrackRoute};
+use crate::track::{self, LawSpan, TrackRoute};
 use crate::verdict;
 use physvid_shared::video;
 
@@ -64,10 +65,118 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     Some((g, why))
 }
 
+/// A fall's acceleration lies within this many degrees of the picture's vertical (a camera is
+/// levelled within a few: the shared drop's and toss's lie 1.4° and 1.7° off it; a ramp seen
+/// from the side shows its slope: the shared rolls' lie 68° and 71° off; one steeper than 60°
+/// is all but a fall); further off, a slide or a roll.
+pub const FALL_DEG: f64 = 30.0;
+
+/// Where a stick (`--stick`) gives the track's scale and the track's chosen law is a constant
+/// acceleration that holds (`TrackRoute::accelerating`): the request whose latent route is
+/// calibrated by the track's readings (`TrackRoute::readings`, where no `--reference` is
+/// given); where the model is the tool's to choose, trained for the law the acceleration's
+/// direction names (`FALL_DEG`: free-fall, else sliding-block); for a motion from rest, its
+/// release and line read from the track (`tracked_motion`). With the warning that says so.
+pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
+    route.stick?;
+    let span = route.accelerating()?;
+    let c = &req.calibration;
+    let typed = !(c.values.is_empty() && c.times.is_empty() && c.positions.is_empty());
+    let free = chooses && req.candidates.is_empty() && req.init.is_empty();
+    let (first, last) = route.file_span(span);
+    let mut g = req.clone();
+    let mut did = Vec::new();
+    let direction = span
+        .values
+        .iter()
+        .find(|v| v.name == "direction")
+        .map_or(0.0, |d| d.value);
+    if free {
+        let falls = (direction - 90.0).abs() <= FALL_DEG;
+        let name = if falls { "free-fall" } else { "sliding-block" };
+        g.choose = false;
+        g.load.model = ModelRef::by_name(name);
+        did.push(format!(
+            "trained the {name} (the acceleration points {direction:.0}° from the picture's \
+             right, y down; give --model to choose yourself)"
+        ));
+    }
+    if g.load.model.is_some_and(|m| m.released_from_rest()) {
+        g.load.recording.tracked = Some(tracked_motion(route, span, direction));
+        did.push("read its release and line from the track".into());
+    }
+    if !typed {
+        let from = g
+            .load
+            .recording
+            .tracked
+            .and_then(|t| t.release)
+            .unwrap_or(f64::NEG_INFINITY);
+        g.calibration.times = route.spread_readings(span, from);
+        g.load.recording.measured_at = g.calibration.times.iter().map(|t| t.0).collect();
+        did.push(format!(
+            "calibrated it by the track's {} positions in metres",
+            g.calibration.times.len()
+        ));
+    }
+    if did.is_empty() {
+        return None;
+    }
+    let why = format!(
+        "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
+         file, read in metres by the stick (--stick {}): the latent route {}",
+        route.stick.map(|s| s.flag()).unwrap_or_default(),
+        did.join(", and ")
+    );
+    Some((g, why))
+}
+
+/// The constant acceleration of `route` over `span` (pointing `direction` degrees from the
+/// picture's right) as a descent reads it: the release where the track saw it (the vertex
+/// within the span where the law holds, give or take a frame or three of its standard errors:
+/// one extrapolated from a span that starts later is the law's guess, not a sighting), and the
+/// line.
+fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> TrackedMotion {
+    let release = span
+        .values
+        .iter()
+        .find(|v| v.name == "vertex")
+        .and_then(|v| {
+            let frame = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
+            let slack = frame.max(3.0 * v.error);
+            (span.first_s - slack..=span.last_s + slack)
+                .contains(&v.value)
+                .then(|| route.file_time(v.value))
+        });
+    let rad = direction.to_radians();
+    TrackedMotion {
+        span: route.file_span(span),
+        release,
+        axis: [rad.cos(), rad.sin()],
+        travel: route.travel(span),
+    }
+}
+
+/// The request the track guides: its clear oscillation's (`guided`), else, with a stick, its
+/// constant acceleration's (`measured`).
+pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
+    guided(req, route, chooses).or_else(|| measured(req, route, chooses))
+}
+
 /// The object's own track and the laws fitted on it (`track`), for a video file (not an image
-/// folder, not frames in memory); where it cannot be read, a warning says why and the latent's
-/// answer stands alone.
-pub fn second_route(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
+/// folder, not frames in memory), on a stick's scale where one is given (`check_stick`);
+/// where it cannot be read, a warning says why and the latent's answer stands alone.
+pub fn second_route(
+    req: &Request,
+    warnings: &mut Vec<String>,
+) -> Result<Option<TrackRoute>, EstimateError> {
+    let route = read_track(req, warnings);
+    check_stick(req, route.as_ref(), warnings)?;
+    Ok(route)
+}
+
+/// The track of a video file, on the stick's scale where one is given.
+fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
     let load = &req.load;
     let input = &load.input;
     if load.frames.is_some() || !input.is_file() || !video::is_recording(input) {
@@ -77,12 +186,52 @@ pub fn second_route(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRo
     let found = video::probe_as(input, r.fields)
         .and_then(|info| track::follow(input, &info, (r.start, r.end), r.fps));
     match found {
-        Ok(route) => route,
+        Ok(route) => route.map(|r| match req.calibration.stick {
+            Some(s) => r.with_stick(s),
+            None => r,
+        }),
         Err(e) => {
             warnings.push(format!("the object's track could not be read: {e}"));
             None
         }
     }
+}
+
+/// A stick (`--stick`) needs a video file's track and must lie in its picture: refused (the
+/// input's error) on anything else, or for a point outside the frame; a warning where the
+/// track gives nothing to read in metres.
+fn check_stick(
+    req: &Request,
+    route: Option<&TrackRoute>,
+    warnings: &mut Vec<String>,
+) -> Result<(), EstimateError> {
+    let Some(stick) = req.calibration.stick else {
+        return Ok(());
+    };
+    let load = &req.load;
+    if load.frames.is_some() || !load.input.is_file() || !video::is_recording(&load.input) {
+        return Err(input_error(format!(
+            "--stick scales the object's track in a video file, and {} is none: give              --reference for a data set, an array or an image folder",
+            load.input.display()
+        )));
+    }
+    let Some(route) = route else {
+        warnings.push(format!(
+            "--stick {} was not used: nothing in the recording was followed long enough",
+            stick.flag()
+        ));
+        return Ok(());
+    };
+    let (w, h) = route.track.picture;
+    stick.check_within(w, h).map_err(input_error)?;
+    if route.chosen_span().is_none_or(|l| l.si.is_empty()) {
+        warnings.push(format!(
+            "--stick {} gave nothing in metres: the object's track holds no law with a length \
+             (a constant acceleration)",
+            stick.flag()
+        ));
+    }
+    Ok(())
 }
 
 /// `report` with the track and the route's warnings set on its run, and its verdict judged

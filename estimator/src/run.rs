@@ -97,10 +97,10 @@ pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
 /// [`estimation`], followed and stopped as `watch` says.
 pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let mut warnings = Vec::new();
-    let route = guide::second_route(req, &mut warnings);
+    let route = guide::second_route(req, &mut warnings)?;
     let guided = route
         .as_ref()
-        .and_then(|r| guide::guided(req, r, chooses(req)));
+        .and_then(|r| guide::request(req, r, chooses(req)));
     let req = guided.as_ref().map_or(req, |(g, _)| g);
     let mut est = if chooses(req) {
         choose(req, watch)?

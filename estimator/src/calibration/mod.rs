@@ -6,10 +6,12 @@
 //! the bodies' positions of a vector latent.
 
 mod positions;
+mod stick;
 
 use physvid_shared::cli::num;
 use physvid_shared::AffineFit;
 pub use positions::{position_scale, POSITION_FIT_R2};
+pub use stick::Stick;
 
 /// What turns latent units into SI units, resolved from the flags and meta.json.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]

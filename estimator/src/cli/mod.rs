@@ -105,6 +105,7 @@ impl EstimateArgs {
                 values: reference.values,
                 times: reference.times,
                 positions: reference.positions,
+                stick: m.stick,
                 incline_deg: m.incline_deg,
                 g: m.g,
             },

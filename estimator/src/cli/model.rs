@@ -4,7 +4,7 @@
 
 use super::positive;
 use super::reference::{parse_reference, ReferencePoints};
-use crate::calibration::DEFAULT_G;
+use crate::calibration::{Stick, DEFAULT_G};
 use crate::error::{input_error, EstimateError};
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use clap::builder::{PossibleValue, TypedValueParser};
@@ -37,6 +37,13 @@ pub struct ModelArgs {
     /// bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2 (taken from meta.json for gen data).
     #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE|SECONDSs=VALUE,...")]
     pub reference: Option<ReferencePoints>,
+    /// A length in the picture, as a lab sets its video's scale: two points of the displayed
+    /// frame (pixels from its top left, as an image viewer shows them) and the distance between
+    /// them in metres, X1,Y1:X2,Y2=METRES (e.g. the ends of a metre stick, 284,45.5:284,446=1).
+    /// The object's track is read in metres: a fall's g or a roll's acceleration in SI with no
+    /// --reference, whose readings the track then gives the latent route. Report.html draws it.
+    #[arg(long, value_parser = Stick::parse, value_name = "X1,Y1:X2,Y2=METRES")]
+    pub stick: Option<Stick>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
     #[arg(long)]
     pub incline_deg: Option<f64>,

@@ -133,6 +133,7 @@ impl RecordingArgs {
             fields: self.fields.unwrap_or_default(),
             given: self.given(),
             measured_at: Vec::new(),
+            tracked: None,
         }
     }
 

@@ -5,7 +5,7 @@
 //! line. It serialises whole (models by name or model file path), so a worker process is
 //! handed one, not a command line.
 
-use crate::calibration::CalibrationInput;
+use crate::calibration::{CalibrationInput, Stick};
 use crate::data::LoadRequest;
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
@@ -50,6 +50,9 @@ pub struct CalibrationRequest {
     pub times: Vec<(f64, f64)>,
     /// The bodies' pixel positions at (clip, frame).
     pub positions: Vec<(usize, usize, Vec<f64>)>,
+    /// A length in the picture (`--stick`): the track in metres.
+    #[serde(default)]
+    pub stick: Option<Stick>,
     pub incline_deg: Option<f64>,
     pub g: Option<f64>,
 }

@@ -3,7 +3,8 @@
 //! [`trim_to_descent`]), and where the release is in it.
 
 use super::descent::{self, Descent};
-use super::tinted;
+use super::request::TrackedMotion;
+use super::{tinted, tracked};
 use physvid_shared::cli::approx;
 use physvid_shared::video::{DecodedVideo, VideoOptions};
 use std::path::Path;
@@ -80,27 +81,37 @@ pub fn trim_to_descent(
     input: &Path,
     decoded: &mut DecodedVideo,
     opts: &VideoOptions,
-    timeline_fps: f64,
+    (timeline_fps, tracked): (f64, Option<TrackedMotion>),
     warnings: &mut Vec<String>,
 ) -> Kept {
     let mut kept = Kept::untrimmed(opts);
-    let Some((grey, seen)) = descent::find(&decoded.frames, decoded.size) else {
-        return kept;
-    };
-    let d = match tinted::in_colour(input, decoded, opts, &grey, &seen) {
-        Some(c) if c.crowded < grey.crowded => {
-            warnings.push(format!(
-                "motion from rest: something beside the object differs where it starts (on {} % \
-                 of the frames where the release is read, {} % by the object's colour): its \
-                 release read by its colour (at frame {} in grey, {} by colour)",
-                approx(100.0 * grey.crowded),
-                approx(100.0 * c.crowded),
-                approx(grey.release),
-                approx(c.release)
-            ));
-            c
+    // The picture's release, told only where the track's does not replace it.
+    let by_track = tracked.and_then(|t| t.release).is_some();
+    let mut colour = None;
+    let found = descent::find(&decoded.frames, decoded.size).map(|(grey, seen)| {
+        match tinted::in_colour(input, decoded, opts, &grey, &seen) {
+            Some(c) if c.crowded < grey.crowded => {
+                colour = Some(format!(
+                    "motion from rest: something beside the object differs where it starts (on \
+                     {} % of the frames where the release is read, {} % by the object's \
+                     colour): its release read by its colour (at frame {} in grey, {} by colour)",
+                    approx(100.0 * grey.crowded),
+                    approx(100.0 * c.crowded),
+                    approx(grey.release),
+                    approx(c.release)
+                ));
+                c
+            }
+            _ => grey,
         }
-        _ => grey,
+    });
+    warnings.extend(colour.filter(|_| !by_track));
+    let geometry = tracked::Geometry::of(decoded, opts, timeline_fps);
+    let Some(d) = (match tracked {
+        Some(t) => tracked::descent(found, &t, &geometry),
+        None => found,
+    }) else {
+        return kept;
     };
     kept.descent = Some(d);
     let first = if opts.start.is_none() { d.first } else { 0 };
@@ -126,6 +137,10 @@ pub fn trim_to_descent(
             approx(100.0 * b.change)
         ),
         None => "the vertex of the parabola its path traces".to_string(),
+    };
+    let vertex = match by_track {
+        true => "the vertex of the constant acceleration its track holds".to_string(),
+        false => vertex,
     };
     warnings.push(format!(
         "motion from rest: the object is released at {} s ({vertex}) and moves away until {} \

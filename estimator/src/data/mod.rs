@@ -22,10 +22,11 @@ pub mod summary;
 mod swing;
 mod timing;
 mod tinted;
+mod tracked;
 
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};
-pub use request::{Frames, LoadRequest, RecordingRequest};
+pub use request::{Frames, LoadRequest, RecordingRequest, TrackedMotion};
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;

@@ -111,7 +111,13 @@ pub fn load_recording(
     // anything else: the frames where it moves.
     let timeline_fps = decoded.timeline_fps.unwrap_or(fps);
     let kept = if model.released_from_rest() {
-        kept::trim_to_descent(input, &mut decoded, &opts, timeline_fps, &mut warnings)
+        kept::trim_to_descent(
+            input,
+            &mut decoded,
+            &opts,
+            (timeline_fps, flags.tracked),
+            &mut warnings,
+        )
     } else {
         // The survey's free motion, in frames of the decode (by their times where the frames
         // were put on their clock).

@@ -74,6 +74,22 @@ impl Frames {
     }
 }
 
+/// A constant acceleration found on the object's track, as a descent reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TrackedMotion {
+    /// Where the law holds, seconds of the file's timeline.
+    pub span: (f64, f64),
+    /// The release (the vertex along the acceleration), seconds of the file's timeline, where
+    /// the track saw it.
+    pub release: Option<f64>,
+    /// The acceleration's direction in the displayed picture (a unit vector, y down): the line
+    /// a descent's positions are read along where the path's own is another (a toss's path
+    /// bends; its fall is along the acceleration).
+    pub axis: [f64; 2],
+    /// How far it moves over the span, as a share of the picture's larger side.
+    pub travel: f64,
+}
+
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
 /// defaults (Table 5's clip) are resolved in `data::recording` once the model is known.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -98,6 +114,10 @@ pub struct RecordingRequest {
     /// The `--reference` times (seconds of the file's timeline): frames the user measured the
     /// system at, which the free motion found in the frames is taken to include.
     pub measured_at: Vec<f64>,
+    /// A constant acceleration the object's track holds (`guide::measured`): a descent's
+    /// release and line read from it in place of the picture's.
+    #[serde(default)]
+    pub tracked: Option<TrackedMotion>,
     /// The recording flags given, as written (a data set refuses them by name).
     pub given: Vec<String>,
 }

@@ -218,6 +218,7 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
                 let values: Vec<String> = l
                     .values
                     .iter()
+                    .chain(&l.si)
                     .map(|v| {
                         format!(
                             "{} {} ± {} {}",
@@ -235,7 +236,16 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
                 }
             })
             .collect();
-        context! { line => r.line(), rows }
+        let stick = r.stick.map(|s| {
+            format!(
+                "--stick {}: {} px for {} m, {} px a metre (the track's lengths in metres from it)",
+                s.flag(),
+                sig(s.pixels()),
+                sig(s.metres),
+                sig(s.per_metre())
+            )
+        });
+        context! { line => r.line(), rows, stick }
     });
     let headline = format!(
         "{} clips, dt {} s; {} epochs in {:.1} s on {}",

@@ -1,6 +1,10 @@
-//! Blobs joined frame to frame into tracklets: each blob continues the tracklet whose last
-//! blob is nearest, within a step that grows with the frames missed, and of a size within a
-//! factor of its own; the rest start tracklets of their own.
+//! Blobs joined frame to frame into tracklets: each blob continues the tracklet it lies
+//! nearest (`Nearest`: to its last blob, or to the nearer of that and the last blob carried on
+//! at its last velocity, so that a ball passing a flickering stick goes on with the ball's
+//! tracklet, not the flicker's), within a step of its last blob that grows with the frames
+//! missed, and of a size within a factor of its own; the rest start tracklets of their own.
+//! The track tries both ways' tracklets (`tracklets`): neither joins every object best (the
+//! carried-on one splits a spring's mass where a hand lets go of it).
 
 use super::blobs::Blob;
 
@@ -10,8 +14,17 @@ const GAP: usize = 3;
 /// Sizes of one object differ by less than this factor from frame to frame.
 const SIZE_FACTOR: f64 = 4.0;
 
+/// What a blob is nearest to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Nearest {
+    /// The tracklet's last blob.
+    Last,
+    /// The nearer of its last blob and that blob carried on at its last velocity.
+    Path,
+}
+
 /// One thing followed over frames: the frame indices and its blob in each.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Tracklet {
     pub frames: Vec<usize>,
     pub blobs: Vec<Blob>,
@@ -22,6 +35,22 @@ impl Tracklet {
         (
             *self.frames.last().expect("a tracklet has a frame"),
             *self.blobs.last().expect("a tracklet has a blob"),
+        )
+    }
+
+    /// Where it would be at frame `k` at its last velocity (its last two blobs'; at rest
+    /// where it has one).
+    fn predicted(&self, k: usize) -> (f64, f64) {
+        let (f, last) = self.last();
+        let n = self.frames.len();
+        if n < 2 {
+            return (last.x, last.y);
+        }
+        let (g, prev) = (self.frames[n - 2], self.blobs[n - 2]);
+        let s = (k - f) as f64 / (f - g) as f64;
+        (
+            last.x + s * (last.x - prev.x),
+            last.y + s * (last.y - prev.y),
         )
     }
 
@@ -56,7 +85,7 @@ impl Tracklet {
 
 /// The tracklets of `frames` (each frame's blobs), a blob moving at most `step` pixels a
 /// frame.
-pub fn link(frames: &[Vec<Blob>], step: f64) -> Vec<Tracklet> {
+pub fn link(frames: &[Vec<Blob>], step: f64, nearest: Nearest) -> Vec<Tracklet> {
     let mut tracklets: Vec<Tracklet> = Vec::new();
     for (k, blobs) in frames.iter().enumerate() {
         let mut pairs = Vec::new();
@@ -69,7 +98,14 @@ pub fn link(frames: &[Vec<Blob>], step: f64) -> Vec<Tracklet> {
                 let d = (b.x - last.x).hypot(b.y - last.y);
                 let ratio = b.area.max(last.area) / b.area.min(last.area).max(1.0);
                 if d <= step * (k - f) as f64 && ratio < SIZE_FACTOR {
-                    pairs.push((d, ti, bi));
+                    let near = match nearest {
+                        Nearest::Last => d,
+                        Nearest::Path => {
+                            let (px, py) = t.predicted(k);
+                            d.min((b.x - px).hypot(b.y - py))
+                        }
+                    };
+                    pairs.push((near, ti, bi));
                 }
             }
         }
@@ -97,6 +133,21 @@ pub fn link(frames: &[Vec<Blob>], step: f64) -> Vec<Tracklet> {
     tracklets
 }
 
+/// The tracklets both ways (`Nearest`) at least `least` frames long, each once, those that
+/// move the most (`Tracklet::reach`) first.
+pub fn tracklets(frames: &[Vec<Blob>], step: f64, least: usize, extent: f64) -> Vec<Tracklet> {
+    let mut all: Vec<Tracklet> = Vec::new();
+    for nearest in [Nearest::Last, Nearest::Path] {
+        for t in link(frames, step, nearest) {
+            if t.frames.len() >= least && t.extent() >= extent && !all.contains(&t) {
+                all.push(t);
+            }
+        }
+    }
+    all.sort_by(|a, b| b.reach().total_cmp(&a.reach()));
+    all
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,7 +167,7 @@ mod tests {
                 v
             })
             .collect();
-        let t = link(&frames, 3.0);
+        let t = link(&frames, 3.0, Nearest::Last);
         assert_eq!(t.len(), 2);
         assert_eq!(t[0].frames.len(), 10);
         assert_eq!(t[1].frames.len(), 8);
@@ -134,7 +185,7 @@ mod tests {
                 v
             })
             .collect();
-        let mut t = link(&frames, 12.0);
+        let mut t = link(&frames, 12.0, Nearest::Last);
         t.sort_by(|a, b| b.reach().total_cmp(&a.reach()));
         assert_eq!(t[0].frames.len(), 20);
         assert_eq!(t[1].frames.len(), 30);
@@ -147,6 +198,38 @@ mod tests {
             vec![blob(1.0, 0.0)],
             vec![blob(30.0, 0.0)],
         ];
-        assert_eq!(link(&frames, 5.0).len(), 2);
+        assert_eq!(link(&frames, 5.0, Nearest::Path).len(), 2);
+    }
+
+    /// A ball passes a flicker that lives in place: nearest its last blob, the flicker takes
+    /// the ball beyond it; carried on at its velocity, the ball keeps its own.
+    #[test]
+    fn a_ball_carried_on_at_its_velocity_keeps_its_tracklet_past_a_flicker() {
+        let frames: Vec<Vec<Blob>> = (0..12)
+            .map(|k| {
+                // The flicker is gone the frame the ball comes out from behind it.
+                let mut v = if k == 6 {
+                    vec![]
+                } else {
+                    vec![blob(20.0, 20.0 + (k % 2) as f64)]
+                };
+                if k != 5 {
+                    v.push(blob(4.0 * k as f64, 30.0 - 1.5 * k as f64));
+                }
+                v
+            })
+            .collect();
+        let ball = |t: &[Tracklet]| -> usize {
+            t.iter()
+                .filter(|t| t.blobs[0].x == 0.0)
+                .map(|t| t.frames.len())
+                .sum()
+        };
+        assert_eq!(ball(&link(&frames, 12.0, Nearest::Path)), 11);
+        assert!(ball(&link(&frames, 12.0, Nearest::Last)) < 11);
+        let both = tracklets(&frames, 12.0, 2, 1.0);
+        assert!(both
+            .iter()
+            .any(|t| t.frames.len() == 11 && t.blobs[0].x == 0.0));
     }
 }

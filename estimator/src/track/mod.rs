@@ -7,6 +7,7 @@
 pub mod blobs;
 pub mod laws;
 pub mod link;
+mod metres;
 mod route;
 pub mod segment;
 pub mod template;
@@ -175,11 +176,7 @@ pub fn candidates(
     steps.sort_by(f64::total_cmp);
     let frame_s = steps.get(steps.len() / 2).copied().unwrap_or(1.0 / 30.0);
     let reach = (FASTEST * frame_s).min(0.5) * w.max(h) as f64;
-    let mut tracklets: Vec<link::Tracklet> = link::link(&found, reach)
-        .into_iter()
-        .filter(|t| t.frames.len() >= LEAST_FRAMES && t.extent() >= LEAST_EXTENT)
-        .collect();
-    tracklets.sort_by(|a, b| b.reach().total_cmp(&a.reach()));
+    let tracklets = link::tracklets(&found, reach, LEAST_FRAMES, LEAST_EXTENT);
     let scale = info.width.max(info.height) as f64 / w.max(h) as f64;
     let clock = Clock {
         t: &t_all,
@@ -266,6 +263,7 @@ fn route_of(
                 last_s: t[s.last - 1],
                 samples: s.last - s.first,
                 rms_px: s.fitted.rms(),
+                si: Vec::new(),
                 periods: s.fitted.periods,
                 values: s.fitted.values,
                 curve: s.fitted.curve,
@@ -291,6 +289,7 @@ fn route_of(
         },
         laws,
         chosen,
+        stick: None,
     })
 }
 

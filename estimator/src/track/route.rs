@@ -4,6 +4,7 @@
 
 use super::laws::{TrackLaw, Value};
 use super::Track;
+use crate::calibration::Stick;
 use physvid_shared::video::Crop;
 use serde::Serialize;
 
@@ -22,6 +23,10 @@ pub struct LawSpan {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub halves: Vec<Vec<Value>>,
     pub rms_px: f64,
+    /// The values in SI units where a stick gives the scale (`metres`): the pixel lengths in
+    /// metres; empty without one.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub si: Vec<Value>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub periods: Option<f64>,
     /// The law's curve over the span (along its axis, pixels), for the figure.
@@ -39,6 +44,9 @@ pub struct TrackRoute {
     pub laws: Vec<LawSpan>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub chosen: Option<TrackLaw>,
+    /// The length in the picture that puts the track in metres (`--stick`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stick: Option<Stick>,
 }
 
 /// The frame the latent route is trained on where the track guides it (`frame_of`): the
@@ -65,22 +73,60 @@ impl TrackRoute {
         .then_some(l)
     }
 
-    /// How much motion the chosen law explains: its span's samples times their variance along
-    /// the axis (pixels²); 0 where no law was chosen. Of several things followed, the object is
-    /// the one a law explains the most motion of.
+    /// How much motion the chosen law explains: its span's samples times their variance
+    /// (pixels²) in what the law is fitted to: along the axis for an oscillation or a swing, in
+    /// the picture's plane (x and y) for an acceleration, fitted in both (a toss's bent path
+    /// read along one axis would favour a shorter span of it); 0 where no law was chosen. Of
+    /// several things followed, the object is the one a law explains the most motion of.
     pub fn explained(&self) -> f64 {
         let Some(l) = self.chosen_span() else {
             return 0.0;
         };
-        let u = &self.track.along[l.first..l.first + l.samples];
-        let m = u.iter().sum::<f64>() / u.len() as f64;
-        u.iter().map(|v| (v - m) * (v - m)).sum()
+        let span = l.first..l.first + l.samples;
+        let spread = |u: &[f64]| {
+            let m = u.iter().sum::<f64>() / u.len() as f64;
+            u.iter().map(|v| (v - m) * (v - m)).sum::<f64>()
+        };
+        let t = &self.track;
+        match l.law {
+            TrackLaw::ConstantAcceleration => spread(&t.x[span.clone()]) + spread(&t.y[span]),
+            TrackLaw::Oscillation | TrackLaw::Swing => spread(&t.along[span]),
+        }
     }
 
     /// The span's first and last times on the file's own timeline.
     pub fn file_span(&self, l: &LawSpan) -> (f64, f64) {
         let f = &self.track.file_s;
         (f[l.first], f[l.first + l.samples - 1])
+    }
+
+    /// The time `t` of the track's real clock on the file's own timeline (the two differ by an
+    /// offset, and by a factor for a slow-motion capture).
+    pub fn file_time(&self, t: f64) -> f64 {
+        let k = &self.track;
+        let n = k.t.len();
+        let ratio = if n > 1 && k.t[n - 1] > k.t[0] {
+            (k.file_s[n - 1] - k.file_s[0]) / (k.t[n - 1] - k.t[0])
+        } else {
+            1.0
+        };
+        k.file_s.first().map_or(t, |f0| f0 + (t - k.t[0]) * ratio)
+    }
+
+    /// How far the object moves over the span `l`: its path's larger extent, as a share of the
+    /// picture's larger side.
+    pub fn travel(&self, l: &LawSpan) -> f64 {
+        let t = &self.track;
+        let span = l.first..l.first + l.samples;
+        let extent = |v: &[f64]| {
+            let (lo, hi) = v[span.clone()]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
+                    (lo.min(a), hi.max(a))
+                });
+            (hi - lo).max(0.0)
+        };
+        extent(&t.x).max(extent(&t.y)) / t.picture.0.max(t.picture.1).max(1) as f64
     }
 
     /// The rectangle of the displayed frame the object keeps to over the span `l`: its path's
@@ -128,6 +174,7 @@ impl TrackRoute {
                 self.track.noise,
                 l.values
                     .iter()
+                    .chain(&l.si)
                     .map(|v| format!("{} {:.6} ± {:.2} {}", v.name, v.value, v.error, v.unit))
                     .collect::<Vec<_>>()
                     .join(", ")
@@ -212,6 +259,7 @@ mod tests {
             values: Vec::new(),
             halves: Vec::new(),
             rms_px: 0.1,
+            si: Vec::new(),
             periods: Some(3.0),
             curve: Vec::new(),
             first: 2,
@@ -220,6 +268,7 @@ mod tests {
             track,
             laws: vec![span.clone()],
             chosen: Some(TrackLaw::Oscillation),
+            stick: None,
         };
         (route, span)
     }

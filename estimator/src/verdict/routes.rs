@@ -43,7 +43,7 @@ impl Check for Routes {
     }
     fn judge(&self, r: &Run) -> Vec<Reason> {
         let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
-            return Vec::new();
+            return accelerations(self.name(), r);
         };
         let periods = span.periods.unwrap_or(0.0);
         let Some(g) = span.values.iter().find(|v| v.name == "gamma0") else {
@@ -103,4 +103,55 @@ impl Check for Routes {
         )
         .measured(measured, limit)]
     }
+}
+
+/// The names a constant acceleration goes by among the models' values in SI (the fall's g, the
+/// slide's acceleration).
+const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
+
+/// Where a stick puts the track's constant acceleration in metres (`TrackRoute::with_stick`):
+/// the latent's acceleration in SI compared with it as two measurements of one number, by the
+/// same limits as the rates (`separation`).
+fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
+    let Some(route) = r.track.as_ref() else {
+        return Vec::new();
+    };
+    let Some(a) = route
+        .accelerating()
+        .and_then(|l| l.si.iter().find(|v| v.name == "acceleration"))
+    else {
+        return Vec::new();
+    };
+    let Some(p) = r
+        .parameters
+        .iter()
+        .find(|p| ACCELERATION_NAMES.contains(&p.name.as_str()) && p.unit == "m/s^2")
+    else {
+        return Vec::new();
+    };
+    let (measured, limit) = separation(p, a);
+    if measured <= limit {
+        return Vec::new();
+    }
+    vec![Reason::new(
+        check,
+        Grade::Doubtful,
+        format!(
+            "the object's track, in metres by the stick, accelerates at {} ± {} m/s^2; the \
+             latent's {} is {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track \
+             in report.html",
+            approx(a.value),
+            approx(a.error),
+            p.name,
+            approx(p.estimate),
+            approx(p.standard_error.unwrap_or(f64::NAN)),
+            approx(measured),
+            if limit == ERRORS {
+                "joint standard errors apart"
+            } else {
+                "of the value apart"
+            }
+        ),
+    )
+    .measured(measured, limit)]
 }

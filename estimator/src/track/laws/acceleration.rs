@@ -1,5 +1,6 @@
 //! A constant acceleration in the picture's plane, p0 + v0 t + a t²/2 in x and y (a fall, a
-//! toss, a roll; the release's velocity free): two linear fits.
+//! toss, a roll; the release's velocity free): two linear fits, and the vertex along the
+//! acceleration (the release of a motion from rest, found rather than assumed).
 
 use super::{covariance, linear, Fitted, Value};
 
@@ -20,8 +21,8 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
     let y: Vec<f64> = xy.iter().map(|p| p.1).collect();
     let (cx, rx) = linear(&cols, &x)?;
     let (cy, ry) = linear(&cols, &y)?;
-    let vx = covariance(&cols, &rx)?[8];
-    let vy = covariance(&cols, &ry)?[8];
+    let (covx, covy) = (covariance(&cols, &rx)?, covariance(&cols, &ry)?);
+    let (vx, vy) = (covx[8], covy[8]);
     let (ax, ay) = (cx[2], cy[2]);
     let a = ax.hypot(ay);
     let a_err = if a > 0.0 {
@@ -33,6 +34,18 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
         (ax / a, ay / a)
     } else {
         (0.0, 1.0)
+    };
+    // The vertex along the acceleration: where the velocity along it is zero (a release from
+    // rest, a toss's apex), t0 − v/a, its error from the velocity's and the acceleration's.
+    let v = cx[1] * dx + cy[1] * dy;
+    let v_var = dx * dx * covx[4] + dy * dy * covy[4];
+    let (vertex, vertex_err) = if a > 0.0 {
+        (
+            t0 - v / a,
+            (v_var / (a * a) + (v * v / (a * a * a * a)) * a_err * a_err).sqrt(),
+        )
+    } else {
+        (f64::NAN, f64::INFINITY)
     };
     let curve = (0..n)
         .map(|i| (x[i] - rx[i]) * dx + (y[i] - ry[i]) * dy)
@@ -59,6 +72,12 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
                 },
                 unit: "deg",
             },
+            Value {
+                name: "vertex",
+                value: vertex,
+                error: vertex_err,
+                unit: "s",
+            },
         ],
         residuals,
         curve,
@@ -82,6 +101,8 @@ mod tests {
         let a = f.value("acceleration").unwrap();
         assert!((a.value - 400.0).abs() < 1e-6, "{a:?}");
         assert!((f.value("direction").unwrap().value - 90.0).abs() < 1e-6);
+        // Up at 150 px/s against 400 px/s² down: the apex 0.375 s in.
+        assert!((f.value("vertex").unwrap().value - 0.375).abs() < 1e-9);
         assert!(f.rms() < 1e-6);
     }
 }

@@ -1,0 +1,152 @@
+//! A descent read from the object's track (`TrackedMotion`: a constant acceleration the track
+//! holds, `guide::measured`): its release where the track saw it, and its line where the path's
+//! own is another (a toss's path bends; its fall is along the acceleration); the whole descent
+//! where the picture finds none. The track does the picture's work there: no colour, no
+//! share of the picture that moves.
+
+use super::descent::Descent;
+use super::request::TrackedMotion;
+use crate::encoder::centroid::Line;
+use physvid_shared::video::{DecodedVideo, VideoOptions};
+
+/// The track's acceleration and the path's line are one line where the cosine of the angle
+/// between them is at least this (8°: a straight path lies along its acceleration, a toss's
+/// line across its parabola far off it): the picture's line and its bend by perspective are
+/// kept.
+const SAME_LINE: f64 = 0.99;
+
+/// How the decoded frames sit on the file's timeline and in the displayed picture.
+pub struct Geometry {
+    /// `--start` (seconds of the file's timeline) and frames a second of the timeline.
+    start: f64,
+    fps: f64,
+    frames: usize,
+    /// Decoded pixels per displayed pixel, across and down (the crop resized).
+    scale: (f64, f64),
+}
+
+impl Geometry {
+    pub fn of(decoded: &DecodedVideo, opts: &VideoOptions, fps: f64) -> Geometry {
+        let (cw, ch) = opts.crop.map_or(
+            (decoded.info.width as f64, decoded.info.height as f64),
+            |c| (c.w as f64, c.h as f64),
+        );
+        Geometry {
+            start: opts.start.unwrap_or(0.0),
+            fps,
+            frames: decoded.frame_count(),
+            scale: (
+                decoded.size.0 as f64 / cw.max(1.0),
+                decoded.size.1 as f64 / ch.max(1.0),
+            ),
+        }
+    }
+
+    /// A time of the file's timeline in frames of the decode.
+    fn frame(&self, t: f64) -> f64 {
+        (t - self.start) * self.fps
+    }
+
+    /// A direction of the displayed picture in the decoded frames (a unit vector).
+    fn direction(&self, [x, y]: [f64; 2]) -> Option<[f64; 2]> {
+        let (x, y) = (x * self.scale.0, y * self.scale.1);
+        let n = x.hypot(y);
+        (n > 0.0).then(|| [x / n, y / n])
+    }
+}
+
+/// The descent `found` in the picture, read with the track's motion `t`: the release the track
+/// saw, the acceleration's line where the path's is another; or, where the picture found none,
+/// the descent the track holds (from its release to its span's end). `None` where neither
+/// gives one.
+pub fn descent(found: Option<Descent>, t: &TrackedMotion, g: &Geometry) -> Option<Descent> {
+    let axis = g.direction(t.axis)?;
+    let release = t.release.map(|r| g.frame(r));
+    let Some(mut d) = found else {
+        let release = release?;
+        let last = (g.frame(t.span.1).floor().max(0.0) as usize).min(g.frames.checked_sub(1)?);
+        if release >= last as f64 {
+            return None;
+        }
+        let d = Descent {
+            release,
+            first: 0,
+            last,
+            travel: t.travel,
+            bend: None,
+            line: Line { axis, bend: 0.0 },
+            crowded: 0.0,
+            colour: false,
+        };
+        return Some(d.released_at(release));
+    };
+    if let Some(r) = release {
+        d = d.released_at(r);
+    }
+    let cos = (axis[0] * d.line.axis[0] + axis[1] * d.line.axis[1]).abs();
+    if cos < SAME_LINE {
+        d.line = Line { axis, bend: 0.0 };
+        d.bend = None;
+    }
+    Some(d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn geometry() -> Geometry {
+        Geometry {
+            start: 1.0,
+            fps: 30.0,
+            frames: 60,
+            scale: (0.5, 0.25),
+        }
+    }
+
+    fn toss(release: Option<f64>) -> TrackedMotion {
+        TrackedMotion {
+            span: (1.2, 2.5),
+            release,
+            axis: [0.0, 1.0],
+            travel: 0.4,
+        }
+    }
+
+    #[test]
+    fn where_the_picture_finds_no_descent_the_track_gives_it() {
+        let d = descent(None, &toss(Some(1.5)), &geometry()).unwrap();
+        assert!((d.release - 15.0).abs() < 1e-9);
+        assert_eq!(d.last, 45);
+        assert_eq!(d.line.axis, [0.0, 1.0]);
+        assert!(d.first <= 15);
+        // A release the track did not see gives no descent of its own.
+        assert!(descent(None, &toss(None), &geometry()).is_none());
+    }
+
+    #[test]
+    fn the_picture_s_line_is_kept_where_it_is_the_acceleration_s() {
+        let picture = Descent {
+            release: 10.0,
+            first: 8,
+            last: 50,
+            travel: 0.5,
+            bend: None,
+            line: Line {
+                axis: [0.0, 1.0],
+                bend: 0.01,
+            },
+            crowded: 0.0,
+            colour: false,
+        };
+        let d = descent(Some(picture), &toss(Some(1.2)), &geometry()).unwrap();
+        assert_eq!(d.line.bend, 0.01);
+        assert!((d.release - 6.0).abs() < 1e-9);
+        // Across the picture's line: the acceleration's, unbent.
+        let mut across = toss(None);
+        across.axis = [1.0, 0.0];
+        let d = descent(Some(picture), &across, &geometry()).unwrap();
+        assert_eq!((d.line.axis, d.line.bend), ([1.0, 0.0], 0.0));
+        assert_eq!(d.release, 10.0);
+    }
+}

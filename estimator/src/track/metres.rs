@@ -1,0 +1,173 @@
+//! The track in metres: a stick (`calibration::Stick`) scales its pixel lengths (a constant
+//! acceleration's px/s², an oscillation's amplitude) to SI, and gives the readings the latent
+//! route is calibrated by: the object's distance along its acceleration at each sample of the
+//! span where the law holds, in place of positions typed with `--reference`.
+
+use super::laws::{TrackLaw, Value};
+use super::{LawSpan, TrackRoute};
+use crate::calibration::Stick;
+
+/// The readings a stick gives the latent route: this many (two fix a scale; more average its
+/// noise).
+pub const READINGS: usize = 6;
+
+/// The value `v` in metres where its unit is a pixel length (`px`, `px/s^2`).
+fn in_metres(v: &Value, per_metre: f64) -> Option<Value> {
+    let unit = match v.unit {
+        "px" => "m",
+        "px/s^2" => "m/s^2",
+        _ => return None,
+    };
+    Some(Value {
+        name: v.name,
+        value: v.value / per_metre,
+        error: v.error / per_metre,
+        unit,
+    })
+}
+
+impl TrackRoute {
+    /// The route read on the scale of `stick`: every law's pixel lengths also in metres
+    /// (`LawSpan::si`).
+    pub fn with_stick(mut self, stick: Stick) -> TrackRoute {
+        let per_metre = stick.per_metre();
+        for l in &mut self.laws {
+            l.si = l
+                .values
+                .iter()
+                .filter_map(|v| in_metres(v, per_metre))
+                .collect();
+        }
+        self.stick = Some(stick);
+        self
+    }
+
+    /// The chosen law's span where it is a constant acceleration that holds: the span the
+    /// stick's readings come from and the model's law is read from.
+    pub fn accelerating(&self) -> Option<&LawSpan> {
+        self.chosen_span()
+            .filter(|l| l.law == TrackLaw::ConstantAcceleration && l.holds)
+    }
+
+    /// The readings a stick gives over the span `l`: at each sample's time on the file's own
+    /// timeline, the object's distance (metres) along the law's acceleration from where the
+    /// span starts: the quantity whose second derivative the fall or the slide is. Empty
+    /// without a stick or an acceleration.
+    pub fn readings(&self, l: &LawSpan) -> Vec<(f64, f64)> {
+        self.readings_at(l, (l.first..l.first + l.samples).collect())
+    }
+
+    /// [`Self::readings`] at [`READINGS`] samples spread evenly over the span `l` short of its
+    /// last (a decode may end a frame before the time asked), as far apart as they can be: a
+    /// latent trained on every second or third frame reads each on a frame of its own.
+    /// Only samples from `from` on (seconds of the file's timeline: a fall's release, before
+    /// which a descent keeps nothing).
+    pub fn spread_readings(&self, l: &LawSpan, from: f64) -> Vec<(f64, f64)> {
+        let f = &self.track.file_s;
+        let begin = (l.first..l.first + l.samples)
+            .find(|&i| f[i] >= from)
+            .unwrap_or(l.first + l.samples);
+        let n = (l.first + l.samples).saturating_sub(begin + 1);
+        let k = READINGS.min(n);
+        let picked = (0..k)
+            .map(|j| begin + j * (n - 1) / (k - 1).max(1))
+            .collect();
+        self.readings_at(l, picked)
+    }
+
+    fn readings_at(&self, l: &LawSpan, samples: Vec<usize>) -> Vec<(f64, f64)> {
+        let (Some(stick), Some(d)) = (self.stick, l.values.iter().find(|v| v.name == "direction"))
+        else {
+            return Vec::new();
+        };
+        let (dx, dy) = (d.value.to_radians().cos(), d.value.to_radians().sin());
+        let t = &self.track;
+        let (x0, y0) = (t.x[l.first], t.y[l.first]);
+        samples
+            .into_iter()
+            .map(|i| {
+                let along = (t.x[i] - x0) * dx + (t.y[i] - y0) * dy;
+                (t.file_s[i], along / stick.per_metre())
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::track::laws::TrackLaw;
+    use crate::track::Track;
+
+    /// A ball tossed at 60 px/s across and falling at 400 px/s² (a stick of 200 px a metre:
+    /// 2 m/s²), seen for 20 frames at 30 fps.
+    fn tossed() -> TrackRoute {
+        let t: Vec<f64> = (0..20).map(|i| i as f64 / 30.0).collect();
+        let x: Vec<f64> = t.iter().map(|s| 10.0 + 60.0 * s).collect();
+        let y: Vec<f64> = t
+            .iter()
+            .map(|s| 200.0 - 150.0 * s + 200.0 * s * s)
+            .collect();
+        let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+        let law = TrackLaw::ConstantAcceleration;
+        let f = law.fit(&t, &y, &xy, None).unwrap();
+        let span = LawSpan {
+            law,
+            holds: true,
+            first_s: t[2],
+            last_s: t[19],
+            samples: 18,
+            values: f.values,
+            halves: Vec::new(),
+            rms_px: 0.0,
+            si: Vec::new(),
+            periods: None,
+            curve: Vec::new(),
+            first: 2,
+        };
+        TrackRoute {
+            track: Track {
+                file_s: t.iter().map(|s| s + 1.0).collect(),
+                t,
+                quality: vec![1.0; 20],
+                along: y.clone(),
+                x,
+                y,
+                axis: (0.0, 1.0),
+                noise: 0.1,
+                size: 6.0,
+                picture: (400, 300),
+                frames: 20,
+                threshold: 10.0,
+            },
+            laws: vec![span],
+            chosen: Some(law),
+            stick: None,
+        }
+    }
+
+    #[test]
+    fn a_stick_puts_the_acceleration_and_the_readings_in_metres() {
+        let r = tossed();
+        assert!(r.readings(r.accelerating().unwrap()).is_empty());
+        let r = r.with_stick(Stick::parse("0,0:0,200=1").unwrap());
+        let l = r.accelerating().unwrap();
+        let a = &l.si[0];
+        assert_eq!((a.name, a.unit), ("acceleration", "m/s^2"));
+        assert!((a.value - 2.0).abs() < 1e-9, "{a:?}");
+        let readings = r.readings(l);
+        assert_eq!(readings.len(), 18);
+        assert!((readings[0].0 - (1.0 + 2.0 / 30.0)).abs() < 1e-12);
+        assert_eq!(readings[0].1, 0.0);
+        // Along the acceleration (straight down): y's own change, in metres.
+        let (s0, s1) = (2.0 / 30.0, 19.0 / 30.0);
+        let dy = (-150.0 * s1 + 200.0 * s1 * s1) - (-150.0 * s0 + 200.0 * s0 * s0);
+        assert!((readings[17].1 - dy / 200.0).abs() < 1e-9);
+        let spread = r.spread_readings(l, f64::NEG_INFINITY);
+        assert_eq!(spread.len(), READINGS);
+        assert_eq!((spread[0], spread[5]), (readings[0], readings[16]));
+        // From the apex on (1.375 s of the file's timeline: sample 12 of the span's 2..20).
+        let late = r.spread_readings(l, 1.375);
+        assert_eq!((late[0], late[5]), (readings[10], readings[16]));
+    }
+}

