@@ -122,18 +122,20 @@ fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
     else {
         return Vec::new();
     };
-    let Some(p) = r
-        .parameters
+    apart(check, a, &r.parameters).into_iter().collect()
+}
+
+/// The reason where the latent's acceleration in SI among `parameters` lies beyond
+/// `separation`'s limit from the track's `a` (m/s²).
+fn apart(check: &'static str, a: &Value, parameters: &[ParameterResult]) -> Option<Reason> {
+    let p = parameters
         .iter()
-        .find(|p| ACCELERATION_NAMES.contains(&p.name.as_str()) && p.unit == "m/s^2")
-    else {
-        return Vec::new();
-    };
+        .find(|p| ACCELERATION_NAMES.contains(&p.name.as_str()) && p.unit == "m/s^2")?;
     let (measured, limit) = separation(p, a);
     if measured <= limit {
-        return Vec::new();
+        return None;
     }
-    vec![Reason::new(
+    Some(Reason::new(
         check,
         Grade::Doubtful,
         format!(
@@ -153,5 +155,41 @@ fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
             }
         ),
     )
-    .measured(measured, limit)]
+    .measured(measured, limit))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn latent(estimate: f64, standard_error: Option<f64>) -> Vec<ParameterResult> {
+        vec![ParameterResult {
+            name: "g".into(),
+            estimate,
+            units: "SI".into(),
+            unit: "m/s^2".into(),
+            truth: None,
+            relative_error: None,
+            standard_error,
+            splits: Vec::new(),
+        }]
+    }
+
+    #[test]
+    fn a_fall_s_g_is_held_to_the_track_s_in_metres() {
+        let a = Value {
+            name: "acceleration",
+            value: 9.93,
+            error: 0.03,
+            unit: "m/s^2",
+        };
+        // The toss's latent from its own reading (0.04 ± 0.26): far apart, both named.
+        let r = apart("routes", &a, &latent(0.04, Some(0.26))).expect("apart");
+        assert_eq!(r.grade, Grade::Doubtful);
+        assert!(r.detail.contains("9.93") && r.detail.contains("0.04"), "{}", r.detail);
+        // Within three joint errors, or within 2 % without an error of its own: nothing.
+        assert!(apart("routes", &a, &latent(9.80, Some(0.1))).is_none());
+        assert!(apart("routes", &a, &latent(9.80, None)).is_none());
+        assert!(apart("routes", &a, &latent(9.50, None)).is_some());
+    }
 }
