@@ -135,27 +135,23 @@ fn apart(check: &'static str, a: &Value, parameters: &[ParameterResult]) -> Opti
     if measured <= limit {
         return None;
     }
-    Some(Reason::new(
-        check,
-        Grade::Doubtful,
-        format!(
-            "the object's track, in metres by the stick, accelerates at {} ± {} m/s^2; the \
-             latent's {} is {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track \
-             in report.html",
-            approx(a.value),
-            approx(a.error),
-            p.name,
-            approx(p.estimate),
-            approx(p.standard_error.unwrap_or(f64::NAN)),
-            approx(measured),
-            if limit == ERRORS {
-                "joint standard errors apart"
-            } else {
-                "of the value apart"
-            }
-        ),
-    )
-    .measured(measured, limit))
+    let detail = format!(
+        "the object's track, in metres by the stick, accelerates at {} ± {} m/s^2; the \
+         latent's {} is {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track in \
+         report.html",
+        approx(a.value),
+        approx(a.error),
+        p.name,
+        approx(p.estimate),
+        approx(p.standard_error.unwrap_or(f64::NAN)),
+        approx(measured),
+        if limit == ERRORS {
+            "joint standard errors apart"
+        } else {
+            "of the value apart"
+        }
+    );
+    Some(Reason::new(check, Grade::Doubtful, detail).measured(measured, limit))
 }
 
 #[cfg(test)]
@@ -186,7 +182,11 @@ mod tests {
         // The toss's latent from its own reading (0.04 ± 0.26): far apart, both named.
         let r = apart("routes", &a, &latent(0.04, Some(0.26))).expect("apart");
         assert_eq!(r.grade, Grade::Doubtful);
-        assert!(r.detail.contains("9.93") && r.detail.contains("0.04"), "{}", r.detail);
+        assert!(
+            r.detail.contains("9.93") && r.detail.contains("0.04"),
+            "{}",
+            r.detail
+        );
         // Within three joint errors, or within 2 % without an error of its own: nothing.
         assert!(apart("routes", &a, &latent(9.80, Some(0.1))).is_none());
         assert!(apart("routes", &a, &latent(9.80, None)).is_none());
