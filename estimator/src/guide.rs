@@ -112,7 +112,7 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
             .tracked
             .and_then(|t| t.release)
             .unwrap_or(f64::NEG_INFINITY);
-        g.calibration.times = route.spread_readings(span, from);
+        g.calibration.times = route.readings(span, from);
         g.load.recording.measured_at = g.calibration.times.iter().map(|t| t.0).collect();
         did.push(format!(
             "calibrated it by the track's {} positions in metres",
@@ -175,14 +175,19 @@ pub fn second_route(
     Ok(route)
 }
 
+/// Whether the request reads a video file (not an image folder, not frames in memory): what
+/// a track is read on.
+fn on_video(req: &Request) -> bool {
+    let load = &req.load;
+    load.frames.is_none() && load.input.is_file() && video::is_recording(&load.input)
+}
+
 /// The track of a video file, on the stick's scale where one is given.
 fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
-    let load = &req.load;
-    let input = &load.input;
-    if load.frames.is_some() || !input.is_file() || !video::is_recording(input) {
+    if !on_video(req) {
         return None;
     }
-    let r = &load.recording;
+    let (input, r) = (&req.load.input, &req.load.recording);
     let found = video::probe_as(input, r.fields)
         .and_then(|info| track::follow(input, &info, (r.start, r.end), r.fps));
     match found {
@@ -208,11 +213,11 @@ fn check_stick(
     let Some(stick) = req.calibration.stick else {
         return Ok(());
     };
-    let load = &req.load;
-    if load.frames.is_some() || !load.input.is_file() || !video::is_recording(&load.input) {
+    if !on_video(req) {
         return Err(input_error(format!(
-            "--stick scales the object's track in a video file, and {} is none: give              --reference for a data set, an array or an image folder",
-            load.input.display()
+            "--stick scales the object's track in a video file, and {} is none: give \
+             --reference for a data set, an array or an image folder",
+            req.load.input.display()
         )));
     }
     let Some(route) = route else {

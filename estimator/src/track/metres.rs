@@ -49,20 +49,15 @@ impl TrackRoute {
             .filter(|l| l.law == TrackLaw::ConstantAcceleration && l.holds)
     }
 
-    /// The readings a stick gives over the span `l`: at each sample's time on the file's own
-    /// timeline, the object's distance (metres) along the law's acceleration from where the
-    /// span starts: the quantity whose second derivative the fall or the slide is. Empty
-    /// without a stick or an acceleration.
-    pub fn readings(&self, l: &LawSpan) -> Vec<(f64, f64)> {
-        self.readings_at(l, (l.first..l.first + l.samples).collect())
-    }
-
-    /// [`Self::readings`] at [`READINGS`] samples spread evenly over the span `l` short of its
-    /// last (a decode may end a frame before the time asked), as far apart as they can be: a
-    /// latent trained on every second or third frame reads each on a frame of its own.
-    /// Only samples from `from` on (seconds of the file's timeline: a fall's release, before
-    /// which a descent keeps nothing).
-    pub fn spread_readings(&self, l: &LawSpan, from: f64) -> Vec<(f64, f64)> {
+    /// The readings a stick gives over the span `l`, for the latent's calibration: at
+    /// [`READINGS`] samples spread evenly over it short of its last (a decode may end a frame
+    /// before the time asked), as far apart as they can be (a latent trained on every second or
+    /// third frame reads each on a frame of its own), and only from `from` on (seconds of the
+    /// file's timeline: a fall's release, before which a descent keeps nothing). Each is the
+    /// sample's time on the file's own timeline and the object's distance (metres) along the
+    /// law's acceleration from where the span starts: the quantity whose second derivative the
+    /// fall or the slide is. Empty without a stick or an acceleration.
+    pub fn readings(&self, l: &LawSpan, from: f64) -> Vec<(f64, f64)> {
         let f = &self.track.file_s;
         let begin = (l.first..l.first + l.samples)
             .find(|&i| f[i] >= from)
@@ -149,25 +144,27 @@ mod tests {
     #[test]
     fn a_stick_puts_the_acceleration_and_the_readings_in_metres() {
         let r = tossed();
-        assert!(r.readings(r.accelerating().unwrap()).is_empty());
+        assert!(r
+            .readings(r.accelerating().unwrap(), f64::NEG_INFINITY)
+            .is_empty());
         let r = r.with_stick(Stick::parse("0,0:0,200=1").unwrap());
         let l = r.accelerating().unwrap();
         let a = &l.si[0];
         assert_eq!((a.name, a.unit), ("acceleration", "m/s^2"));
         assert!((a.value - 2.0).abs() < 1e-9, "{a:?}");
-        let readings = r.readings(l);
-        assert_eq!(readings.len(), 18);
-        assert!((readings[0].0 - (1.0 + 2.0 / 30.0)).abs() < 1e-12);
-        assert_eq!(readings[0].1, 0.0);
+        // Every sample of the span (2..20) read, as the spread ones are.
+        let every = r.readings_at(l, (2..20).collect());
+        assert!((every[0].0 - (1.0 + 2.0 / 30.0)).abs() < 1e-12);
+        assert_eq!(every[0].1, 0.0);
         // Along the acceleration (straight down): y's own change, in metres.
         let (s0, s1) = (2.0 / 30.0, 19.0 / 30.0);
         let dy = (-150.0 * s1 + 200.0 * s1 * s1) - (-150.0 * s0 + 200.0 * s0 * s0);
-        assert!((readings[17].1 - dy / 200.0).abs() < 1e-9);
-        let spread = r.spread_readings(l, f64::NEG_INFINITY);
+        assert!((every[17].1 - dy / 200.0).abs() < 1e-9);
+        let spread = r.readings(l, f64::NEG_INFINITY);
         assert_eq!(spread.len(), READINGS);
-        assert_eq!((spread[0], spread[5]), (readings[0], readings[16]));
+        assert_eq!((spread[0], spread[5]), (every[0], every[16]));
         // From the apex on (1.375 s of the file's timeline: sample 12 of the span's 2..20).
-        let late = r.spread_readings(l, 1.375);
-        assert_eq!((late[0], late[5]), (readings[10], readings[16]));
+        let late = r.readings(l, 1.375);
+        assert_eq!((late[0], late[5]), (every[10], every[16]));
     }
 }

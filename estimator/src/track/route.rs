@@ -117,16 +117,11 @@ impl TrackRoute {
     /// picture's larger side.
     pub fn travel(&self, l: &LawSpan) -> f64 {
         let t = &self.track;
-        let span = l.first..l.first + l.samples;
-        let extent = |v: &[f64]| {
-            let (lo, hi) = v[span.clone()]
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
-                    (lo.min(a), hi.max(a))
-                });
+        let size = |v: &[f64]| {
+            let (lo, hi) = bounds(v, l);
             (hi - lo).max(0.0)
         };
-        extent(&t.x).max(extent(&t.y)) / t.picture.0.max(t.picture.1).max(1) as f64
+        size(&t.x).max(size(&t.y)) / t.picture.0.max(t.picture.1).max(1) as f64
     }
 
     /// The rectangle of the displayed frame the object keeps to over the span `l`: its path's
@@ -136,14 +131,6 @@ impl TrackRoute {
     pub fn frame_of(&self, l: &LawSpan) -> Crop {
         let t = &self.track;
         let (width, height) = t.picture;
-        let span = l.first..l.first + l.samples;
-        let extent = |v: &[f64]| {
-            v[span.clone()]
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
-                    (lo.min(a), hi.max(a))
-                })
-        };
         let margin = (FRAME_SIZES * t.size).max(FRAME_SHARE * width.min(height) as f64);
         let side = |(lo, hi): (f64, f64), limit: usize| {
             let limit = limit.max(1) as f64;
@@ -151,8 +138,8 @@ impl TrackRoute {
             let b = (hi + margin).ceil().clamp(a + 1.0, limit);
             (a as usize, (b - a) as usize)
         };
-        let (x, w) = side(extent(&t.x), width);
-        let (y, h) = side(extent(&t.y), height);
+        let (x, w) = side(bounds(&t.x, l), width);
+        let (y, h) = side(bounds(&t.y, l), height);
         Crop { x, y, w, h }
     }
 
@@ -187,6 +174,15 @@ impl TrackRoute {
             ),
         }
     }
+}
+
+/// The least and the greatest of `v` over the span `l`.
+fn bounds(v: &[f64], l: &LawSpan) -> (f64, f64) {
+    v[l.first..l.first + l.samples]
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
+            (lo.min(a), hi.max(a))
+        })
 }
 
 /// The law that holds over the longest time; an oscillation only where its span holds at least
