@@ -41,7 +41,8 @@ pub struct ModelArgs {
     /// frame (pixels from its top left, as an image viewer shows them) and the distance between
     /// them in metres, X1,Y1:X2,Y2=METRES (e.g. the ends of a metre stick, 284,45.5:284,446=1).
     /// The object's track is read in metres: a fall's g or a roll's acceleration in SI with no
-    /// --reference, whose readings the track then gives the latent route. Report.html draws it.
+    /// --reference, whose readings the track then gives the latent route. Report.html names it
+    /// and its scale beside the track.
     #[arg(long, value_parser = Stick::parse, value_name = "X1,Y1:X2,Y2=METRES")]
     pub stick: Option<Stick>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
