@@ -1,8 +1,8 @@
 //! Issue 50's class "silently wrong numbers": a recording's clock is read from its frames' own
 //! times (a GIF's delays, a variable-frame-rate file's timestamps, an image folder's numbers),
 //! never from their median interval; frames a clock places unevenly are resampled onto it,
-//! a dropped frame filled in, a doubled one left out, and what fits no even clock refused
-//! with the numbers. Recordings made here with ffmpeg; each test fails on the code before.
+//! a dropped frame filled in, a doubled one left out, a first frame off the clock left out
+//! (issue 64), and what fits no even clock refused with the numbers. Recordings made here with ffmpeg; each test fails on the code before.
 
 mod util;
 
@@ -142,6 +142,44 @@ fn dropped_frames_are_filled_in_and_a_pause_is_refused_with_its_numbers() {
         .args(["--model", "damped-oscillator"])
         .out(&tmp.path().join("paused-run"))
         .bad_input("15 frames are missing after 3.");
+}
+
+#[test]
+fn a_first_frame_off_the_clock_is_left_out_and_the_rest_read() {
+    if !need_ffmpeg() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    // A museum camera's clock: 52.9 ms to the second frame, then 30 fps (the first frame 41 %
+    // of an interval off the clock the others keep). It was refused: "re-encode".
+    let times: Vec<f64> = (0..241)
+        .map(|k| match k {
+            0 => 0.0,
+            k => 0.053 + (k - 1) as f64 / 30.0,
+        })
+        .collect();
+    let video = video_at(tmp.path(), &times, "if(eq(N,0),0,0.053+(N-1)/30)");
+    let (report, err) = oscillator_run(&video, &tmp.path().join("run"), &[]);
+    assert!(err.contains("the first frame (off the clock"), "{err}");
+    let read = report["recording"]["fps"].as_f64().unwrap();
+    assert!(
+        (read / 30.0 - 1.0).abs() < 0.003,
+        "read at {read} fps: {err}"
+    );
+    // The part read starts at the second frame, on the file's timeline.
+    let start = report["recording"]["start"].as_f64().unwrap_or(0.0);
+    assert!((start - 0.053).abs() < 0.002, "start {start}: {err}");
+    let g0 = estimate_of(&report, "gamma0");
+    assert!((g0 / GAMMA0 - 1.0).abs() < 0.03, "γ0 {g0}: {err}");
+    // One frame in the middle 40 % of an interval late: resampled on the real times.
+    let times: Vec<f64> = (0..240)
+        .map(|k| k as f64 / 30.0 + if k == 120 { 0.013 } else { 0.0 })
+        .collect();
+    let video = video_at(&tmp.path().join("late"), &times, "N/30+0.013*eq(N,120)");
+    let (report, err) = oscillator_run(&video, &tmp.path().join("late-run"), &[]);
+    assert!(err.contains("resampled onto it"), "{err}");
+    let g0 = estimate_of(&report, "gamma0");
+    assert!((g0 / GAMMA0 - 1.0).abs() < 0.03, "γ0 {g0}: {err}");
 }
 
 #[test]

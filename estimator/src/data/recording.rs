@@ -94,7 +94,7 @@ pub fn load_recording(
         size,
     } = framing::frame(input, info.as_ref(), flags)?;
     let survey_s = started.elapsed().as_secs_f64();
-    let opts = VideoOptions {
+    let mut opts = VideoOptions {
         fps: Some(fps),
         crop,
         start: flags.start,
@@ -107,6 +107,11 @@ pub fn load_recording(
     };
     let mut decoded = super::reuse::decode(input, &opts, info.clone(), keep)?;
     warnings.extend(decoded.clock_note.clone());
+    // Frames at the start off the even clock were left out: the part starts at the first kept,
+    // and every time below counts from it.
+    if decoded.first_s > 0.0 {
+        opts.start = Some(opts.start.unwrap_or(0.0) + decoded.first_s);
+    }
     // A fall or slide from rest: its release, and the descent alone where no flag trims;
     // anything else: the frames where it moves.
     let timeline_fps = decoded.timeline_fps.unwrap_or(fps);
@@ -124,14 +129,14 @@ pub fn load_recording(
         let free = survey.as_ref().and_then(|s| s.free).map(|f| {
             let times = info
                 .as_ref()
-                .map(|i| i.times_within(flags.start, flags.end))
+                .map(|i| i.times_within(opts.start, opts.end))
                 .unwrap_or_default();
             let at = |i: usize| match times.get(i) {
                 Some(t) => ((t - times[0]) * timeline_fps).round() as usize,
                 None => i,
             };
             // A time the user measured the system at (a --reference) is in the free motion.
-            let frame_of = |t: f64| (t - flags.start.unwrap_or(0.0)) * timeline_fps;
+            let frame_of = |t: f64| (t - opts.start.unwrap_or(0.0)) * timeline_fps;
             let early = flags
                 .measured_at
                 .iter()

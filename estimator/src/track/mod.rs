@@ -85,7 +85,8 @@ impl Track {
 }
 
 /// The frames' real times: `fps` where the user gave it, else the container's timestamps
-/// (a slow-motion capture's scaled to its capture rate), else the container's even rate.
+/// (a slow-motion capture's scaled to its capture rate; the slots of their even clock where
+/// the frames were put on it), else the container's even rate.
 /// And each frame's time on the file's own timeline.
 fn times(
     info: &VideoInfo,
@@ -97,10 +98,12 @@ fn times(
     let stamps = info.times_within(span.0, span.1);
     let even = |rate: f64| -> Vec<f64> { (0..n).map(|i| i as f64 / rate).collect() };
     let container = info.read_rate(info.container_fps.unwrap_or(30.0));
-    let file: Vec<f64> = if stamps.len() == n {
-        stamps.clone()
-    } else {
-        even(container).iter().map(|t| from + t).collect()
+    // Frames put on their clock (resampled, or some at an end left out): slot k's time.
+    let clock = info.clock(span.0, span.1).and_then(Result::ok);
+    let file: Vec<f64> = match clock {
+        Some(c) if !c.is_even() => (0..n).map(|k| c.start + k as f64 * c.interval).collect(),
+        _ if stamps.len() == n => stamps.clone(),
+        _ => even(container).iter().map(|t| from + t).collect(),
     };
     if let Some(f) = fps {
         return (even(info.read_rate(f)), file);

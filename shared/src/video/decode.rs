@@ -201,7 +201,7 @@ pub fn decode(
         Some(info.times_within(opts.start, opts.end))
     };
     let per = opts.size.0 * opts.size.1;
-    let (mut clock_note, mut timeline_fps) = (None, info.container_fps);
+    let (mut clock_note, mut timeline_fps, mut first_s) = (None, info.container_fps, 0.0);
     if let Some(times) = times.filter(|t| t.len() == count && count >= 2) {
         let clock = Clock::fit(&times).map_err(|u| match folder {
             false => bad(input, u.reason()),
@@ -222,6 +222,7 @@ pub fn decode(
         if !clock.is_even() {
             frames = clock.resample(&times, &frames, per);
             count = frames.len() / per;
+            first_s = times[clock.head] - times[0];
             clock_note = clock.note(!folder);
         }
     }
@@ -248,6 +249,7 @@ pub fn decode(
         size: opts.size,
         timeline_fps,
         clock_note,
+        first_s,
     })
 }
 

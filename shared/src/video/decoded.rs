@@ -22,6 +22,10 @@ pub struct DecodedVideo {
     /// What reading the frames on their own clock did (doubled, dropped or uneven frames), for
     /// a warning.
     pub clock_note: Option<String>,
+    /// Seconds from the first frame read to frame 0: 0 unless frames at the start, off the
+    /// even clock, were left out (`clock::Clock::head`); frame k lies at `first_s + k /
+    /// timeline_fps` from the part's start.
+    pub first_s: f64,
 }
 
 impl DecodedVideo {

@@ -6,10 +6,19 @@
 //! GIF's whole centiseconds, an uneven capture) is resampled onto the grid by blending each
 //! slot's two nearest frames in time; a doubled frame (two in one slot) keeps the one nearer
 //! its slot; a dropped frame (an empty slot) is blended from its neighbours, at most
-//! [`MAX_MISSING`] in a row. Times that fit no even grid within a quarter of an interval are
-//! refused with the numbers. `resample.rs` puts the frames on the grid.
+//! [`MAX_MISSING`] in a row. A frame further than a quarter of an interval off its slot is
+//! left out at either end of the recording (at most [`END_FRAMES`] there: a capture's first
+//! interval is often its own) and resampled from its neighbours in the middle (at most a
+//! [`MAX_MISSING_SHARE`] of the frames); times that no even grid carries so are refused with
+//! the numbers and the frames. `grid.rs` fits the grid, `resample.rs` puts the frames on it,
+//! `uneven.rs` words a refusal.
 
+mod grid;
 mod resample;
+mod uneven;
+
+use grid::Grid;
+pub use uneven::{Uneven, NAMED};
 
 /// Deviation from the grid, in intervals, below which frames are used as they are.
 pub const ROUNDING: f64 = 0.1;
@@ -20,6 +29,8 @@ pub const MAX_MISSING: usize = 2;
 /// The largest share of slots without a frame: beyond it the grid explains the times by
 /// dropped frames that were never there.
 pub const MAX_MISSING_SHARE: f64 = 0.1;
+/// The most frames at either end that are left out for lying off the grid.
+pub const END_FRAMES: usize = 2;
 
 /// The even grid a recording's frames sit on.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,48 +39,15 @@ pub struct Clock {
     pub start: f64,
     /// Time between slots.
     pub interval: f64,
-    /// Each frame's slot (non-decreasing).
+    /// Each kept frame's slot (non-decreasing), the frames `head..n - tail` of those fitted.
     pub slots: Vec<usize>,
     /// Largest distance of a slot's nearest frame from the slot, in intervals.
     pub jitter: f64,
-}
-
-/// Times that fit no even clock: the numbers for the refusal.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Uneven {
-    pub shortest: f64,
-    pub longest: f64,
-    pub median: f64,
-    /// The best grid's worst deviation, in intervals.
-    pub jitter: f64,
-    /// A run of empty slots longer than [`MAX_MISSING`]: (the time it starts, slots missing).
-    pub gap: Option<(f64, usize)>,
-}
-
-impl Uneven {
-    /// What is uneven, for a refusal, the times in seconds of the file's timeline.
-    pub fn reason(&self) -> String {
-        let ms = |s: f64| crate::cli::approx(s * 1e3);
-        let what = match self.gap {
-            Some((at, n)) => format!(
-                "{n} frames are missing after {} s of the file's timeline (a pause or dropped \
-                 frames; at most {MAX_MISSING} in a row are filled in)",
-                crate::cli::approx(at)
-            ),
-            None => format!(
-                "intervals from {} to {} ms (median {} ms) sit on no even clock (the best \
-                 leaves a frame {:.0} % of an interval off, or too many frames missing)",
-                ms(self.shortest),
-                ms(self.longest),
-                ms(self.median),
-                self.jitter * 100.0
-            ),
-        };
-        format!(
-            "the frames are not evenly spaced in time: {what}; keep an even part with \
-             --start/--end, or re-encode at a constant rate (ffmpeg -i IN -vf fps=RATE OUT.mp4)"
-        )
-    }
+    /// Frames at the start and at the end left out for lying off the grid.
+    pub head: usize,
+    pub tail: usize,
+    /// Slots whose nearest frame lies over [`MAX_JITTER`] off (resampled from their neighbours).
+    pub off: usize,
 }
 
 impl Clock {
@@ -81,6 +59,21 @@ impl Clock {
             return None;
         }
         let mut parts = Vec::new();
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        for (n, end) in [(self.head, "first"), (self.tail, "last")] {
+            if n > 0 {
+                parts.push(format!(
+                    "the {end} {}frame{} (off the clock by more than a quarter of an interval) \
+                     left out",
+                    if n == 1 {
+                        String::new()
+                    } else {
+                        format!("{n} ")
+                    },
+                    plural(n)
+                ));
+            }
+        }
         let (doubled, missing) = (self.doubled(), self.missing());
         if doubled > 0 {
             parts.push(format!(
@@ -119,68 +112,70 @@ impl Clock {
         let mut steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
         steps.sort_by(f64::total_cmp);
         let median = steps.get(steps.len() / 2).copied().unwrap_or(1.0);
-        let uneven = |jitter: f64, gap| Uneven {
-            shortest: steps.first().copied().unwrap_or(0.0),
-            longest: steps.last().copied().unwrap_or(0.0),
-            median,
-            jitter,
-            gap,
-        };
         if n < 2 || median.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return Ok(Clock {
                 start: times.first().copied().unwrap_or(0.0),
                 interval: if median > 0.0 { median } else { 1.0 },
                 slots: (0..n).collect(),
                 jitter: 0.0,
+                head: 0,
+                tail: 0,
+                off: 0,
             });
         }
-        // Slots step by step at the median interval (a frame doubled or dropped is a step of
-        // zero or two), then the least-squares grid through them, twice.
-        let mut slots = vec![0usize; n];
-        for i in 1..n {
-            let step = ((times[i] - times[i - 1]) / median).round().max(0.0) as usize;
-            slots[i] = slots[i - 1] + step;
-        }
-        let (mut start, mut interval) = line(times, &slots);
-        for _ in 0..2 {
-            for (s, &t) in slots.iter_mut().zip(times) {
-                *s = ((t - start) / interval).round().max(0.0) as usize;
-            }
-            (start, interval) = line(times, &slots);
-        }
-        // The worst slot's nearest frame (of a doubled pair, the one kept).
-        let mut jitter: f64 = 0.0;
-        let mut i = 0;
-        while i < n {
-            let mut best = f64::INFINITY;
-            let slot = slots[i];
-            while i < n && slots[i] == slot {
-                best = best.min((times[i] - start - slot as f64 * interval).abs() / interval);
-                i += 1;
-            }
-            jitter = jitter.max(best);
-        }
-        let clock = Clock {
-            start,
-            interval,
-            slots,
-            jitter,
+        let uneven = |grid: &Grid, kept: &[f64], gap| Uneven {
+            shortest: steps.first().copied().unwrap_or(0.0),
+            longest: steps.last().copied().unwrap_or(0.0),
+            median,
+            jitter: grid.jitter(kept),
+            gap,
+            frames: grid.furthest(kept),
         };
-        if jitter > MAX_JITTER || !interval.is_finite() {
-            return Err(uneven(jitter, None));
+        // Frames off the grid at either end (a first interval of its own) are left out and the
+        // grid fitted again to the rest.
+        let whole = Grid::of(times, median);
+        let off = |i: &usize| whole.deviation(times, *i) > MAX_JITTER;
+        let head = (0..n).take_while(off).count();
+        let tail = (0..n).rev().take_while(off).count();
+        let (head, tail) = match head <= END_FRAMES && tail <= END_FRAMES && head + tail + 2 <= n {
+            true => (head, tail),
+            false => (0, 0),
+        };
+        let kept = &times[head..n - tail];
+        let grid = if head + tail > 0 {
+            Grid::of(kept, median)
+        } else {
+            whole
+        };
+        let m = kept.len();
+        let slots_off = grid.slots_off(kept);
+        let clock = Clock {
+            start: grid.start,
+            interval: grid.interval,
+            jitter: grid.jitter(kept),
+            slots: grid.slots.clone(),
+            head,
+            tail,
+            off: slots_off,
+        };
+        if !grid.interval.is_finite() || slots_off as f64 > MAX_MISSING_SHARE * m as f64 {
+            return Err(uneven(&grid.shifted(head), kept, None));
         }
         if let Some((at, missing)) = clock.longest_gap().filter(|g| g.1 > MAX_MISSING) {
-            return Err(uneven(jitter, Some((times[at], missing))));
+            return Err(uneven(&grid.shifted(head), kept, Some((kept[at], missing))));
         }
-        if clock.missing() as f64 > MAX_MISSING_SHARE * (clock.slots[n - 1] + 1) as f64 {
-            return Err(uneven(jitter, None));
+        if clock.missing() as f64 > MAX_MISSING_SHARE * (clock.slots[m - 1] + 1) as f64 {
+            return Err(uneven(&grid.shifted(head), kept, None));
         }
         Ok(clock)
     }
 
-    /// Whether the frames are the grid itself: one in every slot, each within [`ROUNDING`].
+    /// Whether the frames are the grid itself: one in every slot, each within [`ROUNDING`],
+    /// none left out.
     pub fn is_even(&self) -> bool {
-        self.jitter <= ROUNDING && self.slots.iter().enumerate().all(|(i, &s)| s == i)
+        self.jitter <= ROUNDING
+            && self.head + self.tail == 0
+            && self.slots.iter().enumerate().all(|(i, &s)| s == i)
     }
 
     /// Frames that share a slot with the one before.
@@ -205,21 +200,6 @@ impl Clock {
             .filter(|g| g.1 > 0)
             .max_by_key(|g| g.1)
     }
-}
-
-/// The least-squares line t = start + interval·slot.
-fn line(times: &[f64], slots: &[usize]) -> (f64, f64) {
-    let n = times.len() as f64;
-    let ms = slots.iter().map(|&s| s as f64).sum::<f64>() / n;
-    let mt = times.iter().sum::<f64>() / n;
-    let (mut sxy, mut sxx) = (0.0, 0.0);
-    for (&s, &t) in slots.iter().zip(times) {
-        let ds = s as f64 - ms;
-        sxy += ds * (t - mt);
-        sxx += ds * ds;
-    }
-    let interval = if sxx > 0.0 { sxy / sxx } else { 1.0 };
-    (mt - interval * ms, interval)
 }
 
 #[cfg(test)]
@@ -298,5 +278,48 @@ mod tests {
         t.extend((26..40).map(|i| i as f64 * 0.1));
         let e = Clock::fit(&t).unwrap_err();
         assert_eq!(e.gap.map(|g| g.1), Some(6), "{e:?}");
+    }
+
+    #[test]
+    fn a_frame_off_the_clock_is_left_out_at_an_end_and_resampled_in_the_middle() {
+        // The museum's clock: 52.9 ms to the second frame, 33.3 ms after (41 % of an interval
+        // off for the first frame), and the same at the end.
+        let d = 1.0 / 30.0;
+        let mut t = vec![0.0];
+        t.extend((0..60).map(|k| 0.0529 + k as f64 * d));
+        let c = Clock::fit(&t).unwrap();
+        assert_eq!((c.head, c.tail, c.off), (1, 0, 0), "{c:?}");
+        assert!((c.interval - d).abs() < 1e-9 && !c.is_even(), "{c:?}");
+        let frames: Vec<f32> = t.iter().map(|&x| x as f32).collect();
+        let grid = c.resample(&t, &frames, 1);
+        assert_eq!(grid.len(), 60);
+        assert_eq!(grid[0], 0.0529f32);
+        assert!(
+            c.note(true).unwrap().contains("the first frame"),
+            "{:?}",
+            c.note(true)
+        );
+        let mut end = t.clone();
+        end.push(end[60] + 0.0529);
+        let c = Clock::fit(&end).unwrap();
+        assert_eq!((c.head, c.tail), (1, 1), "{c:?}");
+        // One frame 40 % of an interval late in the middle: resampled on the real times.
+        let mut t: Vec<f64> = (0..60).map(|k| k as f64 * 0.1).collect();
+        t[30] += 0.04;
+        let c = Clock::fit(&t).unwrap();
+        assert_eq!((c.head, c.tail, c.off), (0, 0, 1), "{c:?}");
+        let ramp: Vec<f32> = t.iter().map(|&x| x as f32).collect();
+        let r = c.resample(&t, &ramp, 1);
+        assert!((r[30] - 3.0).abs() < 2e-3, "{}", r[30]);
+        // Every fourth frame 40 % late: more than a tenth off, refused, the frames named.
+        let t: Vec<f64> = (0..60)
+            .map(|k| k as f64 * 0.1 + if k % 4 == 2 { 0.04 } else { 0.0 })
+            .collect();
+        let e = Clock::fit(&t).unwrap_err();
+        assert!(
+            e.reason().contains("furthest off: frame 3 (0.24 s)"),
+            "{}",
+            e.reason()
+        );
     }
 }

@@ -6,9 +6,13 @@ use super::{Clock, ROUNDING};
 
 impl Clock {
     /// The frames `frames` ([n, len], one per time fitted) on the grid, one per slot from the
-    /// first frame's to the last's: a frame within [`ROUNDING`] of its slot as it is, else (and
-    /// for an empty slot) the blend of the two frames nearest the slot's time on either side.
+    /// first kept frame's to the last's (those left out at the ends dropped): a frame within
+    /// [`ROUNDING`] of its slot as it is, else (and for an empty slot) the blend of the two
+    /// frames nearest the slot's time on either side.
     pub fn resample(&self, times: &[f64], frames: &[f32], len: usize) -> Vec<f32> {
+        let n = times.len();
+        let times = &times[self.head..n - self.tail];
+        let frames = &frames[self.head * len..(n - self.tail) * len];
         let slots = self.slots.last().map_or(0, |s| s + 1);
         let mut out = Vec::with_capacity(slots * len);
         let frame = |i: usize| &frames[i * len..(i + 1) * len];
