@@ -1,7 +1,8 @@
 //! End-to-end tests on the shared phone recordings (`../shared/real-videos`, skipped visibly
 //! where that folder is absent): the pendulum's g/L from its period and its damping, the
 //! Torricelli jar's level and k in SI (and a stride of its own on a short trim), the dropped
-//! ball's constant acceleration and g in SI, each with the verdict it gets.
+//! ball's constant acceleration and g in SI (also with the floor at its impact as a reading),
+//! each with the verdict it gets.
 
 mod util;
 
@@ -205,6 +206,32 @@ fn real_free_fall_with_time_references_gives_g_in_si() {
         !reasons.iter().any(|x| x["check"] == "release"),
         "{reasons:?}"
     );
+}
+
+#[test]
+fn real_free_fall_read_with_the_floor_at_the_impact() {
+    let Some(video) = real_video("freefall-ball.mp4") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    // Issue 64: the floor, 2.26 m below the ball at rest, reached at the impact (6.7 s), a
+    // frame or three after the descent kept ends: read on the law's rollout, not refused (a
+    // pendulum was chosen when free fall refused it). The model chosen by the tool.
+    let (r, err) = estimate(
+        &[
+            video.to_str().unwrap(),
+            "--seed",
+            "0",
+            "--reference",
+            "3.933s=0,6.7s=2.26",
+        ],
+        &tmp.path().join("run"),
+    );
+    assert_eq!(r["model"], "free-fall", "{err}");
+    assert!(err.contains("past its last"), "{err}");
+    let g = estimate_of(&r, "g");
+    assert!((g / 9.81 - 1.0).abs() < 0.03, "g {g}: {err}");
+    assert_eq!(grade(&r), "ok", "{}", r["verdict"]);
 }
 
 #[test]

@@ -29,12 +29,15 @@ impl RunConfig {
                 model.name()
             )));
         }
+        // CLIP:FRAME references as given (times placed below fall on clips, or past the last
+        // clip's end on its rollout where the law runs on).
+        let given = self.calibration.reference.len();
         if !self.reference_times.is_empty() {
             let rec = data.recording.as_ref().map(|(rec, _)| rec).ok_or_else(|| {
                 input_error("--reference times apply to recordings; give CLIP:FRAME=VALUE")
             })?;
             let (placed, notes) = rec
-                .reference_frames(&self.reference_times)
+                .reference_frames(&self.reference_times, model.reads_past_end())
                 .map_err(|e| input_error(format!("--reference {e}")))?;
             self.calibration.reference.extend(placed);
             self.reference_notes = notes;
@@ -51,8 +54,7 @@ impl RunConfig {
                 calibration.origin()
             )));
         }
-        let frames_at = calibration
-            .reference
+        let frames_at = calibration.reference[..given]
             .iter()
             .map(|&(c, f, _)| (c, f))
             .chain(calibration.positions.iter().map(|(c, f, _)| (*c, *f)));

@@ -66,13 +66,21 @@ impl RecordingSummary {
     /// The clip frame (clip, frame in it) nearest to `t` seconds of the recording's own
     /// timeline (as `--start` counts, at the container's frame rate; an image folder's at
     /// `--fps`), or why there is none. A time among the still frames left out at either end
-    /// (or before a release, at rest) is taken at the part kept's end, and said so.
-    pub fn clip_frame_at(&self, t: f64) -> Result<((usize, usize), Option<String>), String> {
+    /// (or before a release, at rest) is taken at the part kept's end, and said so. Where the
+    /// law's rollout runs past a clip (`past_end`), a time within half a clip's span after the
+    /// part kept (the floor at a fall's impact) is placed past the last clip's end, on the
+    /// rollout, and said so: its frame in the clip is then `frames_per_clip` or more.
+    pub fn clip_frame_at(
+        &self,
+        t: f64,
+        past_end: bool,
+    ) -> Result<((usize, usize), Option<String>), String> {
         let start = self.start.unwrap_or(0.0);
         let last = self.frames_decoded.saturating_sub(1);
         let timeline_fps = self.timeline_fps;
         let at = (t - start) * timeline_fps;
         let end = start + last as f64 / timeline_fps;
+        let frame = at;
         let outside = if at <= -0.5 {
             Some((self.before, 0, start, "before"))
         } else if at >= last as f64 + 0.5 {
@@ -83,6 +91,13 @@ impl RecordingSummary {
         let (f, note) = match outside {
             None => (at.round() as usize, None),
             Some((how, f, at, side)) => {
+                let beyond = frame - last as f64;
+                let reach = ((self.frames_per_clip - 1) * self.stride) as f64 / 2.0;
+                if let (true, "after", Outside::Unknown, true) =
+                    (past_end, side, how, beyond <= reach.max(1.0))
+                {
+                    return self.on_rollout(t, frame, end);
+                }
                 let what = match how {
                     Outside::Unknown => {
                         return Err(format!(
@@ -121,17 +136,52 @@ impl RecordingSummary {
             .ok_or_else(|| format!("{}s: the recording has no clips", num(t)))
     }
 
-    /// `--reference` times as (clip, frame, value) at their nearest clip frames, and what was
-    /// said of those taken at an end of the part kept; two times on one frame with different
-    /// values are refused.
+    /// Frame `at` (of the decode, `t` s of the timeline) past the part kept, which ends at
+    /// `end` s, on the last clip's rollout: (clip, frame past its end) and the note.
+    fn on_rollout(
+        &self,
+        t: f64,
+        at: f64,
+        end: f64,
+    ) -> Result<((usize, usize), Option<String>), String> {
+        // The clip whose frames, carried on at its stride, land nearest the frame; of those
+        // as near, the latest (the shortest carry).
+        let f = at.round() as usize;
+        let (_, c, k) = self
+            .clip_starts
+            .iter()
+            .enumerate()
+            .filter(|(_, &s)| s <= f)
+            .map(|(c, &s)| {
+                let k = (f - s + self.stride / 2) / self.stride;
+                ((s + k * self.stride).abs_diff(f), c, k)
+            })
+            .min_by(|a, b| a.0.cmp(&b.0).then(b.1.cmp(&a.1)))
+            .ok_or_else(|| format!("{}s: the recording has no clips", num(t)))?;
+        let note = format!(
+            "--reference {}s: after the part kept ({}–{} s), {} frame(s) past its last: read \
+             where the law carries the last clip's latent (its rollout), not on a frame seen",
+            num(t),
+            approx(self.start.unwrap_or(0.0)),
+            approx(end),
+            approx(at - (self.frames_decoded.saturating_sub(1)) as f64)
+        );
+        Ok(((c, k), Some(note)))
+    }
+
+    /// `--reference` times as (clip, frame, value) at their nearest clip frames (past a clip's
+    /// end on its rollout where `past_end` lets them, as [`RecordingSummary::clip_frame_at`]
+    /// says), and what was said of those taken at an end of the part kept; two times on one
+    /// frame with different values are refused.
     pub fn reference_frames(
         &self,
         times: &[(f64, f64)],
+        past_end: bool,
     ) -> Result<(Vec<ReferenceFrame>, Vec<String>), String> {
         let mut out: Vec<(usize, usize, f64, f64)> = Vec::new();
         let mut notes = Vec::new();
         for &(t, v) in times {
-            let ((c, f), note) = self.clip_frame_at(t)?;
+            let ((c, f), note) = self.clip_frame_at(t, past_end)?;
             notes.extend(note);
             if let Some(&(_, _, v2, t2)) = out.iter().find(|o| (o.0, o.1) == (c, f) && o.2 != v) {
                 return Err(format!(
@@ -199,8 +249,8 @@ mod tests {
     #[test]
     fn a_reference_among_still_frames_left_out_is_taken_at_the_end_kept_and_said() {
         let rec = kept_from_3s(Outside::Still, Outside::Unknown);
-        assert_eq!(rec.clip_frame_at(5.0).unwrap(), ((20, 0), None));
-        let ((c, f), note) = rec.clip_frame_at(1.0).unwrap();
+        assert_eq!(rec.clip_frame_at(5.0, false).unwrap(), ((20, 0), None));
+        let ((c, f), note) = rec.clip_frame_at(1.0, false).unwrap();
         assert_eq!((c, f), (0, 0));
         let note = note.expect("said");
         assert!(
@@ -208,16 +258,37 @@ mod tests {
             "{note}"
         );
         // After the end the frames left out are not known to be still (a flag cut them).
-        let err = rec.clip_frame_at(20.0).unwrap_err();
+        let err = rec.clip_frame_at(20.0, false).unwrap_err();
         assert!(
             err.contains("outside the part of the recording kept"),
             "{err}"
         );
         // At rest before a release, and still after a settling: the last frame kept.
         let rec = kept_from_3s(Outside::AtRest, Outside::Still);
-        let (_, note) = rec.clip_frame_at(0.5).unwrap();
+        let (_, note) = rec.clip_frame_at(0.5, false).unwrap();
         assert!(note.unwrap().contains("at rest before its release"));
-        let ((c, f), _) = rec.clip_frame_at(30.0).unwrap();
+        let ((c, f), _) = rec.clip_frame_at(30.0, false).unwrap();
         assert_eq!((c, f), (80, 19));
+    }
+
+    #[test]
+    fn a_reference_just_after_the_part_kept_is_read_on_the_rollout_where_the_law_runs_on() {
+        // Frames end at 12.9 s; a clip spans 19 frames, so up to 9.5 frames after it.
+        let rec = kept_from_3s(Outside::Unknown, Outside::Unknown);
+        let ((c, f), note) = rec.clip_frame_at(13.2, true).unwrap();
+        assert_eq!((c, f), (80, 22));
+        // On a stride of 4 the clip whose frames land on the frame is chosen.
+        let rec = RecordingSummary {
+            stride: 4,
+            frames_per_clip: 4,
+            clip_starts: (0..88).collect(),
+            ..kept_from_3s(Outside::Unknown, Outside::Unknown)
+        };
+        let ((c, f), _) = rec.clip_frame_at(13.0, true).unwrap();
+        assert_eq!(c + 4 * f, 100, "{c}, {f}");
+        assert!(note.unwrap().contains("3 frame(s) past its last"));
+        assert!(rec.clip_frame_at(13.2, false).is_err());
+        let err = rec.clip_frame_at(14.0, true).unwrap_err();
+        assert!(err.contains("outside the part"), "{err}");
     }
 }

@@ -38,7 +38,8 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
             CalibrationInput::Reference,
             CalibrationInput::InclineDeg,
             CalibrationInput::G,
-        ]),
+        ])
+        .past_end(),
         ..ModelInfo::of(
             &systems::SLIDING_BLOCK,
             "s'' = g·(sin α − μ·cos α), constant (acceleration_latent)",
@@ -52,7 +53,7 @@ pub static SLIDING_BLOCK: ConstantAcceleration = ConstantAcceleration {
 /// The ball falling away from the camera of Delfys75.
 pub static FREE_FALL: ConstantAcceleration = ConstantAcceleration {
     info: ModelInfo {
-        calibration: Calibrates::by(&[CalibrationInput::Reference]),
+        calibration: Calibrates::by(&[CalibrationInput::Reference]).past_end(),
         ..ModelInfo::of(
             &systems::FREE_FALL,
             "h'' = g (acceleration_latent)",

@@ -170,6 +170,10 @@ pub struct Calibrates {
     pub in_training: bool,
     /// What its reference values are when they cannot be below zero (`None`: any sign).
     pub nonnegative_reference: Option<&'static str>,
+    /// The block's rollout runs past a clip's last frame by its law alone (a constant
+    /// acceleration from the clip's first latents): a `--reference` time a little after the
+    /// part kept (the floor at a fall's impact) is read on it (`RecordingSummary::clip_frame_at`).
+    pub reads_past_end: bool,
 }
 
 /// How the block is trained, and what it offers beyond the exact rollout.
@@ -213,6 +217,7 @@ impl Calibrates {
         inputs: &[],
         in_training: false,
         nonnegative_reference: None,
+        reads_past_end: false,
     };
 
     /// Answers that read `inputs`, after training.
@@ -220,6 +225,14 @@ impl Calibrates {
         Calibrates {
             inputs,
             ..Calibrates::NONE
+        }
+    }
+
+    /// The same, its references also read past the part kept ([`Calibrates::reads_past_end`]).
+    pub const fn past_end(self) -> Calibrates {
+        Calibrates {
+            reads_past_end: true,
+            ..self
         }
     }
 }

@@ -62,6 +62,9 @@ impl<'a> dyn Model + 'a {
     pub fn calibrates_in_training(&self) -> bool {
         self.info().calibration.in_training
     }
+    pub fn reads_past_end(&self) -> bool {
+        self.info().calibration.reads_past_end
+    }
     pub fn supports_residual(&self) -> bool {
         self.info().training.supports_residual
     }
