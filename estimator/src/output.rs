@@ -3,9 +3,10 @@
 //! clips.png, track.png and track.csv, in a folder this tool owns (`physvid_shared::outdir`): each file written whole
 //! under a temporary name and renamed, only the tool's own files ever removed or replaced.
 
+use crate::data::summary::RecordingSummary;
 use crate::data::ClipData;
 use crate::error::{input_error, EstimateError};
-use crate::html::{report_page, Figure};
+use crate::html::{report_page, Figure, Frame};
 use crate::plots::{change_png, latents_png, parameters_png, timeline_png, track_png};
 use crate::report::Report;
 use physvid_shared::outdir::{self, OutputDir, Wait, MANIFEST};
@@ -163,9 +164,45 @@ pub fn write_outputs(
             pixels: true,
         });
     }
-    dir.write("report.html", report_page(report, &figures).as_bytes())?;
+    let frame = report
+        .run
+        .recording
+        .as_ref()
+        .and_then(|r| frame_of(report, r));
+    dir.write(
+        "report.html",
+        report_page(report, &figures, frame.as_ref()).as_bytes(),
+    )?;
     let json = serde_json::to_vec_pretty(report).expect("report serialises");
     dir.write("report.json", &json)?;
     dir.finish();
     Ok(())
+}
+
+/// A frame of the recording `report` was run on, for the page: the middle of the track's
+/// chosen span where it has one (the object in motion), else of the part kept; none where it
+/// cannot be read again (the page goes without it).
+fn frame_of(report: &Report, rec: &RecordingSummary) -> Option<Frame> {
+    let at = match report
+        .run
+        .track
+        .as_ref()
+        .and_then(|t| Some((t, t.chosen_span()?)))
+    {
+        Some((t, l)) => {
+            let (a, b) = t.file_span(l);
+            (a + b) / 2.0
+        }
+        None => {
+            let start = rec.start.unwrap_or(0.0);
+            let frames = rec.frames_decoded.saturating_sub(1) as f64;
+            start + frames / (2.0 * rec.timeline_fps.max(1e-9))
+        }
+    };
+    let jpeg = physvid_shared::video::still(&report.run.config.input, at, rec.timeline_fps).ok()?;
+    Some(Frame {
+        jpeg,
+        size: (rec.info.width, rec.info.height),
+        at,
+    })
 }

@@ -5,68 +5,16 @@
 
 mod util;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::path::Path;
+use util::browser::{chromium, headless};
 use util::{gen_dataset, read_report, real_video, Estimate};
-
-/// The first Chromium on PATH, or `None` with a message.
-fn chromium() -> Option<PathBuf> {
-    for name in ["chromium", "chromium-browser", "google-chrome", "chrome"] {
-        let found = Command::new(name)
-            .arg("--version")
-            .output()
-            .is_ok_and(|o| o.status.success());
-        if found {
-            return Some(PathBuf::from(name));
-        }
-    }
-    physvid_testkit::require(
-        "chromium",
-        false,
-        "scripts/setup.sh installs Debian's chromium for this test",
-    );
-    None
-}
-
-/// Runs headless Chromium on `page` with `mode` (`--dump-dom` or `--screenshot=PATH`) and
-/// returns its stdout (through a file: a page's DOM overfills a pipe); killed after 90 s.
-fn headless(browser: &Path, page: &Path, mode: &str, profile: &Path) -> String {
-    let stdout = profile.with_extension("stdout");
-    let mut child = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--hide-scrollbars",
-            "--window-size=1280,2000",
-            "--virtual-time-budget=5000",
-        ])
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .arg(mode)
-        .arg(format!("file://{}", page.display()))
-        .stdout(std::fs::File::create(&stdout).unwrap())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("chromium starts");
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(90) {
-            let _ = child.kill();
-            panic!("chromium did not finish on {} in 90 s", page.display());
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    String::from_utf8_lossy(&std::fs::read(&stdout).unwrap()).into_owned()
-}
 
 /// Opens `page`: every image decoded, `needles` in the DOM; a screenshot that decodes, at the
 /// window's width. Returns the DOM.
 fn check_page(browser: &Path, page: &Path, needles: &[&str]) -> String {
     let dir = page.parent().unwrap();
     let profile = dir.join("chromium-profile");
-    let dom = headless(browser, page, "--dump-dom", &profile);
+    let dom = headless(browser, page, &["--dump-dom"], &profile);
     let images = dom.matches("<img ").count();
     let want = format!("data-images-decoded=\"{images}/{images}\"");
     if images > 0 {
@@ -83,7 +31,7 @@ fn check_page(browser: &Path, page: &Path, needles: &[&str]) -> String {
     headless(
         browser,
         page,
-        &format!("--screenshot={}", shot.display()),
+        &[&format!("--screenshot={}", shot.display())],
         &profile,
     );
     let img = image::open(&shot).expect("the screenshot decodes");
@@ -173,8 +121,9 @@ fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
         ],
     );
     // Parameters, latents, the timeline, the picture's change with the span fitted, the
-    // object's own track, the clips.
-    assert_eq!(dom.matches("<img ").count(), 6);
+    // object's own track, the clips, and a frame of the recording to draw a stick on.
+    assert_eq!(dom.matches("<img ").count(), 7);
+    assert!(dom.contains("id=\"frame-svg\""), "the frame's stick tool");
     assert!(
         dom.contains("the span fitted (shaded)"),
         "the change figure's caption"

@@ -1,11 +1,12 @@
 //! `--stick` end to end: a ball tossed across a rendered picture, read in metres by a length
 //! in the picture; and the stick's refusals (no length, a point off the frame, an input with no
-//! track). The shared toss and roll, where present, read with their sticks.
+//! track). The report's frame, in a browser: the stick drawn, and two clicks that give one. The
+//! shared toss and roll, where present, read with their sticks.
 
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{read_report, stderr, Estimate};
+use util::{browser, read_report, stderr, Estimate};
 
 const FPS: u32 = 30;
 const FRAMES: usize = 40;
@@ -92,6 +93,73 @@ fn a_stick_reads_the_toss_in_metres_and_calibrates_the_latent_by_it() {
         html.contains("id=\"track-stick\"") && html.contains("--stick 0,0:0,101.94=10"),
         "no stick on the page"
     );
+    clicks_give_a_stick(&out.join("report.html"));
+}
+
+/// Opens `page` in a browser inside a page that clicks two points of its frame and types a
+/// length: the stick given is drawn on the frame, and the tool writes the flag for the clicks.
+fn clicks_give_a_stick(page: &Path) {
+    let Some(browser) = browser::chromium() else {
+        return;
+    };
+    let dir = page.parent().unwrap();
+    let harness = dir.join("clicks.html");
+    std::fs::write(
+        &harness,
+        r##"<!DOCTYPE html><html><body><iframe id="f" src="report.html" width="1200" height="3000"></iframe>
+<script>
+document.getElementById("f").addEventListener("load", function () {
+  var d = this.contentDocument, svg = d.getElementById("frame-svg"), b = svg.getBoundingClientRect();
+  var w = +svg.getAttribute("data-width"), h = +svg.getAttribute("data-height");
+  var at = [];
+  function click(x, y) {
+    // A mouse event's position is whole CSS pixels: where that puts the click in the frame.
+    var cx = Math.round(b.left + x * b.width / w), cy = Math.round(b.top + y * b.height / h);
+    at.push([(cx - b.left) * w / b.width, (cy - b.top) * h / b.height]);
+    svg.dispatchEvent(new MouseEvent("click", { bubbles: true, clientX: cx, clientY: cy }));
+  }
+  click(40, 20);
+  click(200, 180);
+  document.body.setAttribute("data-at", JSON.stringify(at));
+  var m = d.getElementById("stick-metres");
+  m.value = "0.5";
+  m.dispatchEvent(new Event("input"));
+  document.body.setAttribute("data-stick", d.getElementById("stick-text").textContent);
+  document.body.setAttribute("data-given", d.querySelectorAll("#stick-given line").length);
+  document.body.setAttribute("data-drawn", d.querySelectorAll("#stick-new circle").length);
+});
+</script></body></html>"##,
+    )
+    .unwrap();
+    let dom = browser::headless(
+        &browser,
+        &harness,
+        &["--allow-file-access-from-files", "--dump-dom"],
+        &dir.join("chromium-profile"),
+    );
+    let attr = |name: &str| -> String {
+        let from = dom.find(&format!("{name}=\"")).expect(name) + name.len() + 2;
+        dom[from..from + dom[from..].find('"').unwrap()].replace("&quot;", "\"")
+    };
+    // The two clicks, where the mouse's whole pixels put them (within a page pixel of the
+    // points aimed at: the frame is shown at its own size), read back to the half pixel.
+    let at: Vec<(f64, f64)> = serde_json::from_str(&attr("data-at")).unwrap();
+    let half = |v: f64| (v * 2.0).round() / 2.0;
+    let want = format!(
+        "--stick {},{}:{},{}=0.5",
+        half(at[0].0),
+        half(at[0].1),
+        half(at[1].0),
+        half(at[1].1)
+    );
+    assert_eq!(attr("data-stick"), want, "{}", &dom[..dom.len().min(300)]);
+    for ((x, y), aim) in at.iter().zip([(40.0, 20.0), (200.0, 180.0)]) {
+        assert!(
+            (x - aim.0).abs() <= 1.0 && (y - aim.1).abs() <= 1.0,
+            "{at:?}"
+        );
+    }
+    assert!(dom.contains(r#"data-given="1""#) && dom.contains(r#"data-drawn="2""#));
 }
 
 #[test]

@@ -48,8 +48,32 @@ pub struct Figure {
     pub pixels: bool,
 }
 
-/// `report.html` for `report`, with its figures inlined.
-pub fn report_page(report: &Report, figures: &[Figure]) -> String {
+/// A frame of the recording for the page: its JPEG bytes, the frame's size as a player shows
+/// it (what `--stick` counts in; the JPEG may be smaller), and its time in the file (s).
+pub struct Frame {
+    pub jpeg: Vec<u8>,
+    pub size: (usize, usize),
+    pub at: f64,
+}
+
+/// The frame's context: the picture, its size, the stick given drawn on it.
+fn frame_context(frame: &Frame, stick: Option<crate::calibration::Stick>) -> minijinja::Value {
+    let b64 = base64::engine::general_purpose::STANDARD;
+    let (w, h) = frame.size;
+    let stick = stick.map(|s| {
+        context! {
+            flag => s.flag(), x1 => s.from.0, y1 => s.from.1, x2 => s.to.0, y2 => s.to.1,
+        }
+    });
+    context! {
+        data => b64.encode(&frame.jpeg), width => w, height => h, at => sig(frame.at),
+        r => format!("{:.1}", w.max(h) as f64 / 120.0), stick,
+    }
+}
+
+/// `report.html` for `report`, with its figures inlined and, for a recording, a frame of it
+/// with the stick given drawn and the tool that makes one.
+pub fn report_page(report: &Report, figures: &[Figure], frame: Option<&Frame>) -> String {
     let b64 = base64::engine::general_purpose::STANDARD;
     let parameters: Vec<Row> = report
         .run
@@ -263,6 +287,8 @@ pub fn report_page(report: &Report, figures: &[Figure]) -> String {
             model => report.run.model, input => report.run.input, headline,
             parameters, ensemble, cross_check, track, warnings => report.run.warnings, facts, recording,
             choice,
+            frame => frame.map(|f| frame_context(f, report.run.track.as_ref().and_then(|t| t.stick))),
+            stick_js => minijinja::Value::from_safe_string(include_str!("stick.js").to_string()),
             grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),
             version => report.version, libtorch => report.libtorch_version,

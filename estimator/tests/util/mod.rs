@@ -2,6 +2,8 @@
 //! would make them, and readers for report.json. Each test file uses part of it.
 #![allow(dead_code)]
 
+pub mod browser;
+
 #[allow(unused_imports)]
 pub use physvid_testkit::stderr;
 pub use physvid_testkit::TestCommand;

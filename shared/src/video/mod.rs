@@ -14,6 +14,7 @@ mod probe;
 pub mod region;
 mod resize;
 mod small;
+mod still;
 mod survey;
 pub mod timescale;
 mod tools;
@@ -24,6 +25,7 @@ pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::FrameResizer;
 pub use small::{small_frames, SmallFrames};
+pub use still::still;
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 
 use std::path::{Path, PathBuf};
