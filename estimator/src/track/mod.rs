@@ -126,21 +126,31 @@ const TRIED: usize = 8;
 const LEAST_EXTENT: f64 = 2.0;
 
 /// Follows the object of `input` (trimmed to `span`) and fits each law where it holds: of the
-/// [`TRIED`] longest-lived things that move, the one a law explains over the longest time;
-/// `None` where nothing lives long enough to follow.
+/// [`TRIED`] longest-lived things that move, the one a law explains the most motion of; of
+/// the readings of that same thing (its blobs, its picture's matches, linked one way or
+/// another), the one whose law holds the longest; `None` where nothing lives long enough to
+/// follow.
 pub fn follow(
     input: &Path,
     info: &VideoInfo,
     span: (Option<f64>, Option<f64>),
     fps: Option<f64>,
 ) -> Result<Option<TrackRoute>, VideoError> {
-    Ok(candidates(input, info, span, fps)?
-        .into_iter()
-        .max_by(|a, b| {
-            a.explained()
-                .total_cmp(&b.explained())
-                .then(a.track.t.len().cmp(&b.track.t.len()))
-        }))
+    let all = candidates(input, info, span, fps)?;
+    let by = |a: &&TrackRoute, b: &&TrackRoute| {
+        a.explained()
+            .total_cmp(&b.explained())
+            .then(a.track.t.len().cmp(&b.track.t.len()))
+    };
+    let Some(most) = all.iter().max_by(by) else {
+        return Ok(None);
+    };
+    let longest = all
+        .iter()
+        .filter(|c| c.explained() > 0.0 && most.same_thing(c))
+        .max_by(|a, b| a.held_s().total_cmp(&b.held_s()).then(by(a, b)))
+        .unwrap_or(most);
+    Ok(Some(longest.clone()))
 }
 
 /// [`follow`] on the video file `input`, probed first (the Python package's `track`).

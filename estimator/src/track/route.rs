@@ -94,6 +94,32 @@ impl TrackRoute {
         }
     }
 
+    /// How long the chosen law holds (s; 0 where none was chosen).
+    pub fn held_s(&self) -> f64 {
+        self.chosen_span().map_or(0.0, |l| l.last_s - l.first_s)
+    }
+
+    /// Whether `other` follows the same thing: at the frames both saw, their positions lie
+    /// (the median of them) within this thing's size of each other.
+    pub fn same_thing(&self, other: &TrackRoute) -> bool {
+        let (a, b) = (&self.track, &other.track);
+        let mut d: Vec<f64> = Vec::new();
+        let mut j = 0;
+        for i in 0..a.t.len() {
+            while j < b.t.len() && b.t[j] < a.t[i] - 1e-9 {
+                j += 1;
+            }
+            if j < b.t.len() && (b.t[j] - a.t[i]).abs() <= 1e-9 {
+                d.push((a.x[i] - b.x[j]).hypot(a.y[i] - b.y[j]));
+            }
+        }
+        if d.is_empty() {
+            return false;
+        }
+        d.sort_by(f64::total_cmp);
+        d[d.len() / 2] <= a.size
+    }
+
     /// The span's first and last times on the file's own timeline.
     pub fn file_span(&self, l: &LawSpan) -> (f64, f64) {
         let f = &self.track.file_s;
@@ -280,5 +306,24 @@ mod tests {
         route.track.size = 20.0;
         let c = route.frame_of(&span);
         assert_eq!((c.x, c.y, c.w, c.h), (20, 0, 200, 140));
+    }
+
+    #[test]
+    fn readings_of_one_thing_are_told_from_another_by_its_size() {
+        let (a, _) = route();
+        // The same thing read a pixel off, over the frames both saw (every other one).
+        let mut b = a.clone();
+        b.track.x.iter_mut().for_each(|x| *x += 1.0);
+        for v in [&mut b.track.t, &mut b.track.x, &mut b.track.y] {
+            *v = v.iter().step_by(2).copied().collect();
+        }
+        assert!(a.same_thing(&b) && b.same_thing(&a));
+        // Another thing: more than its size (6 px) away.
+        b.track.y.iter_mut().for_each(|y| *y += 10.0);
+        assert!(!a.same_thing(&b));
+        // Never seen at one time: not the same.
+        b.track.t.iter_mut().for_each(|t| *t += 5.0);
+        assert!(!a.same_thing(&b));
+        assert!((a.held_s() - 0.5).abs() < 1e-12);
     }
 }
