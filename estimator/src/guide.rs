@@ -1,7 +1,8 @@
 //! The second route's part in a run: the object's own track read for a video file
-//! (`track::follow`), and the request it guides where its oscillation is clear (the
-//! oscillator on the track's span, in place of a choice among every model on frames a hand
-//! may share). `run` calls both before the estimation, and `settle` after it.
+//! (`track::follow`), and the request it guides: where its oscillation is clear, the
+//! oscillator on the track's span (in place of a choice among every model on frames a hand
+//! may share); with a stick, its constant acceleration in metres; without one, a release from
+//! rest it saw. `run` calls both before the estimation, and `settle` after it.
 
 use crate::choice;
 use crate::config::Request;
@@ -134,33 +135,63 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
 /// The constant acceleration of `route` over `span` (pointing `direction` degrees from the
 /// picture's right) as a descent reads it: the release where the track saw it (the vertex
 /// within the span where the law holds, give or take a frame or three of its standard errors:
-/// one extrapolated from a span that starts later is the law's guess, not a sighting), and the
-/// line.
+/// one extrapolated from a span that starts later is the law's guess, not a sighting), the
+/// line, and whether the track saw it move before the release (the law's travel from the
+/// span's start to its vertex over the object's size: a toss's rise, no rest).
 fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> TrackedMotion {
-    let release = span
-        .values
-        .iter()
-        .find(|v| v.name == "vertex")
-        .and_then(|v| {
-            let frame = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
-            let slack = frame.max(3.0 * v.error);
-            (span.first_s - slack..=span.last_s + slack)
-                .contains(&v.value)
-                .then(|| route.file_time(v.value))
-        });
+    let value = |name: &str| span.values.iter().find(|v| v.name == name);
+    let vertex = value("vertex").filter(|v| {
+        let frame = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
+        let slack = frame.max(3.0 * v.error);
+        (span.first_s - slack..=span.last_s + slack).contains(&v.value)
+    });
+    let rise = match (vertex, value("acceleration")) {
+        (Some(v), Some(a)) => 0.5 * a.value.abs() * (v.value - span.first_s).max(0.0).powi(2),
+        _ => 0.0,
+    };
     let rad = direction.to_radians();
     TrackedMotion {
         span: route.file_span(span),
-        release,
+        release: vertex.map(|v| route.file_time(v.value)),
         axis: [rad.cos(), rad.sin()],
         travel: route.travel(span),
+        moving_before: rise > route.track.size,
     }
 }
 
+/// Without a stick, where the track's chosen law is a constant acceleration that holds and its
+/// vertex lies where the track saw the object (`tracked_motion`): a motion from rest (the model
+/// given, or each such candidate tried) released there and on the track's line, in place of
+/// the picture's guess; the model and its calibration as asked.
+pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
+    let span = route.accelerating().filter(|_| route.stick.is_none())?;
+    if req.load.model.is_some_and(|m| !m.released_from_rest()) {
+        return None;
+    }
+    let direction = span
+        .values
+        .iter()
+        .find(|v| v.name == "direction")
+        .map_or(0.0, |d| d.value);
+    let tracked = tracked_motion(route, span, direction);
+    let release = tracked.release?;
+    let (first, last) = route.file_span(span);
+    let mut g = req.clone();
+    g.load.recording.tracked = Some(tracked);
+    let why = format!(
+        "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
+         file from its vertex at {release:.4} s: a fall or slide from rest is released there, on \
+         the track's line"
+    );
+    Some((g, why))
+}
+
 /// The request the track guides: its clear oscillation's (`guided`), else, with a stick, its
-/// constant acceleration's (`measured`).
+/// constant acceleration's (`measured`), else a release it saw (`sighted`).
 pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
-    guided(req, route, chooses).or_else(|| measured(req, route, chooses))
+    guided(req, route, chooses)
+        .or_else(|| measured(req, route, chooses))
+        .or_else(|| sighted(req, route))
 }
 
 /// The object's own track and the laws fitted on it (`track`), for a video file (not an image
@@ -250,5 +281,46 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
             .as_ref()
             .and_then(choice::close::close_call);
         report.verdict = verdict::judge(&report.run).with(close);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::track::metres::tests::tossed;
+
+    #[test]
+    fn a_release_the_track_saw_is_taken_and_a_rise_before_it_is_no_rest() {
+        let route = tossed();
+        let span = route.accelerating().unwrap();
+        // The toss rises 19 px (over its 6 px size) from the span's start to its apex.
+        let t = tracked_motion(&route, span, 90.0);
+        let apex = t.release.unwrap();
+        assert!((apex - 1.375).abs() < 1e-6, "{apex}");
+        assert!(t.moving_before);
+        // Without a stick, every fall or slide from rest is released there.
+        let req = Request::new("toss.mp4");
+        let (g, why) = sighted(&req, &route).unwrap();
+        let got = g.load.recording.tracked.unwrap();
+        assert_eq!((got.release, got.moving_before), (t.release, true));
+        assert!(why.contains("released there"), "{why}");
+        // With one, `measured` does the work; for a model not from rest, nothing.
+        let stuck = route
+            .clone()
+            .with_stick(crate::calibration::Stick::parse("0,0:0,200=1").unwrap());
+        assert!(sighted(&req, &stuck).is_none());
+        let mut osc = req.clone();
+        osc.load.model = ModelRef::by_name("damped-oscillator");
+        assert!(sighted(&osc, &route).is_none());
+        // A vertex where the span starts (a drop from rest): no rise before it.
+        let mut dropped = route.clone();
+        let l = &mut dropped.laws[0];
+        let first = l.first_s;
+        l.values
+            .iter_mut()
+            .filter(|v| v.name == "vertex")
+            .for_each(|v| v.value = first);
+        let t = tracked_motion(&dropped, dropped.accelerating().unwrap(), 90.0);
+        assert!(t.release.is_some() && !t.moving_before);
     }
 }

@@ -126,7 +126,7 @@ pub fn trim_to_descent(
     } else {
         0
     };
-    if dropped > 0 {
+    if dropped > 0 && !tracked.is_some_and(|t| t.moving_before) {
         kept.before = Outside::AtRest;
     }
     kept.release = d.release - dropped as f64;

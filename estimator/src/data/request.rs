@@ -88,6 +88,9 @@ pub struct TrackedMotion {
     pub axis: [f64; 2],
     /// How far it moves over the span, as a share of the picture's larger side.
     pub travel: f64,
+    /// The track saw the object move, by more than its own size, before the release (a toss's
+    /// rise): what comes before the release is no rest, and a reading there is not taken at it.
+    pub moving_before: bool,
 }
 
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent

@@ -106,6 +106,7 @@ mod tests {
 
     fn toss(release: Option<f64>) -> TrackedMotion {
         TrackedMotion {
+            moving_before: true,
             span: (1.2, 2.5),
             release,
             axis: [0.0, 1.0],

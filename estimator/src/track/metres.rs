@@ -89,14 +89,14 @@ impl TrackRoute {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::track::laws::TrackLaw;
     use crate::track::Track;
 
     /// A ball tossed at 60 px/s across and falling at 400 px/s² (a stick of 200 px a metre:
-    /// 2 m/s²), seen for 20 frames at 30 fps.
-    fn tossed() -> TrackRoute {
+    /// 2 m/s²), seen for 20 frames at 30 fps: its apex at 0.375 s, the span from 0.067 s.
+    pub(crate) fn tossed() -> TrackRoute {
         let t: Vec<f64> = (0..20).map(|i| i as f64 / 30.0).collect();
         let x: Vec<f64> = t.iter().map(|s| 10.0 + 60.0 * s).collect();
         let y: Vec<f64> = t

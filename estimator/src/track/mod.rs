@@ -7,7 +7,7 @@
 pub mod blobs;
 pub mod laws;
 pub mod link;
-mod metres;
+pub(crate) mod metres;
 mod route;
 pub mod segment;
 pub mod template;
