@@ -27,6 +27,8 @@ pub enum Opt {
     InclineDeg(f64),
     /// The recording's physical quantity at times on its timeline (seconds, value).
     Reference(&'static [(f64, f64)]),
+    /// A length in the picture (`X1,Y1:X2,Y2=METRES`).
+    Stick(&'static str),
 }
 
 /// `v`'s name on the command line (`frames` for `RolloutStart::Frames`).
@@ -53,6 +55,7 @@ impl Opt {
             Opt::Ensemble(_) => "ensemble",
             Opt::InclineDeg(_) => "incline_deg",
             Opt::Reference(_) => "reference",
+            Opt::Stick(_) => "stick",
         }
     }
 
@@ -72,6 +75,7 @@ impl Opt {
             Opt::Reference(times) => {
                 pairs(times.iter().map(|(t, v)| format!("{t}s={v}")).collect())
             }
+            Opt::Stick(s) => Some(s.to_string()),
         }
     }
 
@@ -103,6 +107,10 @@ impl Opt {
             Opt::Reference(times) => {
                 req.calibration.times = times.to_vec();
                 req.load.recording.measured_at = times.iter().map(|p| p.0).collect();
+            }
+            Opt::Stick(s) => {
+                let stick = estimator::calibration::Stick::parse(s).map_err(anyhow::Error::msg)?;
+                req.calibration.stick = Some(stick);
             }
         }
         Ok(())

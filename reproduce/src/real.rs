@@ -6,9 +6,11 @@
 //! otherwise (another law, or a value outside the bar; on the negative control every answer is
 //! wrong). The detection rate is the share of wrong answers not graded ok, the false-alarm rate
 //! the share of right answers not graded ok, over the chosen answers and over every candidate.
+//! Then a few read as a lab would (`AS_A_LAB`: a stick in the picture, the floor at an impact),
+//! rated apart.
 
-use crate::options::Opt;
-use crate::recordings::{Recording, RECORDINGS};
+use crate::options::{shown, Opt};
+use crate::recordings::{Recording, AS_A_LAB, RECORDINGS};
 use crate::runner::Runner;
 use crate::table::{self, Cell, Table};
 use estimator::digits::sig;
@@ -16,7 +18,7 @@ use estimator::verdict::Grade;
 
 /// One candidate's answer on a recording, judged.
 struct Answer {
-    recording: &'static str,
+    recording: String,
     model: String,
     chosen: bool,
     answer: String,
@@ -41,62 +43,27 @@ fn values(answer: &str) -> Vec<(String, f64)> {
 
 pub fn make(r: &Runner) -> anyhow::Result<Table> {
     let dir = r.recordings.clone();
-    let chosen: Vec<&Recording> = RECORDINGS
-        .iter()
-        .take(if r.quick() { 2 } else { RECORDINGS.len() })
-        .filter(|rec| dir.join(rec.file).exists())
-        .collect();
-    r.begin("real", chosen.len());
+    let present = |set: &'static [Recording]| -> Vec<&'static Recording> {
+        set.iter()
+            .take(if r.quick() { 2 } else { set.len() })
+            .filter(|rec| dir.join(rec.file).exists())
+            .collect()
+    };
+    let chosen = present(&RECORDINGS);
+    let lab = if r.quick() {
+        Vec::new()
+    } else {
+        present(&AS_A_LAB)
+    };
+    r.begin("real", chosen.len() + lab.len());
     let mut answers = Vec::new();
     for rec in &chosen {
-        let mut opts = rec.readings.to_vec();
-        opts.push(Opt::Seed(0));
-        let run = r.estimate(&dir.join(rec.file), &opts)?;
-        // Every candidate where the model was chosen; where the object's track guided the
-        // run to one law on its span, that answer alone.
-        let tried: Vec<(String, Option<Grade>, String, String, bool)> = match &run.model_choice {
-            Some(choice) => choice
-                .candidates
-                .iter()
-                .map(|c| {
-                    let chosen = c.model == choice.chosen;
-                    let reasons = c.reasons.join(", ");
-                    (c.model.clone(), c.grade, c.answer.clone(), reasons, chosen)
-                })
-                .collect(),
-            None => {
-                let answer = run
-                    .parameters
-                    .iter()
-                    .filter(|p| p.units == "SI")
-                    .map(|p| format!("{} = {} {}", p.name, sig(p.estimate), p.unit))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                let mut reasons: Vec<&str> = run.verdict.reasons.iter().map(|r| r.check).collect();
-                reasons.dedup();
-                let grade = Some(run.verdict.grade);
-                vec![(run.model.clone(), grade, answer, reasons.join(", "), true)]
-            }
-        };
-        for (model, grade, answer, checks, chosen) in tried {
-            let Some(grade) = grade else { continue };
-            let error = rec.known.iter().filter(|k| k.model == model).find_map(|k| {
-                values(&answer)
-                    .into_iter()
-                    .find(|(n, _)| n == k.parameter)
-                    .map(|(_, v)| (v / k.value - 1.0, k.bar))
-            });
-            answers.push(Answer {
-                recording: rec.file,
-                model,
-                chosen,
-                answer,
-                error: error.map(|e| e.0),
-                right: error.is_some_and(|(e, bar)| e.abs() <= bar),
-                grade,
-                checks,
-            });
-        }
+        answers.extend(answers_of(r, &dir, rec, rec.file.to_string())?);
+    }
+    let mut as_lab = Vec::new();
+    for rec in &lab {
+        let label = format!("{} {}", rec.file, shown(rec.readings));
+        as_lab.extend(answers_of(r, &dir, rec, label)?);
     }
     let mut t = Table::new(
         "real",
@@ -112,9 +79,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("checks with reasons", "checks"),
         ],
     );
-    for a in &answers {
+    for a in answers.iter().chain(&as_lab) {
         t.push(vec![
-            Cell::text(a.recording),
+            Cell::text(&a.recording),
             Cell::text(&a.model),
             Cell::text(if a.chosen { "yes" } else { "" }),
             Cell::text(&a.answer),
@@ -132,6 +99,12 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
         ("answers of every candidate", answers.iter().collect()),
     ] {
         t.note(rates(what, &set));
+    }
+    if !as_lab.is_empty() {
+        t.note(rates(
+            "answers read as a lab would (the last rows: a stick, the floor at the impact)",
+            &as_lab.iter().collect::<Vec<_>>(),
+        ));
     }
     let looked_for = if r.quick() { 2 } else { RECORDINGS.len() };
     if chosen.len() < looked_for {
@@ -154,7 +127,75 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     for rec in &chosen {
         t.note(format!("{}: {}.", rec.file, rec.source));
     }
+    for rec in &lab {
+        t.note(format!(
+            "{} {}: {} (no --reference where a stick is given; the bars are issue 64's).",
+            rec.file,
+            shown(rec.readings),
+            rec.source
+        ));
+    }
     Ok(t)
+}
+
+/// Every answer on the recording `rec` (in `dir`), read with its readings and seed 0, labelled
+/// `label`: every candidate where the model was chosen, else the one run's.
+fn answers_of(
+    r: &Runner,
+    dir: &std::path::Path,
+    rec: &Recording,
+    label: String,
+) -> anyhow::Result<Vec<Answer>> {
+    let mut answers = Vec::new();
+    let mut opts = rec.readings.to_vec();
+    opts.push(Opt::Seed(0));
+    let run = r.estimate(&dir.join(rec.file), &opts)?;
+    // Every candidate where the model was chosen; where the object's track guided the run to
+    // one law on its span, that answer alone.
+    let tried: Vec<(String, Option<Grade>, String, String, bool)> = match &run.model_choice {
+        Some(choice) => choice
+            .candidates
+            .iter()
+            .map(|c| {
+                let chosen = c.model == choice.chosen;
+                let reasons = c.reasons.join(", ");
+                (c.model.clone(), c.grade, c.answer.clone(), reasons, chosen)
+            })
+            .collect(),
+        None => {
+            let answer = run
+                .parameters
+                .iter()
+                .filter(|p| p.units == "SI")
+                .map(|p| format!("{} = {} {}", p.name, sig(p.estimate), p.unit))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let mut reasons: Vec<&str> = run.verdict.reasons.iter().map(|r| r.check).collect();
+            reasons.dedup();
+            let grade = Some(run.verdict.grade);
+            vec![(run.model.clone(), grade, answer, reasons.join(", "), true)]
+        }
+    };
+    for (model, grade, answer, checks, chosen) in tried {
+        let Some(grade) = grade else { continue };
+        let error = rec.known.iter().filter(|k| k.model == model).find_map(|k| {
+            values(&answer)
+                .into_iter()
+                .find(|(n, _)| n == k.parameter)
+                .map(|(_, v)| (v / k.value - 1.0, k.bar))
+        });
+        answers.push(Answer {
+            recording: label.clone(),
+            model,
+            chosen,
+            answer,
+            error: error.map(|e| e.0),
+            right: error.is_some_and(|(e, bar)| e.abs() <= bar),
+            grade,
+            checks,
+        });
+    }
+    Ok(answers)
 }
 
 /// The detection and false-alarm rates over `answers`, in a sentence about `what`.

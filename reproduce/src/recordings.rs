@@ -1,6 +1,7 @@
 //! The shared recordings `reproduce real` estimates (`../shared/real-videos/`, their README):
 //! each file with the readings its README offers for answers in SI (as options) and the values
-//! known, with their bars and where they come from.
+//! known, with their bars and where they come from; and a few read as a lab would, by a stick
+//! in the picture or the floor (`AS_A_LAB`).
 
 use crate::options::Opt;
 
@@ -149,5 +150,35 @@ pub const RECORDINGS: [Recording; 14] = [
         readings: &[],
         known: &[known("pendulum", "g_over_l", 17.88, 0.02)],
         source: "g/L tracked by a nonlinear damped fit from 92° (10 fps GIF, held at first)",
+    },
+];
+
+/// The same recordings read as a lab would, with what is in the picture (issue 64): a length
+/// (`--stick`, the README's) and no `--reference`, or the floor at the ball's impact as its
+/// second reading.
+pub const AS_A_LAB: [Recording; 4] = [
+    Recording {
+        file: "freefall-ball.mp4",
+        readings: &[Opt::Reference(&[(3.933, 0.0), (6.7, 2.26)])],
+        known: &[known("free-fall", "g", 9.81, 0.03)],
+        source: "g; the floor, 2.26 m below the ball at rest, reached at the impact",
+    },
+    Recording {
+        file: "incline-roll10.avi",
+        readings: &[Opt::Stick("64,294:582,407=1"), Opt::InclineDeg(10.3)],
+        known: &[known("sliding-block", "acceleration", 0.843, 0.04)],
+        source: "a; the ramp's marks 1 m apart as the stick (issue 64's bar: 4 %)",
+    },
+    Recording {
+        file: "toss-tracker.mp4",
+        readings: &[Opt::Stick("284,45.5:284,446=1")],
+        known: &[known("free-fall", "g", 9.80, 0.04)],
+        source: "g; the metre stick's bands as the stick, 400 px a metre (issue 64's bar: 4 %)",
+    },
+    Recording {
+        file: "incline-roll17.avi",
+        readings: &[Opt::Stick("139,225:586,404=1"), Opt::InclineDeg(17.6)],
+        known: &[known("sliding-block", "acceleration", 1.585, 0.05)],
+        source: "a; the ramp's marks as the stick (issue 64's bar: 5 %)",
     },
 ];
