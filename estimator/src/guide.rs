@@ -87,11 +87,7 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
     let mut did = Vec::new();
-    let direction = span
-        .values
-        .iter()
-        .find(|v| v.name == "direction")
-        .map_or(0.0, |d| d.value);
+    let direction = direction(span);
     if free {
         let falls = (direction - 90.0).abs() <= FALL_DEG;
         let name = if falls { "free-fall" } else { "sliding-block" };
@@ -132,6 +128,14 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     Some((g, why))
 }
 
+/// The direction of a constant acceleration's span (degrees from the picture's right, y down).
+fn direction(span: &LawSpan) -> f64 {
+    span.values
+        .iter()
+        .find(|v| v.name == "direction")
+        .map_or(0.0, |d| d.value)
+}
+
 /// The constant acceleration of `route` over `span` (pointing `direction` degrees from the
 /// picture's right) as a descent reads it: the release where the track saw it (the vertex
 /// within the span where the law holds, give or take a frame or three of its standard errors:
@@ -168,12 +172,7 @@ pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     if req.load.model.is_some_and(|m| !m.released_from_rest()) {
         return None;
     }
-    let direction = span
-        .values
-        .iter()
-        .find(|v| v.name == "direction")
-        .map_or(0.0, |d| d.value);
-    let tracked = tracked_motion(route, span, direction);
+    let tracked = tracked_motion(route, span, direction(span));
     let release = tracked.release?;
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
