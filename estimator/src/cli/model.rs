@@ -33,16 +33,18 @@ pub struct ModelArgs {
     /// Calibration for answers in SI units: the physical quantity (level, distance, …; the
     /// pendulum's angle in rad, which then fixes its angle scale) at two or more frames,
     /// CLIP:FRAME=VALUE[,...], or for a recording at two or more times on its own timeline
-    /// (as --start uses), SECONDSs=VALUE (e.g. 3.0s=0.079,20.5s=0.012); for the spring, both
-    /// bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2 (taken from meta.json for gen data).
+    /// (as --start uses), SECONDSs=VALUE (e.g. 3.0s=0.079,20.5s=0.012; for a fall or slide,
+    /// a time just after the part kept, such as the floor at the impact, is read where the law
+    /// carries it); for the spring, both bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2 (taken
+    /// from meta.json for gen data).
     #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE|SECONDSs=VALUE,...")]
     pub reference: Option<ReferencePoints>,
     /// A length in the picture, as a lab sets its video's scale: two points of the displayed
     /// frame (pixels from its top left, as an image viewer shows them) and the distance between
     /// them in metres, X1,Y1:X2,Y2=METRES (e.g. the ends of a metre stick, 284,45.5:284,446=1).
     /// The object's track is read in metres: a fall's g or a roll's acceleration in SI with no
-    /// --reference, whose readings the track then gives the latent route. Report.html names it
-    /// and its scale beside the track.
+    /// --reference, whose readings the track then gives the latent route. report.html draws it
+    /// on a frame of the recording, where two clicks and a typed length write one to copy.
     #[arg(long, value_parser = Stick::parse, value_name = "X1,Y1:X2,Y2=METRES")]
     pub stick: Option<Stick>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
