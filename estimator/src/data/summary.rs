@@ -68,8 +68,8 @@ impl RecordingSummary {
     /// `--fps`), or why there is none. A time among the still frames left out at either end
     /// (or before a release, at rest) is taken at the part kept's end, and said so. Where the
     /// law's rollout runs past a clip (`past_end`), a time within half a clip's span after the
-    /// part kept (the floor at a fall's impact) is placed past the last clip's end, on the
-    /// rollout, and said so: its frame in the clip is then `frames_per_clip` or more.
+    /// part kept (the floor at a fall's impact) is placed past a clip's end, on its rollout,
+    /// and said so: its frame in the clip is then `frames_per_clip` or more.
     pub fn clip_frame_at(
         &self,
         t: f64,
@@ -137,7 +137,7 @@ impl RecordingSummary {
     }
 
     /// Frame `at` (of the decode, `t` s of the timeline) past the part kept, which ends at
-    /// `end` s, on the last clip's rollout: (clip, frame past its end) and the note.
+    /// `end` s, on a clip's rollout carried past its end: (clip, frame in it) and the note.
     fn on_rollout(
         &self,
         t: f64,
@@ -160,7 +160,7 @@ impl RecordingSummary {
             .ok_or_else(|| format!("{}s: the recording has no clips", num(t)))?;
         let note = format!(
             "--reference {}s: after the part kept ({}–{} s), {} frame(s) past its last: read \
-             where the law carries the last clip's latent (its rollout), not on a frame seen",
+             where the law carries a clip's latent (its rollout), not on a frame seen",
             num(t),
             approx(self.start.unwrap_or(0.0)),
             approx(end),
@@ -277,6 +277,10 @@ mod tests {
         let rec = kept_from_3s(Outside::Unknown, Outside::Unknown);
         let ((c, f), note) = rec.clip_frame_at(13.2, true).unwrap();
         assert_eq!((c, f), (80, 22));
+        assert!(note.unwrap().contains("3 frame(s) past its last"));
+        assert!(rec.clip_frame_at(13.2, false).is_err());
+        let err = rec.clip_frame_at(14.0, true).unwrap_err();
+        assert!(err.contains("outside the part"), "{err}");
         // On a stride of 4 the clip whose frames land on the frame is chosen.
         let rec = RecordingSummary {
             stride: 4,
@@ -286,9 +290,5 @@ mod tests {
         };
         let ((c, f), _) = rec.clip_frame_at(13.0, true).unwrap();
         assert_eq!(c + 4 * f, 100, "{c}, {f}");
-        assert!(note.unwrap().contains("3 frame(s) past its last"));
-        assert!(rec.clip_frame_at(13.2, false).is_err());
-        let err = rec.clip_frame_at(14.0, true).unwrap_err();
-        assert!(err.contains("outside the part"), "{err}");
     }
 }
