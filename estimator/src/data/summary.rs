@@ -80,7 +80,6 @@ impl RecordingSummary {
         let timeline_fps = self.timeline_fps;
         let at = (t - start) * timeline_fps;
         let end = start + last as f64 / timeline_fps;
-        let frame = at;
         let outside = if at <= -0.5 {
             Some((self.before, 0, start, "before"))
         } else if at >= last as f64 + 0.5 {
@@ -90,13 +89,13 @@ impl RecordingSummary {
         };
         let (f, note) = match outside {
             None => (at.round() as usize, None),
-            Some((how, f, at, side)) => {
-                let beyond = frame - last as f64;
+            Some((how, f, edge, side)) => {
+                let beyond = at - last as f64;
                 let reach = ((self.frames_per_clip - 1) * self.stride) as f64 / 2.0;
                 if let (true, "after", Outside::Unknown, true) =
                     (past_end, side, how, beyond <= reach.max(1.0))
                 {
-                    return self.on_rollout(t, frame, end);
+                    return self.on_rollout(t, at, end);
                 }
                 let what = match how {
                     Outside::Unknown => {
@@ -117,7 +116,7 @@ impl RecordingSummary {
                     approx(start),
                     approx(end),
                     if f == 0 { "first" } else { "last" },
-                    approx(at)
+                    approx(edge)
                 );
                 (f, Some(note))
             }

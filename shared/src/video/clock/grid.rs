@@ -9,8 +9,6 @@ pub(super) struct Grid {
     pub(super) start: f64,
     pub(super) interval: f64,
     pub(super) slots: Vec<usize>,
-    /// The number of the first frame fitted, from 0, among all (for a refusal's names).
-    first: usize,
 }
 
 impl Grid {
@@ -34,15 +32,6 @@ impl Grid {
             start,
             interval,
             slots,
-            first: 0,
-        }
-    }
-
-    /// The same grid, its frames numbered from `first` among all.
-    pub(super) fn shifted(&self, first: usize) -> Grid {
-        Grid {
-            first,
-            ..self.clone()
         }
     }
 
@@ -79,9 +68,9 @@ impl Grid {
             .count()
     }
 
-    /// The [`NAMED`] frames furthest off (their number from 1 among all, their time), those
-    /// over [`MAX_JITTER`] only.
-    pub(super) fn furthest(&self, times: &[f64]) -> Vec<(usize, f64)> {
+    /// The [`NAMED`] frames furthest off (their number from 1 among all, the first fitted
+    /// being frame `first` from 0; their time), those over [`MAX_JITTER`] only.
+    pub(super) fn furthest(&self, times: &[f64], first: usize) -> Vec<(usize, f64)> {
         let mut off: Vec<(usize, f64)> = (0..times.len().min(self.slots.len()))
             .map(|i| (i, self.deviation(times, i)))
             .filter(|(_, d)| *d > MAX_JITTER)
@@ -89,7 +78,7 @@ impl Grid {
         off.sort_by(|a, b| b.1.total_cmp(&a.1));
         off.into_iter()
             .take(NAMED)
-            .map(|(i, _)| (self.first + i + 1, times[i]))
+            .map(|(i, _)| (first + i + 1, times[i]))
             .collect()
     }
 }

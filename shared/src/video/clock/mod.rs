@@ -123,13 +123,13 @@ impl Clock {
                 off: 0,
             });
         }
-        let uneven = |grid: &Grid, kept: &[f64], gap| Uneven {
+        let uneven = |grid: &Grid, kept: &[f64], head: usize, gap| Uneven {
             shortest: steps.first().copied().unwrap_or(0.0),
             longest: steps.last().copied().unwrap_or(0.0),
             median,
             jitter: grid.jitter(kept),
             gap,
-            frames: grid.furthest(kept),
+            frames: grid.furthest(kept, head),
         };
         // Frames off the grid at either end (a first interval of its own) are left out and the
         // grid fitted again to the rest.
@@ -159,13 +159,13 @@ impl Clock {
             off: slots_off,
         };
         if !grid.interval.is_finite() || slots_off as f64 > MAX_MISSING_SHARE * m as f64 {
-            return Err(uneven(&grid.shifted(head), kept, None));
+            return Err(uneven(&grid, kept, head, None));
         }
         if let Some((at, missing)) = clock.longest_gap().filter(|g| g.1 > MAX_MISSING) {
-            return Err(uneven(&grid.shifted(head), kept, Some((kept[at], missing))));
+            return Err(uneven(&grid, kept, head, Some((kept[at], missing))));
         }
         if clock.missing() as f64 > MAX_MISSING_SHARE * (clock.slots[m - 1] + 1) as f64 {
-            return Err(uneven(&grid.shifted(head), kept, None));
+            return Err(uneven(&grid, kept, head, None));
         }
         Ok(clock)
     }
