@@ -1,20 +1,21 @@
 //! The one place that writes a run's outputs into `--out`: report.json, report.html,
 //! metrics.csv, the plots and, for a recording, timeline.png, timeline.csv, change.png,
-//! clips.png, track.png and track.csv, in a folder this tool owns (`physvid_shared::outdir`): each file written whole
+//! clips.png, track.png, track.csv and frame.jpg (a frame with the track and the stick or
+//! plane drawn), in a folder this tool owns (`physvid_shared::outdir`): each file written whole
 //! under a temporary name and renamed, only the tool's own files ever removed or replaced.
 
 use crate::data::summary::RecordingSummary;
 use crate::data::ClipData;
 use crate::error::{input_error, EstimateError};
 use crate::html::{report_page, Figure, Frame};
-use crate::plots::{change_png, latents_png, parameters_png, timeline_png, track_png};
+use crate::plots::{change_png, frame_jpeg, latents_png, parameters_png, timeline_png, track_png};
 use crate::report::Report;
 use physvid_shared::outdir::{self, OutputDir, Wait, MANIFEST};
 use std::path::Path;
 
 /// Every file a run may write, report.json first: an earlier run's (this tool's) are removed
 /// before a run writes its own.
-pub const OUTPUTS: [&str; 11] = [
+pub const OUTPUTS: [&str; 12] = [
     "report.json",
     "report.html",
     "metrics.csv",
@@ -26,6 +27,7 @@ pub const OUTPUTS: [&str; 11] = [
     "clips.png",
     "track.png",
     "track.csv",
+    "frame.jpg",
 ];
 
 /// Checks before any work that a run may write into `out` (`outdir::check`), and that it
@@ -102,7 +104,8 @@ pub fn clear_earlier(out: &Path, force: bool) -> Result<(), EstimateError> {
 }
 
 /// Writes report.html, metrics.csv, parameters.png and latents.png (and timeline.png,
-/// timeline.csv, change.png, clips.png, track.png and track.csv for a recording) into `out`, report.json last.
+/// timeline.csv, change.png, clips.png, track.png, track.csv and frame.jpg for a recording)
+/// into `out`, report.json last.
 pub fn write_outputs(
     out: &Path,
     force: bool,
@@ -169,6 +172,9 @@ pub fn write_outputs(
         .recording
         .as_ref()
         .and_then(|r| frame_of(report, r));
+    if let Some(jpeg) = frame.as_ref().and_then(|f| framed(report, f)) {
+        dir.write("frame.jpg", &jpeg)?;
+    }
     dir.write(
         "report.html",
         report_page(report, &figures, frame.as_ref()).as_bytes(),
@@ -177,6 +183,19 @@ pub fn write_outputs(
     dir.write("report.json", &json)?;
     dir.finish();
     Ok(())
+}
+
+/// frame.jpg of `report`'s recording (`plots::frame_jpeg`: a frame with the track and the stick
+/// or plane drawn); `None` without a recording, a frame or a track. Best effort, as the frame
+/// itself: a picture beside the answer, never a reason to fail.
+pub fn frame_picture(report: &Report) -> Option<Vec<u8>> {
+    let frame = frame_of(report, report.run.recording.as_ref()?)?;
+    framed(report, &frame)
+}
+
+/// `frame` with `report`'s track drawn on it.
+fn framed(report: &Report, frame: &Frame) -> Option<Vec<u8>> {
+    frame_jpeg(&frame.jpeg, frame.size, report.run.track.as_ref()?).ok()
 }
 
 /// A frame of the recording `report` was run on, for the page: the middle of the track's

@@ -124,6 +124,20 @@ fn a_recording_report_shows_its_timeline_and_clips_in_a_browser() {
     // object's own track, the clips, and a frame of the recording to draw a stick on.
     assert_eq!(dom.matches("<img ").count(), 7);
     assert!(dom.contains("id=\"frame-svg\""), "the frame's stick tool");
+    // The track drawn on the frame where the ball was seen (its first point inside the
+    // 172×1716 portrait strip), its law's span over it; and as a picture of its own.
+    let path = dom
+        .split("id=\"track-path\" points=\"")
+        .nth(1)
+        .expect("the track drawn");
+    let (x, y) = path.split(' ').next().unwrap().split_once(',').unwrap();
+    let (x, y): (f64, f64) = (x.parse().unwrap(), y.parse().unwrap());
+    assert!(
+        (0.0..172.0).contains(&x) && (0.0..1716.0).contains(&y),
+        "{x},{y}"
+    );
+    assert!(dom.contains("id=\"track-span\""));
+    assert!(run.join("frame.jpg").exists());
     assert!(
         dom.contains("the span fitted (shaded)"),
         "the change figure's caption"

@@ -58,12 +58,15 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     r.begin("real", chosen.len() + lab.len());
     let mut answers = Vec::new();
     for rec in &chosen {
-        answers.extend(answers_of(r, &dir, rec, rec.file.to_string())?);
+        answers.extend(answers_of(r, &dir, rec, rec.file.to_string(), false)?.0);
     }
     let mut as_lab = Vec::new();
+    let mut frames = Vec::new();
     for rec in &lab {
         let label = format!("{} {}", rec.file, shown(rec.readings));
-        as_lab.extend(answers_of(r, &dir, rec, label)?);
+        let (answers, frame) = answers_of(r, &dir, rec, label, true)?;
+        as_lab.extend(answers);
+        frames.extend(frame.map(|jpeg| (rec, jpeg)));
     }
     let mut t = Table::new(
         "real",
@@ -135,21 +138,38 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             rec.source
         ));
     }
+    for (rec, jpeg) in frames {
+        let stem = rec.file.rsplit_once('.').map_or(rec.file, |s| s.0);
+        let stick = rec.readings.iter().any(|o| matches!(o, Opt::Stick(_)));
+        let caption = format!(
+            "{} {}: its frame.jpg, the track in white (blue where its law holds){}",
+            rec.file,
+            shown(rec.readings),
+            if stick { ", the stick in orange" } else { "" }
+        );
+        t.picture(format!("real-{stem}.jpg"), jpeg, &caption);
+    }
     Ok(t)
 }
 
 /// Every answer on the recording `rec` (in `dir`), read with its readings and seed 0, labelled
-/// `label`: every candidate where the model was chosen, else the one run's.
+/// `label`: every candidate where the model was chosen, else the one run's; and, `pictured`,
+/// the run's frame.jpg where it ran here.
 fn answers_of(
     r: &Runner,
     dir: &std::path::Path,
     rec: &Recording,
     label: String,
-) -> anyhow::Result<Vec<Answer>> {
+    pictured: bool,
+) -> anyhow::Result<(Vec<Answer>, Option<Vec<u8>>)> {
     let mut answers = Vec::new();
     let mut opts = rec.readings.to_vec();
     opts.push(Opt::Seed(0));
-    let run = r.estimate(&dir.join(rec.file), &opts)?;
+    let (run, frame) = if pictured {
+        r.estimate_pictured(&dir.join(rec.file), &opts)?
+    } else {
+        (r.estimate(&dir.join(rec.file), &opts)?, None)
+    };
     // Every candidate where the model was chosen; where the object's track guided the run to
     // one law on its span, that answer alone.
     let tried: Vec<(String, Option<Grade>, String, String, bool)> = match &run.model_choice {
@@ -163,11 +183,18 @@ fn answers_of(
             })
             .collect(),
         None => {
+            // The track's values in metres (by a stick or on a plane) beside the latent's.
+            let track = run.track.as_ref().map_or(&[][..], |t| t.si());
             let answer = run
                 .parameters
                 .iter()
                 .filter(|p| p.units == "SI")
                 .map(|p| format!("{} = {} {}", p.name, sig(p.estimate), p.unit))
+                .chain(
+                    track
+                        .iter()
+                        .map(|v| format!("track's {} = {} {}", v.name, sig(v.value), v.unit)),
+                )
                 .collect::<Vec<_>>()
                 .join(", ");
             let mut reasons: Vec<&str> = run.verdict.reasons.iter().map(|r| r.check).collect();
@@ -195,7 +222,7 @@ fn answers_of(
             checks,
         });
     }
-    Ok(answers)
+    Ok((answers, frame))
 }
 
 /// The detection and false-alarm rates over `answers`, in a sentence about `what`.

@@ -156,7 +156,7 @@ pub const RECORDINGS: [Recording; 14] = [
 /// The same recordings read as a lab would, with what is in the picture (issue 64): a length
 /// (`--stick`, the README's) and no `--reference`, or the floor at the ball's impact as its
 /// second reading.
-pub const AS_A_LAB: [Recording; 4] = [
+pub const AS_A_LAB: [Recording; 5] = [
     Recording {
         file: "freefall-ball.mp4",
         readings: &[Opt::Reference(&[(3.933, 0.0), (6.7, 2.26)])],
@@ -180,5 +180,13 @@ pub const AS_A_LAB: [Recording; 4] = [
         readings: &[Opt::Stick("139,225:586,404=1"), Opt::InclineDeg(17.6)],
         known: &[known("sliding-block", "acceleration", 1.585, 0.05)],
         source: "a; the ramp's marks as the stick (issue 64's bar: 5 %)",
+    },
+    Recording {
+        file: "spring-k525.mp4",
+        readings: &[Opt::Stick("915,395.5:915,749=0.2")],
+        known: &[known("damped-oscillator", "gamma0", 25.9, 0.02)],
+        source: "γ0 from the tracked period, and the track's amplitude in metres (the README's \
+                 4.5 cm); the metre stick's 40 and 60 cm marks as the stick, read off the frame \
+                 (17.68 px/cm; the README's 17.66)",
     },
 ];

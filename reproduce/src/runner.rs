@@ -6,6 +6,7 @@ use crate::options::{request, shown, Opt};
 use crate::shard::{Call, Sharded, Sharding, State};
 use crate::worker::{estimate_apart, Run};
 use estimator::cli::DeviceChoice;
+use estimator::report::Report;
 use estimator::Request;
 use generator::{generate_to_disk, GenArgs, SceneRef};
 use indicatif::ProgressBar;
@@ -154,13 +155,13 @@ impl Runner {
     /// the others stop the table ([`Sharded`]), a merge reads it from the records.
     pub fn estimate(&self, data: &Path, opts: &[Opt]) -> anyhow::Result<Run> {
         let Some(s) = &self.sharding else {
-            return self.estimate_here(data, opts);
+            return Ok(self.estimate_here(data, opts)?.0);
         };
         let what = format!("estimate {} {}", named(data), shown(opts));
         let (call, mine) = s.next_one();
         match &s.mode {
             Sharding::Shard(_) if mine => {
-                let run = self.estimate_here(data, opts)?;
+                let run = self.estimate_here(data, opts)?.0;
                 s.record(call, what, &run);
                 Ok(run)
             }
@@ -169,14 +170,30 @@ impl Runner {
         }
     }
 
-    /// [`Runner::estimate`] here and now.
-    fn estimate_here(&self, data: &Path, opts: &[Opt]) -> anyhow::Result<Run> {
+    /// [`Runner::estimate`] with the run's frame.jpg (`estimator::output::frame_picture`: a
+    /// frame of a recording with the track and the stick drawn) where it ran here (none from
+    /// another shard's records).
+    pub fn estimate_pictured(
+        &self,
+        data: &Path,
+        opts: &[Opt],
+    ) -> anyhow::Result<(Run, Option<Vec<u8>>)> {
+        if self.sharding.is_some() {
+            return Ok((self.estimate(data, opts)?, None));
+        }
+        let (run, report) = self.estimate_here(data, opts)?;
+        Ok((run, estimator::output::frame_picture(&report)))
+    }
+
+    /// [`Runner::estimate`] here and now, with the whole report.
+    fn estimate_here(&self, data: &Path, opts: &[Opt]) -> anyhow::Result<(Run, Report)> {
         self.bar
             .set_message(format!("estimate {} {}", named(data), shown(opts)));
         let req = self.request(data, opts, &self.scratch.join("run"), self.threads)?;
-        let run = Run::of(&estimator::estimation(&req)?.report)?;
+        let report = estimator::estimation(&req)?.report;
+        let run = Run::of(&report)?;
         self.finished(data, opts, &run);
-        Ok(run)
+        Ok((run, report))
     }
 
     /// The typed run of `opts` on `data`, quiet, into `out`, on this runner's device and
@@ -261,7 +278,7 @@ impl Runner {
                 self.finished(&data, &jobs[i].opts, &run);
                 run
             } else {
-                self.estimate_here(&data, &jobs[i].opts)?
+                self.estimate_here(&data, &jobs[i].opts)?.0
             };
             let mut uses = uses.lock().expect("no job panicked");
             let left = uses.get_mut(&dirs[i]).expect("every job's dataset counted");

@@ -88,6 +88,8 @@ pub struct Table {
     pub rows: Vec<Vec<Cell>>,
     /// Lines under the table: the data, the flags, what the columns mean, the findings.
     pub notes: Vec<String>,
+    /// Pictures written beside it (file name, bytes), each shown among its notes.
+    pub pictures: Vec<(String, Vec<u8>)>,
     /// The command that regenerates it.
     pub command: String,
     pub wall_s: f64,
@@ -104,6 +106,7 @@ impl Table {
                 .collect(),
             rows: Vec::new(),
             notes: Vec::new(),
+            pictures: Vec::new(),
             command: String::new(),
             wall_s: 0.0,
         }
@@ -116,6 +119,12 @@ impl Table {
 
     pub fn note(&mut self, line: impl Into<String>) {
         self.notes.push(line.into());
+    }
+
+    /// A picture written beside the table as `file` and shown among its notes over `caption`.
+    pub fn picture(&mut self, file: String, bytes: Vec<u8>, caption: &str) {
+        self.note(format!("\n{caption}:\n\n![{file}]({file})\n"));
+        self.pictures.push((file, bytes));
     }
 
     pub fn markdown(&self) -> String {
@@ -145,13 +154,21 @@ impl Table {
         s
     }
 
-    /// Writes `<dir>/<name>.md` and `<dir>/<name>.csv` (each via a temporary file and a rename).
+    /// Writes `<dir>/<name>.md`, `<dir>/<name>.csv` and its pictures (each via a temporary file
+    /// and a rename; the pictures first, the table last).
     pub fn write(&self, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+        let mut written = Vec::new();
+        for (file, bytes) in &self.pictures {
+            let path = dir.join(file);
+            write_atomic(&path, bytes)?;
+            written.push(path);
+        }
         let md = dir.join(format!("{}.md", self.name));
         let csv = dir.join(format!("{}.csv", self.name));
         write_atomic(&csv, self.csv().as_bytes())?;
         write_atomic(&md, self.markdown().as_bytes())?;
-        Ok(vec![md, csv])
+        written.splice(0..0, [md, csv]);
+        Ok(written)
     }
 }
 
@@ -178,6 +195,24 @@ mod tests {
         assert_eq!(
             t.csv(),
             "what,gamma0,rel_error\n\"a, b\",4.00161,-0.0123\nc,,\n"
+        );
+    }
+
+    #[test]
+    fn a_picture_is_written_beside_the_table_and_shown_in_it() {
+        let mut t = Table::new("t", "A table", &[("what", "what")]);
+        t.picture("t-frame.jpg".into(), vec![1, 2, 3], "a frame");
+        let dir = tempfile::tempdir().unwrap();
+        let written = t.write(dir.path()).unwrap();
+        assert_eq!(written.len(), 3);
+        assert_eq!(
+            std::fs::read(dir.path().join("t-frame.jpg")).unwrap(),
+            [1, 2, 3]
+        );
+        let md = std::fs::read_to_string(dir.path().join("t.md")).unwrap();
+        assert!(
+            md.contains("a frame:\n\n![t-frame.jpg](t-frame.jpg)"),
+            "{md}"
         );
     }
 }

@@ -42,6 +42,44 @@ pub struct Run {
     pub final_values: Vec<f64>,
     pub epochs_run: usize,
     pub wall_time_s: f64,
+    /// The object's track, as far as the tables read it (absent: no track).
+    #[serde(default)]
+    pub track: Option<Track>,
+}
+
+/// Of report.json's `track`: each law's values in SI and the law chosen.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct Track {
+    #[serde(default)]
+    pub laws: Vec<TrackLaw>,
+    #[serde(default)]
+    pub chosen: Option<String>,
+}
+
+/// One law on the track: its name and its values in SI (by a stick or on a plane).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct TrackLaw {
+    pub law: String,
+    #[serde(default)]
+    pub si: Vec<SiValue>,
+}
+
+/// A value in SI units.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SiValue {
+    pub name: String,
+    pub value: f64,
+    pub unit: String,
+}
+
+impl Track {
+    /// The chosen law's values in SI.
+    pub fn si(&self) -> &[SiValue] {
+        self.laws
+            .iter()
+            .find(|l| Some(&l.law) == self.chosen.as_ref())
+            .map_or(&[], |l| &l.si)
+    }
 }
 
 impl Run {

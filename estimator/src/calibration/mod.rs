@@ -5,11 +5,13 @@
 //! holds the resolved `Calibration` and the helpers the models' `derive` use; `positions.rs`
 //! the bodies' positions of a vector latent.
 
+mod plane;
 mod positions;
 mod stick;
 
 use physvid_shared::cli::num;
 use physvid_shared::AffineFit;
+pub use plane::Plane;
 pub use positions::{position_scale, POSITION_FIT_R2};
 pub use stick::Stick;
 
@@ -61,6 +63,51 @@ impl CalibrationInput {
             CalibrationInput::InclineDeg => "--incline-deg",
             CalibrationInput::G => "--g",
         }
+    }
+}
+
+/// A point of the displayed frame `p` (`X,Y`, pixels from its top left) of the flag's value
+/// `text`, as `--stick` and `--plane` give them; `bad` the message for what is no point.
+fn frame_point(
+    text: &str,
+    p: &str,
+    what: &str,
+    bad: impl Fn() -> String,
+) -> Result<(f64, f64), String> {
+    let (x, y) = p.split_once(',').ok_or_else(&bad)?;
+    let x: f64 = x.trim().parse().map_err(|_| bad())?;
+    let y: f64 = y.trim().parse().map_err(|_| bad())?;
+    if !(x.is_finite() && y.is_finite() && x >= 0.0 && y >= 0.0) {
+        return Err(format!(
+            "'{text}': the {what} {},{} must be in the frame (pixels from its top left, 0 or \
+             more)",
+            num(x),
+            num(y)
+        ));
+    }
+    Ok((x, y))
+}
+
+/// Refused where one of `points` (the flag's `what`s) lies outside a `width`×`height` frame,
+/// naming it.
+fn within_frame(
+    flag: &str,
+    what: &str,
+    points: &[(f64, f64)],
+    width: usize,
+    height: usize,
+) -> Result<(), String> {
+    match points
+        .iter()
+        .find(|p| p.0 > width as f64 || p.1 > height as f64)
+    {
+        Some(p) => Err(format!(
+            "{flag}: the {what} {},{} is outside the {width}×{height} frame; give pixels of the \
+             frame as displayed (an image viewer's coordinates)",
+            num(p.0),
+            num(p.1)
+        )),
+        None => Ok(()),
     }
 }
 

@@ -28,20 +28,7 @@ impl Stick {
         };
         let (points, metres) = text.split_once('=').ok_or_else(bad)?;
         let (a, b) = points.split_once(':').ok_or_else(bad)?;
-        let point = |p: &str| -> Result<(f64, f64), String> {
-            let (x, y) = p.split_once(',').ok_or_else(bad)?;
-            let x: f64 = x.trim().parse().map_err(|_| bad())?;
-            let y: f64 = y.trim().parse().map_err(|_| bad())?;
-            if !(x.is_finite() && y.is_finite() && x >= 0.0 && y >= 0.0) {
-                return Err(format!(
-                    "'{text}': the point {},{} must be in the frame (pixels from its top left, \
-                     0 or more)",
-                    num(x),
-                    num(y)
-                ));
-            }
-            Ok((x, y))
-        };
+        let point = |p: &str| super::frame_point(text, p, "point", bad);
         let (from, to) = (point(a)?, point(b)?);
         let metres: f64 = metres.trim().parse().map_err(|_| bad())?;
         if !(metres.is_finite() && metres > 0.0 && metres <= super::MAX_REFERENCE) {
@@ -74,17 +61,7 @@ impl Stick {
 
     /// Refused where a point lies outside a `width`×`height` frame, naming it.
     pub fn check_within(&self, width: usize, height: usize) -> Result<(), String> {
-        for p in [self.from, self.to] {
-            if p.0 > width as f64 || p.1 > height as f64 {
-                return Err(format!(
-                    "--stick: the point {},{} is outside the {width}×{height} frame; give pixels \
-                     of the frame as displayed (an image viewer's coordinates)",
-                    num(p.0),
-                    num(p.1)
-                ));
-            }
-        }
-        Ok(())
+        super::within_frame("--stick", "point", &[self.from, self.to], width, height)
     }
 
     /// As the flag is written.

@@ -106,6 +106,7 @@ impl EstimateArgs {
                 times: reference.times,
                 positions: reference.positions,
                 stick: m.stick,
+                plane: m.plane,
                 incline_deg: m.incline_deg,
                 g: m.g,
             },

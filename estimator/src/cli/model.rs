@@ -4,7 +4,7 @@
 
 use super::positive;
 use super::reference::{parse_reference, ReferencePoints};
-use crate::calibration::{Stick, DEFAULT_G};
+use crate::calibration::{Plane, Stick, DEFAULT_G};
 use crate::error::{input_error, EstimateError};
 use crate::physics::{Integrator, ModelRef, RolloutStart, MODELS};
 use clap::builder::{PossibleValue, TypedValueParser};
@@ -35,18 +35,29 @@ pub struct ModelArgs {
     /// CLIP:FRAME=VALUE[,...], or for a recording at two or more times on its own timeline
     /// (as --start uses), SECONDSs=VALUE (e.g. 3.0s=0.079,20.5s=0.012; for a fall or slide,
     /// a time just after the part kept, such as the floor at the impact, is read where the law
-    /// carries it); for the spring, both bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2 (taken
-    /// from meta.json for gen data).
+    /// carries it; beside --stick or --plane, one reading is enough: it fixes the origin of the
+    /// track's distances); for the spring, both bodies' pixel positions, CLIP:FRAME=X1/Y1/X2/Y2
+    /// (taken from meta.json for gen data).
     #[arg(long, value_parser = parse_reference, value_name = "CLIP:FRAME=VALUE|SECONDSs=VALUE,...")]
     pub reference: Option<ReferencePoints>,
     /// A length in the picture, as a lab sets its video's scale: two points of the displayed
     /// frame (pixels from its top left, as an image viewer shows them) and the distance between
     /// them in metres, X1,Y1:X2,Y2=METRES (e.g. the ends of a metre stick, 284,45.5:284,446=1).
     /// The object's track is read in metres: a fall's g or a roll's acceleration in SI with no
-    /// --reference, whose readings the track then gives the latent route. report.html draws it
-    /// on a frame of the recording, where two clicks and a typed length write one to copy.
+    /// --reference, whose readings the track then gives the latent route, and an oscillation's
+    /// amplitude. report.html and frame.jpg draw it on a frame of the recording; on the
+    /// report's, two clicks and a typed length write one to copy.
     #[arg(long, value_parser = Stick::parse, value_name = "X1,Y1:X2,Y2=METRES")]
     pub stick: Option<Stick>,
+    /// For a camera tilted to the plane of the motion (where one stick cannot carry the scale:
+    /// the far part of the path is drawn smaller): the four corners of a rectangle in that
+    /// plane (pixels of the displayed frame, in order around it: the first to the second along
+    /// its width, the second to the third along its height) and its width and height in metres,
+    /// X1,Y1:X2,Y2:X3,Y3:X4,Y4=WIDTHxHEIGHT (e.g. the corners of a door or a board behind the
+    /// fall, 80,30:160,30:143,134:71,134=4x6). The object's track is read on that plane in
+    /// metres, as with --stick; report.html draws the rectangle on a frame.
+    #[arg(long, value_parser = Plane::parse, value_name = "X1,Y1:…:X4,Y4=WxH", conflicts_with = "stick")]
+    pub plane: Option<Plane>,
     /// Sliding block: the incline's angle in degrees, for μ (taken from meta.json for gen data).
     #[arg(long)]
     pub incline_deg: Option<f64>,

@@ -5,7 +5,7 @@
 //! line. It serialises whole (models by name or model file path), so a worker process is
 //! handed one, not a command line.
 
-use crate::calibration::{CalibrationInput, Stick};
+use crate::calibration::{CalibrationInput, Plane, Stick};
 use crate::data::LoadRequest;
 use crate::device::DeviceChoice;
 use crate::encoder::EncoderKind;
@@ -53,6 +53,9 @@ pub struct CalibrationRequest {
     /// A length in the picture (`--stick`): the track in metres.
     #[serde(default)]
     pub stick: Option<Stick>,
+    /// A rectangle in the plane of the motion (`--plane`): the track on that plane, in metres.
+    #[serde(default)]
+    pub plane: Option<Plane>,
     pub incline_deg: Option<f64>,
     pub g: Option<f64>,
 }

@@ -56,18 +56,43 @@ pub struct Frame {
     pub at: f64,
 }
 
-/// The frame's context: the picture, its size, the stick given drawn on it.
-fn frame_context(frame: &Frame, stick: Option<crate::calibration::Stick>) -> minijinja::Value {
+/// The frame's context: the picture, its size, the stick or the plane given drawn on it.
+fn frame_context(frame: &Frame, route: Option<&crate::track::TrackRoute>) -> minijinja::Value {
     let b64 = base64::engine::general_purpose::STANDARD;
     let (w, h) = frame.size;
-    let stick = stick.map(|s| {
+    let stick = route.and_then(|r| r.stick).map(|s| {
         context! {
             flag => s.flag(), x1 => s.from.0, y1 => s.from.1, x2 => s.to.0, y2 => s.to.1,
         }
     });
+    let plane = route.and_then(|r| r.plane).map(|p| {
+        let points: Vec<String> = p
+            .corners
+            .iter()
+            .map(|c| format!("{},{}", c.0, c.1))
+            .collect();
+        context! {
+            flag => p.flag(), points => points.join(" "),
+            x1 => p.corners[0].0, y1 => p.corners[0].1,
+        }
+    });
+    // The object's track where it was seen, and its chosen law's span.
+    let points = |range: std::ops::Range<usize>| {
+        route.map_or(String::new(), |r| {
+            let t = &r.track;
+            let xy = t.x[range.clone()].iter().zip(&t.y[range]);
+            let xy: Vec<String> = xy.map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+            xy.join(" ")
+        })
+    };
+    let n = route.map_or(0, |r| r.track.t.len());
+    let span = route
+        .and_then(|r| r.chosen_span())
+        .map_or(0..0, |l| l.first..l.first + l.samples);
     context! {
         data => b64.encode(&frame.jpeg), width => w, height => h, at => sig(frame.at),
-        r => format!("{:.1}", w.max(h) as f64 / 120.0), stick,
+        r => format!("{:.1}", w.max(h) as f64 / 120.0), stick, plane,
+        track => points(0..n), span => points(span),
     }
 }
 
@@ -260,15 +285,24 @@ pub fn report_page(report: &Report, figures: &[Figure], frame: Option<&Frame>) -
                 }
             })
             .collect();
-        let stick = r.stick.map(|s| {
-            format!(
+        let stick = match (r.plane, r.stick) {
+            (Some(p), _) => Some(format!(
+                "--plane {}: a {} m × {} m rectangle, {} px a metre over it (the track read on \
+                 that plane, in metres)",
+                p.flag(),
+                sig(p.width),
+                sig(p.height),
+                sig(p.per_metre())
+            )),
+            (None, Some(s)) => Some(format!(
                 "--stick {}: {} px for {} m, {} px a metre (the track's lengths in metres from it)",
                 s.flag(),
                 sig(s.pixels()),
                 sig(s.metres),
                 sig(s.per_metre())
-            )
-        });
+            )),
+            (None, None) => None,
+        };
         context! { line => r.line(), rows, stick }
     });
     let headline = format!(
@@ -287,7 +321,7 @@ pub fn report_page(report: &Report, figures: &[Figure], frame: Option<&Frame>) -
             model => report.run.model, input => report.run.input, headline,
             parameters, ensemble, cross_check, track, warnings => report.run.warnings, facts, recording,
             choice,
-            frame => frame.map(|f| frame_context(f, report.run.track.as_ref().and_then(|t| t.stick))),
+            frame => frame.map(|f| frame_context(f, report.run.track.as_ref())),
             stick_js => minijinja::Value::from_safe_string(include_str!("stick.js").to_string()),
             grade => report.verdict.grade.name(), reasons => &report.verdict.reasons,
             images, command => report.command.clone().unwrap_or_else(|| "(not recorded)".into()),

@@ -2,13 +2,16 @@
 //! over epochs (ground truth dashed), the encoded latent against the physics rollout for a few
 //! validation clips (the bodies' paths in the latent plane for a vector latent), and a
 //! recording's timeline, its picture's change with the span fitted (`change.rs`) and the
-//! object's own track with the laws fitted on it (`track.rs`). One
+//! object's own track with the laws fitted on it (`track.rs`), and a frame of it with the track
+//! and the stick or plane drawn (`frame.rs`). One
 //! chart set-up serves them all.
 
 mod change;
+mod frame;
 mod track;
 
 pub use change::change_png;
+pub use frame::frame_jpeg;
 pub use track::track_png;
 
 use crate::analysis::Run;

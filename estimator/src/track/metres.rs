@@ -30,7 +30,12 @@ impl TrackRoute {
     /// The route read on the scale of `stick`: every law's pixel lengths also in metres
     /// (`LawSpan::si`).
     pub fn with_stick(mut self, stick: Stick) -> TrackRoute {
-        let per_metre = stick.per_metre();
+        self.stick = Some(stick);
+        self.in_metres(stick.per_metre())
+    }
+
+    /// Every law's pixel lengths also in metres at `per_metre` pixels a metre.
+    pub(super) fn in_metres(mut self, per_metre: f64) -> TrackRoute {
         for l in &mut self.laws {
             l.si = l
                 .values
@@ -38,7 +43,6 @@ impl TrackRoute {
                 .filter_map(|v| in_metres(v, per_metre))
                 .collect();
         }
-        self.stick = Some(stick);
         self
     }
 
@@ -70,19 +74,37 @@ impl TrackRoute {
         self.readings_at(l, picked)
     }
 
+    /// The object's distance (metres) along the span `l`'s acceleration from where it starts,
+    /// at the file's time `file_s`: interpolated between the samples either side; `None`
+    /// outside the span, or without a scale.
+    pub fn distance_at(&self, l: &LawSpan, file_s: f64) -> Option<f64> {
+        let at = self.readings_at(l, (l.first..l.first + l.samples).collect());
+        let k = at
+            .windows(2)
+            .position(|w| (w[0].0..=w[1].0).contains(&file_s))?;
+        let ((t0, d0), (t1, d1)) = (at[k], at[k + 1]);
+        Some(if t1 > t0 {
+            d0 + (d1 - d0) * (file_s - t0) / (t1 - t0)
+        } else {
+            d0
+        })
+    }
+
     fn readings_at(&self, l: &LawSpan, samples: Vec<usize>) -> Vec<(f64, f64)> {
-        let (Some(stick), Some(d)) = (self.stick, l.values.iter().find(|v| v.name == "direction"))
-        else {
+        let (Some(per_metre), Some(d)) = (
+            self.per_metre(),
+            l.values.iter().find(|v| v.name == "direction"),
+        ) else {
             return Vec::new();
         };
         let (dx, dy) = (d.value.to_radians().cos(), d.value.to_radians().sin());
-        let t = &self.track;
-        let (x0, y0) = (t.x[l.first], t.y[l.first]);
+        let (x0, y0) = self.fitted_at(l.first);
         samples
             .into_iter()
             .map(|i| {
-                let along = (t.x[i] - x0) * dx + (t.y[i] - y0) * dy;
-                (t.file_s[i], along / stick.per_metre())
+                let (x, y) = self.fitted_at(i);
+                let along = (x - x0) * dx + (y - y0) * dy;
+                (self.track.file_s[i], along / per_metre)
             })
             .collect()
     }
@@ -134,10 +156,12 @@ pub(crate) mod tests {
                 picture: (400, 300),
                 frames: 20,
                 threshold: 10.0,
+                on_plane: Vec::new(),
             },
             laws: vec![span],
             chosen: Some(law),
             stick: None,
+            plane: None,
         }
     }
 
@@ -166,5 +190,10 @@ pub(crate) mod tests {
         // From the apex on (1.375 s of the file's timeline: sample 12 of the span's 2..20).
         let late = r.readings(l, 1.375);
         assert_eq!((late[0], late[5]), (every[10], every[16]));
+        // Between samples, the distance is interpolated; outside the span there is none.
+        let mid = (every[3].0 + every[4].0) / 2.0;
+        let d = r.distance_at(l, mid).unwrap();
+        assert!((d - (every[3].1 + every[4].1) / 2.0).abs() < 1e-12);
+        assert_eq!(r.distance_at(l, 0.9), None);
     }
 }

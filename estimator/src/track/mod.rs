@@ -5,18 +5,18 @@
 //! nothing: seconds on a recording, and an answer to set beside the latent's.
 
 pub mod blobs;
+mod fit;
 pub mod laws;
 pub mod link;
 pub(crate) mod metres;
+mod plane;
 mod route;
 pub mod segment;
 pub mod template;
 
 pub use route::{LawSpan, TrackRoute, GUIDING_ERROR, GUIDING_PERIODS};
 
-use laws::TrackLaw;
 use physvid_shared::video::{small_frames, VideoError, VideoInfo};
-use segment::{longest, noise, Samples};
 use serde::Serialize;
 use std::path::Path;
 use template::Match;
@@ -30,15 +30,6 @@ const LEAST_FRAMES: usize = 12;
 /// The fastest object crosses this many of the frame's long sides in a second (a ball dropped
 /// 2.3 m past a 2.5-m picture: about 3), so a frame's step is its share at the frames' rate.
 const FASTEST: f64 = 4.0;
-
-/// The window a law starts from: an oscillation's or a swing's an eighth of the track (at
-/// least 12 samples), an acceleration's 10 samples.
-fn least_window(law: TrackLaw, n: usize) -> usize {
-    match law {
-        TrackLaw::Oscillation | TrackLaw::Swing => (n / 8).max(12),
-        TrackLaw::ConstantAcceleration => 10,
-    }
-}
 
 /// The track: one position a frame where the object was seen (pixels of the displayed frame,
 /// times in seconds of real time from the first frame read), and its quality (its blob's size
@@ -54,7 +45,7 @@ pub struct Track {
     /// these), which differs from `t` for a slow-motion capture.
     pub file_s: Vec<f64>,
     /// The position along the motion's own axis (the principal direction of the path), pixels
-    /// from its mean.
+    /// from its mean (the plane's pixels where one is given: `on_plane`).
     pub along: Vec<f64>,
     /// The axis (a unit vector in the picture, y down).
     pub axis: (f64, f64),
@@ -68,17 +59,33 @@ pub struct Track {
     /// Frames read, and the picture's threshold for a change (grey levels).
     pub frames: usize,
     pub threshold: f64,
+    /// Each position on the plane of the motion (metres from the rectangle's first corner)
+    /// where one is given (`--plane`); `along`, `axis` and `noise` are then the plane's, in
+    /// its pixels (`Plane::per_metre`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub on_plane: Vec<(f64, f64)>,
 }
 
 impl Track {
-    /// The track as CSV: one row a sample (t, the file's time, x, y, quality, along).
+    /// The track as CSV: one row a sample (t, the file's time, x, y, quality, along; where a
+    /// plane is given, the position on it in metres).
     pub fn csv(&self) -> String {
-        let mut s = String::from("t_s,file_s,x_px,y_px,quality,along_px\n");
+        let plane = !self.on_plane.is_empty();
+        let mut s = String::from("t_s,file_s,x_px,y_px,quality,along_px");
+        s += if plane {
+            ",plane_x_m,plane_y_m\n"
+        } else {
+            "\n"
+        };
         for i in 0..self.t.len() {
             s += &format!(
-                "{},{},{},{},{},{}\n",
+                "{},{},{},{},{},{}",
                 self.t[i], self.file_s[i], self.x[i], self.y[i], self.quality[i], self.along[i]
             );
+            if let Some((px, py)) = self.on_plane.get(i) {
+                s += &format!(",{px},{py}");
+            }
+            s += "\n";
         }
         s
     }
@@ -256,35 +263,8 @@ fn route_of(
     let x: Vec<f64> = matches.iter().map(|(_, m)| (m.x + 0.5) * scale).collect();
     let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale).collect();
     let quality = matches.iter().map(|(_, m)| m.score).collect();
-    let (along, axis) = principal_axis(&x, &y);
-    let sigma = noise(&along).unwrap_or(segment::LEAST_NOISE);
     let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
-    let samples = Samples {
-        t: &t,
-        u: &along,
-        xy: &xy,
-    };
-    let laws: Vec<LawSpan> = TrackLaw::ALL
-        .iter()
-        .filter_map(|&law| {
-            let s = longest(&samples, law, least_window(law, t.len()), sigma)?;
-            Some(LawSpan {
-                halves: segment::halves(&samples, law, &s),
-                law,
-                holds: s.holds,
-                first_s: t[s.first],
-                last_s: t[s.last - 1],
-                samples: s.last - s.first,
-                rms_px: s.fitted.rms(),
-                si: Vec::new(),
-                periods: s.fitted.periods,
-                values: s.fitted.values,
-                curve: s.fitted.curve,
-                first: s.first,
-            })
-        })
-        .collect();
-    let chosen = route::choose(&laws);
+    let fitted = fit::fit(&t, &xy);
     Some(TrackRoute {
         track: Track {
             t,
@@ -292,50 +272,18 @@ fn route_of(
             y,
             quality,
             file_s,
-            along,
-            axis,
-            noise: sigma,
+            along: fitted.along,
+            axis: fitted.axis,
+            noise: fitted.noise,
             size: size * scale,
             picture: clock.picture,
             frames: n,
             threshold,
+            on_plane: Vec::new(),
         },
-        laws,
-        chosen,
+        chosen: route::choose(&fitted.laws),
+        laws: fitted.laws,
         stick: None,
+        plane: None,
     })
-}
-
-/// The positions along the path's principal direction (from its mean), and that direction.
-fn principal_axis(x: &[f64], y: &[f64]) -> (Vec<f64>, (f64, f64)) {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for (a, b) in x.iter().zip(y) {
-        sxx += (a - mx) * (a - mx);
-        syy += (b - my) * (b - my);
-        sxy += (a - mx) * (b - my);
-    }
-    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let d = (angle.cos(), angle.sin());
-    let along = x
-        .iter()
-        .zip(y)
-        .map(|(a, b)| (a - mx) * d.0 + (b - my) * d.1)
-        .collect();
-    (along, d)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_axis_of_a_slanted_line_is_its_direction() {
-        let x: Vec<f64> = (0..10).map(|i| i as f64).collect();
-        let y: Vec<f64> = x.iter().map(|v| 2.0 * v + 1.0).collect();
-        let (along, d) = principal_axis(&x, &y);
-        assert!((d.1 / d.0 - 2.0).abs() < 1e-9);
-        assert!((along[9] - along[0] - 9.0 * 5f64.sqrt()).abs() < 1e-9);
-    }
 }

@@ -4,7 +4,8 @@
 
 use super::laws::{TrackLaw, Value};
 use super::Track;
-use crate::calibration::Stick;
+use crate::calibration::{Plane, Stick};
+use crate::digits::{sig, significant};
 use physvid_shared::video::Crop;
 use serde::Serialize;
 
@@ -47,6 +48,9 @@ pub struct TrackRoute {
     /// The length in the picture that puts the track in metres (`--stick`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stick: Option<Stick>,
+    /// The rectangle in the plane of the motion the track is read on (`--plane`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plane: Option<Plane>,
 }
 
 /// The frame the latent route is trained on where the track guides it (`frame_of`): the
@@ -188,7 +192,10 @@ impl TrackRoute {
                 l.values
                     .iter()
                     .chain(&l.si)
-                    .map(|v| format!("{} {:.6} ± {:.2} {}", v.name, v.value, v.error, v.unit))
+                    .map(|v| {
+                        let (value, error) = (sig(v.value), significant(v.error));
+                        format!("{} {value} ± {error} {}", v.name, v.unit)
+                    })
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
@@ -271,6 +278,7 @@ mod tests {
             picture: (400, 300),
             frames: n,
             threshold: 10.0,
+            on_plane: Vec::new(),
         };
         let span = LawSpan {
             law: TrackLaw::Oscillation,
@@ -291,6 +299,7 @@ mod tests {
             laws: vec![span.clone()],
             chosen: Some(TrackLaw::Oscillation),
             stick: None,
+            plane: None,
         };
         (route, span)
     }

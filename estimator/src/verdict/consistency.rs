@@ -134,7 +134,7 @@ pub(super) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
 /// crossed, where they disagree: beyond [`DISAGREE`] errors and [`MATERIAL`] of the value, or
 /// beyond [`DISAGREE_LARGE`] errors and [`LARGE`] of it, or beyond [`DISAGREE_VAST`] errors
 /// and [`VAST`] of it.
-fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
+pub(super) fn apart(values: [f64; 2], errors: [f64; 2]) -> Option<(f64, f64)> {
     let [a, b] = values;
     let z = (a - b).abs() / errors[0].hypot(errors[1]).max(1e-300);
     let rel = (a - b).abs() / a.abs().max(b.abs()).max(1e-300);

@@ -1,16 +1,19 @@
 //! The two routes compared: where the object's own track (`track`) oscillates clearly
-//! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a measurement of the same γ0 (or g/L) the latent's answer gives, with no
-//! encoder between the picture and the law. An answer whose model does not oscillate, or whose
+//! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a
+//! measurement of the same γ0 (or g/L) the latent's answer gives, with no encoder between the
+//! picture and the law. An answer whose model does not oscillate, or whose
 //! rate lies away from the track's by more than both errors allow (two measurements of one
 //! number that disagree: one of them is wrong), is doubtful, and the reason names both; a
 //! latent rate without a standard error is held to the 2 % that separates a right answer from
-//! a wrong one.
+//! a wrong one. A constant acceleration in metres (by a stick or on a plane) is compared alike;
+//! by one stick, a track whose own halves disagree names perspective and `--plane`.
 
-use super::{Check, Grade, Reason};
+use super::{consistency, Check, Grade, Reason};
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
 use crate::track::GUIDING_PERIODS;
+use crate::track::{LawSpan, TrackRoute};
 use physvid_shared::cli::approx;
 
 pub struct Routes;
@@ -109,25 +112,88 @@ impl Check for Routes {
 /// slide's acceleration).
 const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
 
-/// Where a stick puts the track's constant acceleration in metres (`TrackRoute::with_stick`):
-/// the latent's acceleration in SI compared with it as two measurements of one number, by the
-/// same limits as the rates (`separation`).
+/// Where a stick or a plane puts the track's constant acceleration in metres
+/// (`TrackRoute::with_stick`, `TrackRoute::on_plane`): the latent's acceleration in SI compared
+/// with it as two measurements of one number, by the same limits as the rates (`separation`);
+/// and, on a plane, its perspective named where the picture's scale changes along the path by
+/// more than [`APART`] (what one stick would have been off by there); by one stick, where the
+/// track's own halves disagree (`one_stick`).
 fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
-    let Some(route) = r.track.as_ref() else {
+    let Some((route, l)) = r.track.as_ref().and_then(|t| Some((t, t.accelerating()?))) else {
         return Vec::new();
     };
-    let Some(a) = route
-        .accelerating()
-        .and_then(|l| l.si.iter().find(|v| v.name == "acceleration"))
-    else {
-        return Vec::new();
+    let by = if route.plane.is_some() {
+        "on the plane"
+    } else {
+        "by the stick"
     };
-    apart(check, a, &r.parameters).into_iter().collect()
+    let perspective = route.perspective(l).filter(|c| *c > APART).map(|change| {
+        Reason::new(
+            check,
+            Grade::Ok,
+            format!(
+                "perspective: the picture's scale along the path changes by {} % over the \
+                 track's span ({}–{} s), which one stick could not carry; the track was read \
+                 on the plane given ({})",
+                approx(100.0 * change),
+                approx(l.first_s),
+                approx(l.last_s),
+                route.scale_flag().unwrap_or_default()
+            ),
+        )
+        .measured(change, APART)
+    });
+    let a = l.si.iter().find(|v| v.name == "acceleration");
+    let disagree = a.and_then(|a| apart(check, a, &r.parameters, by));
+    perspective
+        .into_iter()
+        .chain(one_stick(check, route, l))
+        .chain(disagree)
+        .collect()
+}
+
+/// By one stick (no plane), where the track's acceleration refitted on its span's earlier and
+/// later half disagrees by the consistency check's own rule (`consistency::apart`, each half's
+/// error at least the whole span's): the
+/// picture's scale changes along the path (a camera tilted to the motion draws its far part
+/// smaller, and a fall's later, faster part then accelerates less in the picture), which one
+/// stick cannot carry; doubtful, naming `--plane`.
+fn one_stick(check: &'static str, route: &TrackRoute, l: &LawSpan) -> Option<Reason> {
+    if route.plane.is_some() || route.stick.is_none() {
+        return None;
+    }
+    let of = |values: &[Value]| values.iter().find(|v| v.name == "acceleration").cloned();
+    let [first, second] = l.halves.as_slice() else {
+        return None;
+    };
+    let (a, b) = (of(first)?, of(second)?);
+    // As the consistency check has it: a half pins the value no better than the whole span.
+    let floor = of(&l.values).map_or(0.0, |w| w.error);
+    let errors = [a.error.max(floor), b.error.max(floor)];
+    let (z, limit) = consistency::apart([a.value, b.value], errors)?;
+    let detail = format!(
+        "the object's track accelerates at {} ± {} px/s^2 over the earlier half of its span and \
+         {} ± {} over the later ({} standard errors apart): the picture's scale changes along \
+         the path (perspective: a camera tilted to the motion), which one stick cannot carry, or \
+         the law does not hold alike over it; give --plane with four corners of a rectangle in \
+         the plane of the motion",
+        approx(a.value),
+        approx(errors[0]),
+        approx(b.value),
+        approx(errors[1]),
+        approx(z)
+    );
+    Some(Reason::new(check, Grade::Doubtful, detail).measured(z, limit))
 }
 
 /// The reason where the latent's acceleration in SI among `parameters` lies beyond
-/// `separation`'s limit from the track's `a` (m/s²).
-fn apart(check: &'static str, a: &Value, parameters: &[ParameterResult]) -> Option<Reason> {
+/// `separation`'s limit from the track's `a` (m/s², in metres `by` a stick or on a plane).
+fn apart(
+    check: &'static str,
+    a: &Value,
+    parameters: &[ParameterResult],
+    by: &str,
+) -> Option<Reason> {
     let p = parameters
         .iter()
         .find(|p| ACCELERATION_NAMES.contains(&p.name.as_str()) && p.unit == "m/s^2")?;
@@ -136,9 +202,8 @@ fn apart(check: &'static str, a: &Value, parameters: &[ParameterResult]) -> Opti
         return None;
     }
     let detail = format!(
-        "the object's track, in metres by the stick, accelerates at {} ± {} m/s^2; the \
-         latent's {} is {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track in \
-         report.html",
+        "the object's track, in metres {by}, accelerates at {} ± {} m/s^2; the latent's {} is \
+         {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track in report.html",
         approx(a.value),
         approx(a.error),
         p.name,
@@ -157,6 +222,38 @@ fn apart(check: &'static str, a: &Value, parameters: &[ParameterResult]) -> Opti
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const BY: &str = "by the stick";
+
+    #[test]
+    fn by_one_stick_halves_that_disagree_name_the_plane() {
+        use crate::calibration::Stick;
+        use crate::track::metres::tests::tossed;
+        let stick = Stick::parse("0,0:0,200=1").unwrap();
+        let route = tossed().with_stick(stick);
+        let acceleration = |value, error| Value {
+            name: "acceleration",
+            value,
+            error,
+            unit: "px/s^2",
+        };
+        let with_halves = |a: Value, b: Value| {
+            let mut l = route.laws[0].clone();
+            l.halves = vec![vec![a], vec![b]];
+            l
+        };
+        // The shared toss's halves (3.7 % apart at 13 errors): doubtful, --plane named.
+        let l = with_halves(acceleration(3913.0, 8.0), acceleration(4059.0, 8.2));
+        let r = one_stick("routes", &route, &l).expect("named");
+        assert_eq!(r.grade, Grade::Doubtful);
+        assert!(r.detail.contains("--plane"), "{}", r.detail);
+        // The 10.3° roll's (27 % apart at 2.1 errors): nothing.
+        let l = with_halves(acceleration(394.4, 46.0), acceleration(288.7, 19.8));
+        assert!(one_stick("routes", &route, &l).is_none());
+        // Without a stick (the readings typed) nothing either.
+        let l = with_halves(acceleration(3913.0, 8.0), acceleration(4059.0, 8.2));
+        assert!(one_stick("routes", &tossed(), &l).is_none());
+    }
 
     fn latent(estimate: f64, standard_error: Option<f64>) -> Vec<ParameterResult> {
         vec![ParameterResult {
@@ -180,7 +277,7 @@ mod tests {
             unit: "m/s^2",
         };
         // The toss's latent from its own reading (0.04 ± 0.26): far apart, both named.
-        let r = apart("routes", &a, &latent(0.04, Some(0.26))).expect("apart");
+        let r = apart("routes", &a, &latent(0.04, Some(0.26)), BY).expect("apart");
         assert_eq!(r.grade, Grade::Doubtful);
         assert!(
             r.detail.contains("9.93") && r.detail.contains("0.04"),
@@ -188,8 +285,8 @@ mod tests {
             r.detail
         );
         // Within three joint errors, or within 2 % without an error of its own: nothing.
-        assert!(apart("routes", &a, &latent(9.80, Some(0.1))).is_none());
-        assert!(apart("routes", &a, &latent(9.80, None)).is_none());
-        assert!(apart("routes", &a, &latent(9.50, None)).is_some());
+        assert!(apart("routes", &a, &latent(9.80, Some(0.1)), BY).is_none());
+        assert!(apart("routes", &a, &latent(9.80, None), BY).is_none());
+        assert!(apart("routes", &a, &latent(9.50, None), BY).is_some());
     }
 }

@@ -183,6 +183,37 @@ pub fn write_frames_of(dir: &Path, n: usize, radius: f64, disc: impl Fn(usize) -
     }
 }
 
+/// `frames` frames of a `size` picture at `fps`, the ball at `centre(k)` in frame k, as a
+/// lossless grey video `dir/ball.mkv`: a light ball of radius 5 on a dark wall, each pixel's
+/// share of it from 4×4 samples.
+pub fn ball_video(
+    dir: &Path,
+    size: (u32, u32),
+    frames: usize,
+    fps: u32,
+    centre: impl Fn(usize) -> (f64, f64),
+) -> PathBuf {
+    let pngs = dir.join("frames");
+    std::fs::create_dir_all(&pngs).unwrap();
+    for k in 0..frames {
+        let (cx, cy) = centre(k);
+        let img = image::GrayImage::from_fn(size.0, size.1, |x, y| {
+            let inside = (0..16)
+                .filter(|s| {
+                    let dx = x as f64 + (s % 4) as f64 / 4.0 + 0.125 - cx;
+                    let dy = y as f64 + (s / 4) as f64 / 4.0 + 0.125 - cy;
+                    dx * dx + dy * dy < 25.0
+                })
+                .count();
+            image::Luma([(25.0 + 200.0 * inside as f64 / 16.0).round() as u8])
+        });
+        img.save(pngs.join(format!("frame{}.png", k + 1))).unwrap();
+    }
+    let video = dir.join("ball.mkv");
+    encode_lossless(&pngs, &video, fps);
+    video
+}
+
 /// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at `fps`.
 pub fn encode_lossless(frames: &Path, video: &Path, fps: u32) {
     encode_ffv1(frames, video, fps, "gray")
@@ -245,4 +276,16 @@ pub fn without_wall(csv: &str) -> Vec<String> {
         rows.push(cells.join("\u{1f}"));
     }
     rows
+}
+
+/// The first value in SI of the track's chosen law in report.json (a constant acceleration's, in
+/// m/s²); NaN where there is none.
+pub fn track_si(report: &serde_json::Value) -> f64 {
+    report["track"]["laws"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["law"] == report["track"]["chosen"])
+        .and_then(|l| l["si"][0]["value"].as_f64())
+        .unwrap_or(f64::NAN)
 }

@@ -1,5 +1,6 @@
 //! The damped oscillation c + e^(−ζt)(a cos ωt + b sin ωt) by variable projection: ω and ζ
-//! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each.
+//! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each;
+//! γ0, γ1 and the amplitude at the span's start.
 
 use super::{covariance, linear, sum_sq, Fitted, Value};
 use physvid_shared::linalg::solve;
@@ -143,12 +144,30 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
                 error: 2.0 * vz.max(0.0).sqrt(),
                 unit: "1/s",
             },
+            amplitude(a, b, [cov[6], cov[12], cov[7]]),
         ],
         residuals: r,
         curve,
         periods: Some(w * span / std::f64::consts::TAU),
         shape: [z, w],
     })
+}
+
+/// The amplitude at the span's start, √(a² + b²) (pixels: a length a stick or a plane puts in
+/// metres), with its standard error from a's and b's variances `[va, vb, vab]`.
+fn amplitude(a: f64, b: f64, [va, vb, vab]: [f64; 3]) -> Value {
+    let value = a.hypot(b);
+    let var = if value > 0.0 {
+        (a * a * va + b * b * vb + 2.0 * a * b * vab) / (value * value)
+    } else {
+        va.max(vb)
+    };
+    Value {
+        name: "amplitude",
+        value,
+        error: var.max(0.0).sqrt(),
+        unit: "px",
+    }
 }
 
 #[cfg(test)]
@@ -172,6 +191,10 @@ mod tests {
         assert!(g.error > 0.0 && g.error < 0.05, "{g:?}");
         let d = f.value("gamma1").unwrap();
         assert!((d.value - g1).abs() < 0.005, "{d:?}");
+        // 20 px at 0.5 s, the span's start.
+        let a = f.value("amplitude").unwrap();
+        let want = 20.0 * (-z * 0.5).exp();
+        assert!((a.value - want).abs() < 0.02 && a.error < 0.02, "{a:?}");
         assert!(f.periods.unwrap() > 7.0);
     }
 }

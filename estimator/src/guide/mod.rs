@@ -1,18 +1,19 @@
 //! The second route's part in a run: the object's own track read for a video file
 //! (`track::follow`), and the request it guides: where its oscillation is clear, the
 //! oscillator on the track's span (in place of a choice among every model on frames a hand
-//! may share); with a stick, its constant acceleration in metres; without one, a release from
-//! rest it saw. `run` calls both before the estimation, and `settle` after it.
+//! may share); with a stick or a plane, its constant acceleration in metres; without either, a
+//! release from rest it saw. `run` calls both before the estimation, and `settle` after it.
 
 use crate::choice;
 use crate::config::Request;
 use crate::data::{Framing, TrackedMotion};
-use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use crate::report::Report;
-use crate::track::{self, LawSpan, TrackRoute};
+use crate::track::{LawSpan, TrackRoute};
 use crate::verdict;
-use physvid_shared::video;
+
+mod reading;
+pub use reading::second_route;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
 /// no model files, no `--start`/`--end`, no `--init`) and the track oscillates clearly
@@ -72,17 +73,26 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
 /// is all but a fall); further off, a slide or a roll.
 pub const FALL_DEG: f64 = 30.0;
 
-/// Where a stick (`--stick`) gives the track's scale and the track's chosen law is a constant
-/// acceleration that holds (`TrackRoute::accelerating`): the request whose latent route is
-/// calibrated by the track's readings (`TrackRoute::readings`, where no `--reference` is
-/// given); where the model is the tool's to choose, trained for the law the acceleration's
-/// direction names (`FALL_DEG`: free-fall, else sliding-block); for a motion from rest, its
-/// release and line read from the track (`tracked_motion`). With the warning that says so.
+/// Where a stick (`--stick`) or a plane (`--plane`) gives the track's scale and the track's
+/// chosen law is a constant acceleration that holds (`TrackRoute::accelerating`): the request
+/// whose latent route is calibrated by the track's readings (`TrackRoute::readings`, where no
+/// `--reference` is given, or one that fixes their origin); where the model is the tool's to
+/// choose, trained for the law the acceleration's direction names (`FALL_DEG`: free-fall, else
+/// sliding-block); for a motion from rest, its release and line read from the track
+/// (`tracked_motion`). With the warning that says so.
 pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
-    route.stick?;
+    route.per_metre()?;
     let span = route.accelerating()?;
     let c = &req.calibration;
     let typed = !(c.values.is_empty() && c.times.is_empty() && c.positions.is_empty());
+    // One reading typed beside the stick: the stick gives the scale, the reading the origin.
+    let origin = match (
+        c.values.is_empty() && c.positions.is_empty(),
+        c.times.as_slice(),
+    ) {
+        (true, [one]) => Some(*one),
+        _ => None,
+    };
     let free = chooses && req.candidates.is_empty() && req.init.is_empty();
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
@@ -102,17 +112,33 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
         g.load.recording.tracked = Some(tracked_motion(route, span, direction));
         did.push("read its release and line from the track".into());
     }
-    if !typed {
+    if !typed || origin.is_some() {
         let from = g
             .load
             .recording
             .tracked
             .and_then(|t| t.release)
             .unwrap_or(f64::NEG_INFINITY);
-        g.calibration.times = route.readings(span, from);
+        let mut readings = route.readings(span, from);
+        let mut how = String::new();
+        if let Some((t, value)) = origin {
+            // Where the track saw the object then, its distance there is the value typed.
+            let shift = route.distance_at(span, t).map(|d| value - d);
+            readings
+                .iter_mut()
+                .for_each(|r| r.1 += shift.unwrap_or(0.0));
+            how = match shift {
+                Some(_) => format!(", their origin from --reference {t}s={value}"),
+                None => format!(
+                    " (--reference {t}s={value} lies outside the track's span: its origin is \
+                     the span's start)"
+                ),
+            };
+        }
+        g.calibration.times = readings;
         g.load.recording.measured_at = g.calibration.times.iter().map(|t| t.0).collect();
         did.push(format!(
-            "calibrated it by the track's {} positions in metres",
+            "calibrated it by the track's {} positions in metres{how}",
             g.calibration.times.len()
         ));
     }
@@ -121,8 +147,8 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     }
     let why = format!(
         "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
-         file, read in metres by the stick (--stick {}): the latent route {}",
-        route.stick.map(|s| s.flag()).unwrap_or_default(),
+         file, read in metres ({}): the latent route {}",
+        route.scale_flag().unwrap_or_default(),
         did.join(", and ")
     );
     Some((g, why))
@@ -153,22 +179,23 @@ fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> Tracked
         (Some(v), Some(a)) => 0.5 * a.value.abs() * (v.value - span.first_s).max(0.0).powi(2),
         _ => 0.0,
     };
-    let rad = direction.to_radians();
     TrackedMotion {
         span: route.file_span(span),
         release: vertex.map(|v| route.file_time(v.value)),
-        axis: [rad.cos(), rad.sin()],
+        axis: route.picture_axis(span, direction),
         travel: route.travel(span),
         moving_before: rise > route.track.size,
     }
 }
 
-/// Without a stick, where the track's chosen law is a constant acceleration that holds and its
-/// vertex lies where the track saw the object (`tracked_motion`): a motion from rest (the model
-/// given, or each such candidate tried) released there and on the track's line, in place of
-/// the picture's guess; the model and its calibration as asked.
+/// Without a stick or a plane, where the track's chosen law is a constant acceleration that
+/// holds and its vertex lies where the track saw the object (`tracked_motion`): a motion from
+/// rest (the model given, or each such candidate tried) released there and on the track's line,
+/// in place of the picture's guess; the model and its calibration as asked.
 pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
-    let span = route.accelerating().filter(|_| route.stick.is_none())?;
+    let span = route
+        .accelerating()
+        .filter(|_| route.per_metre().is_none())?;
     if req.load.model.is_some_and(|m| !m.released_from_rest()) {
         return None;
     }
@@ -185,88 +212,12 @@ pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     Some((g, why))
 }
 
-/// The request the track guides: its clear oscillation's (`guided`), else, with a stick, its
-/// constant acceleration's (`measured`), else a release it saw (`sighted`).
+/// The request the track guides: its clear oscillation's (`guided`), else, with a stick or a
+/// plane, its constant acceleration's (`measured`), else a release it saw (`sighted`).
 pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     guided(req, route, chooses)
         .or_else(|| measured(req, route, chooses))
         .or_else(|| sighted(req, route))
-}
-
-/// The object's own track and the laws fitted on it (`track`), for a video file (not an image
-/// folder, not frames in memory), on a stick's scale where one is given (`check_stick`);
-/// where it cannot be read, a warning says why and the latent's answer stands alone.
-pub fn second_route(
-    req: &Request,
-    warnings: &mut Vec<String>,
-) -> Result<Option<TrackRoute>, EstimateError> {
-    let route = read_track(req, warnings);
-    check_stick(req, route.as_ref(), warnings)?;
-    Ok(route)
-}
-
-/// Whether the request reads a video file (not an image folder, not frames in memory): what
-/// a track is read on.
-fn on_video(req: &Request) -> bool {
-    let load = &req.load;
-    load.frames.is_none() && load.input.is_file() && video::is_recording(&load.input)
-}
-
-/// The track of a video file, on the stick's scale where one is given.
-fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
-    if !on_video(req) {
-        return None;
-    }
-    let (input, r) = (&req.load.input, &req.load.recording);
-    let found = video::probe_as(input, r.fields)
-        .and_then(|info| track::follow(input, &info, (r.start, r.end), r.fps));
-    match found {
-        Ok(route) => route.map(|r| match req.calibration.stick {
-            Some(s) => r.with_stick(s),
-            None => r,
-        }),
-        Err(e) => {
-            warnings.push(format!("the object's track could not be read: {e}"));
-            None
-        }
-    }
-}
-
-/// A stick (`--stick`) needs a video file's track and must lie in its picture: refused (the
-/// input's error) on anything else, or for a point outside the frame; a warning where the
-/// track gives nothing to read in metres.
-fn check_stick(
-    req: &Request,
-    route: Option<&TrackRoute>,
-    warnings: &mut Vec<String>,
-) -> Result<(), EstimateError> {
-    let Some(stick) = req.calibration.stick else {
-        return Ok(());
-    };
-    if !on_video(req) {
-        return Err(input_error(format!(
-            "--stick scales the object's track in a video file, and {} is none: give \
-             --reference for a data set, an array or an image folder",
-            req.load.input.display()
-        )));
-    }
-    let Some(route) = route else {
-        warnings.push(format!(
-            "--stick {} was not used: nothing in the recording was followed long enough",
-            stick.flag()
-        ));
-        return Ok(());
-    };
-    let (w, h) = route.track.picture;
-    stick.check_within(w, h).map_err(input_error)?;
-    if route.chosen_span().is_none_or(|l| l.si.is_empty()) {
-        warnings.push(format!(
-            "--stick {} gave nothing in metres: the object's track holds no law with a length \
-             (a constant acceleration)",
-            stick.flag()
-        ));
-    }
-    Ok(())
 }
 
 /// `report` with the track and the route's warnings set on its run, and its verdict judged
@@ -321,5 +272,31 @@ mod tests {
             .for_each(|v| v.value = first);
         let t = tracked_motion(&dropped, dropped.accelerating().unwrap(), 90.0);
         assert!(t.release.is_some() && !t.moving_before);
+    }
+
+    #[test]
+    fn with_a_stick_one_reading_fixes_the_origin() {
+        let stick = crate::calibration::Stick::parse("0,0:0,200=1").unwrap();
+        let route = tossed().with_stick(stick);
+        let span = route.accelerating().unwrap();
+        let mut req = Request::new("toss.mp4");
+        req.load.model = ModelRef::by_name("damped-oscillator");
+        // No reading typed: the track's, from the span's start.
+        let (g, _) = measured(&req, &route, false).unwrap();
+        let plain = g.calibration.times.clone();
+        assert_eq!(plain.len(), crate::track::metres::READINGS);
+        // One reading typed: the same readings, shifted so that the track passes through it.
+        let at = (plain[1].0 + plain[2].0) / 2.0;
+        req.calibration.times = vec![(at, 5.0)];
+        let (g, why) = measured(&req, &route, false).unwrap();
+        let shift = 5.0 - route.distance_at(span, at).unwrap();
+        for (a, b) in g.calibration.times.iter().zip(&plain) {
+            assert_eq!(a.0, b.0);
+            assert!((a.1 - b.1 - shift).abs() < 1e-12);
+        }
+        assert!(why.contains("origin from --reference"), "{why}");
+        // Two typed: they are the calibration, the track's readings left out.
+        req.calibration.times = vec![(at, 5.0), (plain[4].0, 6.0)];
+        assert!(measured(&req, &route, false).is_none());
     }
 }
