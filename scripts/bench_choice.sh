@@ -33,8 +33,11 @@ best() {
   for i in $(seq "$RUNS"); do
     /usr/bin/time -f "%e %M" -a -o "$tmp/times" "$@" > /dev/null 2>&1 || true
   done
-  sort -n "$tmp/times" | head -1 | cut -d' ' -f1
-  sort -k2 -n "$tmp/times" | tail -1 | cut -d' ' -f2
+  # time(1) adds "Command exited with non-zero status N" where the run exits so (4: an
+  # unreliable answer); the figures are the lines of numbers.
+  grep -E '^[0-9]' "$tmp/times" > "$tmp/figures"
+  sort -n "$tmp/figures" | head -1 | cut -d' ' -f1
+  sort -k2 -n "$tmp/figures" | tail -1 | cut -d' ' -f2
 }
 
 printf '%-26s %9s %10s %7s %9s  %-18s %s\n' recording "decode s" "estimate s" ratio "peak MiB" chosen grade
