@@ -100,6 +100,24 @@ fn a_tilted_drop_falls_at_g_on_its_plane_and_not_by_one_stick() {
 }
 
 #[test]
+fn a_plane_given_from_its_bottom_corner_still_falls() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    // The same rectangle, its corners from the bottom left going up: the plane's y points up
+    // the picture, and the fall is still a fall (only the track's law is read: one epoch).
+    let tmp = tempfile::tempdir().unwrap();
+    let up = "71.4286,133.9286:142.8571,133.9286:160,30:80,30=4x6";
+    let r = run(tmp.path(), "up", &["--plane", up, "--epochs", "1"]);
+    assert_eq!(r["model"], "free-fall");
+    let track = util::track_si(&r);
+    assert!(
+        (track / 9.81 - 1.0).abs() < 0.01,
+        "the track's {track} m/s²"
+    );
+}
+
+#[test]
 fn a_plane_that_is_no_rectangle_off_the_frame_or_beside_a_stick_is_refused() {
     let tmp = tempfile::tempdir().unwrap();
     let input = tmp.path().join("none.mkv");

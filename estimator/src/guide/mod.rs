@@ -99,12 +99,15 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     let mut did = Vec::new();
     let direction = direction(span);
     if free {
-        let falls = (direction - 90.0).abs() <= FALL_DEG;
+        // In the picture, whichever way a plane's corners were given.
+        let [x, y] = route.picture_axis(span, direction);
+        let drawn = y.atan2(x).to_degrees();
+        let falls = (drawn - 90.0).abs() <= FALL_DEG;
         let name = if falls { "free-fall" } else { "sliding-block" };
         g.choose = false;
         g.load.model = ModelRef::by_name(name);
         did.push(format!(
-            "trained the {name} (the acceleration points {direction:.0}° from the picture's \
+            "trained the {name} (the acceleration points {drawn:.0}° from the picture's \
              right, y down; give --model to choose yourself)"
         ));
     }

@@ -1,11 +1,10 @@
 //! The two routes compared: where the object's own track (`track`) oscillates clearly
 //! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a
 //! measurement of the same γ0 (or g/L) the latent's answer gives, with no encoder between the
-//! picture and the law. An answer whose model does not oscillate, or whose
-//! rate lies away from the track's by more than both errors allow (two measurements of one
-//! number that disagree: one of them is wrong), is doubtful, and the reason names both; a
-//! latent rate without a standard error is held to the 2 % that separates a right answer from
-//! a wrong one. A constant acceleration in metres (by a stick or on a plane) is compared alike;
+//! picture and the law. An answer whose model does not oscillate, or whose rate lies away from
+//! the track's by more than both errors allow (two measurements of one number that disagree: one
+//! of them is wrong), is doubtful, and the reason names both; a latent rate without a standard
+//! error is held to the 2 % that separates a right answer from a wrong one. A constant acceleration in metres (by a stick or on a plane) is compared alike;
 //! by one stick, a track whose own halves disagree names perspective and `--plane`.
 
 use super::{consistency, Check, Grade, Reason};
@@ -154,10 +153,9 @@ fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
 
 /// By one stick (no plane), where the track's acceleration refitted on its span's earlier and
 /// later half disagrees by the consistency check's own rule (`consistency::apart`, each half's
-/// error at least the whole span's): the
-/// picture's scale changes along the path (a camera tilted to the motion draws its far part
-/// smaller, and a fall's later, faster part then accelerates less in the picture), which one
-/// stick cannot carry; doubtful, naming `--plane`.
+/// error at least the whole span's): the picture's scale changes along the path (a camera tilted
+/// to the motion draws its far part smaller, and a fall's later, faster part then accelerates
+/// less in the picture), which one stick cannot carry; doubtful, naming `--plane`.
 fn one_stick(check: &'static str, route: &TrackRoute, l: &LawSpan) -> Option<Reason> {
     if route.plane.is_some() || route.stick.is_none() {
         return None;
