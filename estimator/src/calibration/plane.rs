@@ -158,14 +158,21 @@ impl Plane {
         (v.x / v.z, v.y / v.z)
     }
 
-    /// The picture's pixels a metre at the plane's point `p` (metres) along the plane's unit
-    /// direction `d`: how large a step there is drawn (a tilted camera draws the far part of
-    /// the plane smaller).
-    pub fn pixels_per_metre_at(&self, p: (f64, f64), d: (f64, f64)) -> f64 {
+    /// A metre's step from the plane's point `p` (metres) along the plane's unit direction `d`
+    /// as the picture draws it there (pixels, x and y): its length is the picture's scale
+    /// there, its direction the motion's in the picture.
+    pub fn drawn_at(&self, p: (f64, f64), d: (f64, f64)) -> (f64, f64) {
         let step = 1e-3 * self.width.min(self.height);
         let a = self.to_picture(p);
         let b = self.to_picture((p.0 + step * d.0, p.1 + step * d.1));
-        (b.0 - a.0).hypot(b.1 - a.1) / step
+        ((b.0 - a.0) / step, (b.1 - a.1) / step)
+    }
+
+    /// The picture's pixels a metre at the plane's point `p` (metres) along the plane's unit
+    /// direction `d` (`drawn_at`'s length: a tilted camera draws the far part smaller).
+    pub fn pixels_per_metre_at(&self, p: (f64, f64), d: (f64, f64)) -> f64 {
+        let (x, y) = self.drawn_at(p, d);
+        x.hypot(y)
     }
 
     /// Refused where a corner lies outside a `width`×`height` frame, naming it.

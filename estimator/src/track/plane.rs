@@ -61,12 +61,10 @@ impl TrackRoute {
         let (Some(plane), Some(&q)) = (self.plane, self.track.on_plane.get(l.first)) else {
             return [c, s];
         };
-        let step = 1e-3 * plane.width.min(plane.height);
-        let a = plane.to_picture(q);
-        let b = plane.to_picture((q.0 + step * c, q.1 + step * s));
-        let norm = (b.0 - a.0).hypot(b.1 - a.1);
+        let (x, y) = plane.drawn_at(q, (c, s));
+        let norm = x.hypot(y);
         if norm > 0.0 && norm.is_finite() {
-            [(b.0 - a.0) / norm, (b.1 - a.1) / norm]
+            [x / norm, y / norm]
         } else {
             [c, s]
         }
