@@ -127,7 +127,9 @@ def generate(
 @dataclass(frozen=True)
 class Parameter:
     """One answer: its value, standard error (None where unknown), unit, ``SI`` or ``latent``,
-    and the truth with the relative error where the data set gives them."""
+    and the truth with the relative error where the data set gives them; where the value
+    combines the latent's and the track's (weighed by their errors), ``routes`` holds each
+    one's (``latent``, ``latent_error``, ``track``, ``track_error``)."""
 
     name: str
     value: float
@@ -136,6 +138,7 @@ class Parameter:
     units: str
     truth: Optional[float] = None
     relative_error: Optional[float] = None
+    routes: Optional[Dict[str, float]] = None
 
 
 @dataclass(frozen=True)
@@ -181,6 +184,7 @@ class Result:
                 units=p["units"],
                 truth=p.get("truth"),
                 relative_error=p.get("relative_error"),
+                routes=p.get("routes"),
             )
             for p in report["parameters"]
         }

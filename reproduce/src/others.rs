@@ -55,18 +55,45 @@ struct Answer {
     right: bool,
     grade: Grade,
     checks: Cell,
+    /// The track's chosen law and its γ0's and γ1's relative errors, judged by the same bars.
+    track: Option<(String, Option<(f64, f64)>)>,
+}
+
+impl Answer {
+    fn track_right(&self) -> bool {
+        self.track
+            .as_ref()
+            .and_then(|t| t.1)
+            .is_some_and(|(e0, e1)| e0.abs() <= BAR0 && e1.abs() <= BAR1)
+    }
+}
+
+/// The names of the rate and the damping in `law`'s values (the oscillator's, or the
+/// pendulum's and the swing's).
+fn rate_and_damping(law: &str) -> (&'static str, &'static str) {
+    match law {
+        "damped-oscillator" | "oscillation" | "angular-oscillation" => ("gamma0", "gamma1"),
+        _ => ("g_over_l", "damping"),
+    }
 }
 
 fn judged(render: String, run: &Run) -> Answer {
     let model = run.model.clone();
-    let (rate, damping) = match model.as_str() {
-        "damped-oscillator" => ("gamma0", "gamma1"),
-        _ => ("g_over_l", "damping"),
-    };
+    let (rate, damping) = rate_and_damping(&model);
     let pair = run.value(rate).zip(run.value(damping));
     let errors = pair.map(|(a, b)| (a.estimate / GAMMA0 - 1.0, b.estimate / GAMMA1 - 1.0));
     let spread = pair.and_then(|(_, b)| b.standard_error.map(|s| s / b.estimate.abs()));
+    let track = run.track.as_ref().and_then(|k| {
+        let law = k.chosen.clone()?;
+        let (rate, damping) = rate_and_damping(&law);
+        let errors = k
+            .value(rate)
+            .zip(k.value(damping))
+            .map(|(a, b)| (a / GAMMA0 - 1.0, b / GAMMA1 - 1.0));
+        Some((law, errors))
+    });
     Answer {
+        track,
         render,
         right: errors.is_some_and(|(e0, e1)| e0.abs() <= BAR0 && e1.abs() <= BAR1),
         model,
@@ -124,6 +151,10 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             ("right", "right"),
             ("grade", "grade"),
             ("checks with reasons", "checks"),
+            ("track's law", "track_law"),
+            ("track's γ0 error", "track_gamma0_error"),
+            ("track's γ1 error", "track_gamma1_error"),
+            ("track right", "track_right"),
         ],
     );
     for a in &answers {
@@ -136,9 +167,19 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
             Cell::text(if a.right { "yes" } else { "no" }),
             Cell::text(a.grade.name()),
             a.checks.clone(),
+            Cell::text(a.track.as_ref().map_or("–", |t| t.0.as_str())),
+            Cell::rel(a.track.as_ref().and_then(|t| t.1).map(|e| e.0)),
+            Cell::rel(a.track.as_ref().and_then(|t| t.1).map(|e| e.1)),
+            Cell::text(if a.track_right() { "yes" } else { "no" }),
         ]);
     }
     t.note(rates(&answers));
+    t.note(format!(
+        "The track alone (its chosen law's values, the second route's answer beside the \
+         latent's): right on {} of {} renders.",
+        answers.iter().filter(|a| a.track_right()).count(),
+        answers.len()
+    ));
     t.note(format!(
         "Renders: `scripts/others_suite.py DIR --mp4 --conditions {conditions} --levels \
          {levels}` (seed 7 + 100·level); runs: `estimate RENDER.mp4 --seed 0`, no model. Right: \

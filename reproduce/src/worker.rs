@@ -47,7 +47,7 @@ pub struct Run {
     pub track: Option<Track>,
 }
 
-/// Of report.json's `track`: each law's values in SI and the law chosen.
+/// Of report.json's `track`: each law's values (in its own units and in SI) and the law chosen.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Track {
     #[serde(default)]
@@ -56,15 +56,17 @@ pub struct Track {
     pub chosen: Option<String>,
 }
 
-/// One law on the track: its name and its values in SI (by a stick or on a plane).
+/// One law on the track: its name, its values and its values in SI (by a stick or on a plane).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct TrackLaw {
     pub law: String,
     #[serde(default)]
+    pub values: Vec<SiValue>,
+    #[serde(default)]
     pub si: Vec<SiValue>,
 }
 
-/// A value in SI units.
+/// A value and its unit.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SiValue {
     pub name: String,
@@ -73,12 +75,22 @@ pub struct SiValue {
 }
 
 impl Track {
-    /// The chosen law's values in SI.
-    pub fn si(&self) -> &[SiValue] {
+    /// The chosen law.
+    pub fn chosen_law(&self) -> Option<&TrackLaw> {
         self.laws
             .iter()
             .find(|l| Some(&l.law) == self.chosen.as_ref())
-            .map_or(&[], |l| &l.si)
+    }
+
+    /// The chosen law's values in SI.
+    pub fn si(&self) -> &[SiValue] {
+        self.chosen_law().map_or(&[], |l| &l.si)
+    }
+
+    /// A value of the chosen law by name, in its own units.
+    pub fn value(&self, name: &str) -> Option<f64> {
+        let law = self.chosen_law()?;
+        law.values.iter().find(|v| v.name == name).map(|v| v.value)
     }
 }
 

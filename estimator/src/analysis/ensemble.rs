@@ -116,6 +116,7 @@ mod tests {
             relative_error: None,
             standard_error: None,
             splits: Vec::new(),
+            routes: None,
         }
     }
 

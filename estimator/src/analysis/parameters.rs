@@ -3,6 +3,7 @@
 
 use super::uncertainty::SplitValue;
 use crate::calibration::DerivedValue;
+use crate::digits::{sig, significant};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -24,9 +25,36 @@ pub struct ParameterResult {
     /// The value refitted on halves of the training clips (see `evidence::SplitBy`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub splits: Vec<SplitValue>,
+    /// Where the value reported combines the latent's and the track's (`guide::combine`): each
+    /// route's own, with its standard error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub routes: Option<RouteValues>,
+}
+
+/// One value as each route measured it (the track's error the larger of its fit's and half
+/// its halves' difference).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RouteValues {
+    pub latent: f64,
+    pub latent_error: f64,
+    pub track: f64,
+    pub track_error: f64,
 }
 
 impl ParameterResult {
+    /// Where the value combines both routes: each one's, in a phrase ("the latent's 0.117 ±
+    /// 0.03 and the track's 0.076 ± 0.0015, weighed by their errors").
+    pub fn routes_phrase(&self) -> Option<String> {
+        let r = self.routes?;
+        Some(format!(
+            "the latent's {} ± {} and the track's {} ± {}, weighed by their errors",
+            sig(r.latent),
+            significant(r.latent_error),
+            sig(r.track),
+            significant(r.track_error)
+        ))
+    }
+
     /// The result for a derived value, with the truth looked up in `truth` by its key.
     pub fn new(value: DerivedValue, truth: &BTreeMap<String, f64>) -> ParameterResult {
         let t = value.truth_key.and_then(|k| truth.get(k).copied());
@@ -39,6 +67,7 @@ impl ParameterResult {
             truth: t,
             standard_error: None,
             splits: Vec::new(),
+            routes: None,
         }
     }
 }

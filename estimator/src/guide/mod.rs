@@ -12,7 +12,9 @@ use crate::report::Report;
 use crate::track::{LawSpan, TrackRoute};
 use crate::verdict;
 
+mod combine;
 mod reading;
+pub use combine::{combine, track_error};
 pub use reading::second_route;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
@@ -192,13 +194,17 @@ fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> Tracked
 }
 
 /// Without a stick or a plane, where the track's chosen law is a constant acceleration that
-/// holds and its vertex lies where the track saw the object (`tracked_motion`): a motion from
-/// rest (the model given, or each such candidate tried) released there and on the track's line,
-/// in place of the picture's guess; the model and its calibration as asked.
+/// holds, points down the picture (gravity's pull: a fall's, a slide's or a roll's from rest;
+/// one that points up is no descent, whatever else moves so for a second, as a pendulum's bob
+/// past its lowest point) and its vertex lies where the track saw the object
+/// (`tracked_motion`): a motion from rest (the model given, or each such candidate tried)
+/// released there and on the track's line, in place of the picture's guess; the model and its
+/// calibration as asked.
 pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     let span = route
         .accelerating()
-        .filter(|_| route.per_metre().is_none())?;
+        .filter(|_| route.per_metre().is_none())
+        .filter(|s| direction(s).to_radians().sin() > 0.0)?;
     if req.load.model.is_some_and(|m| !m.released_from_rest()) {
         return None;
     }
@@ -223,8 +229,10 @@ pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
         .or_else(|| sighted(req, route))
 }
 
-/// `report` with the track and the route's warnings set on its run, and its verdict judged
-/// again with them (the model choice's close call kept).
+/// `report` with the track and the route's warnings set on its run, its verdict judged again
+/// with them (the model choice's close call kept), then each value both routes measured alike
+/// combined (`combine`) and the answer's own checks judged again on it
+/// (`verdict::rejudge_answer`).
 pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
     report.run.warnings.extend(warnings);
     if let Some(route) = route {
@@ -234,6 +242,14 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
             .as_ref()
             .and_then(choice::close::close_call);
         report.verdict = verdict::judge(&report.run).with(close);
+        let combined = report
+            .run
+            .track
+            .as_ref()
+            .is_some_and(|route| combine(&mut report.run.parameters, route));
+        if combined {
+            report.verdict = verdict::rejudge_answer(report.verdict.clone(), &report.run);
+        }
     }
 }
 
@@ -257,6 +273,14 @@ mod tests {
         let got = g.load.recording.tracked.unwrap();
         assert_eq!((got.release, got.moving_before), (t.release, true));
         assert!(why.contains("released there"), "{why}");
+        // An acceleration up the picture is no descent from rest (a bob past its lowest point).
+        let mut up = route.clone();
+        up.laws[0]
+            .values
+            .iter_mut()
+            .filter(|v| v.name == "direction")
+            .for_each(|v| v.value = -128.0);
+        assert!(sighted(&req, &up).is_none());
         // With one, `measured` does the work; for a model not from rest, nothing.
         let stuck = route
             .clone()

@@ -28,6 +28,8 @@ struct Row {
     name: String,
     estimate: String,
     error_bar: String,
+    /// Each route's value where the estimate combines both (`ParameterResult::routes_phrase`).
+    routes: String,
     unit: String,
     truth: String,
     error: String,
@@ -111,6 +113,7 @@ pub fn report_page(report: &Report, figures: &[Figure], frame: Option<&Frame>) -
                 .standard_error
                 .map_or("–".into(), |e| format!("± {}", significant(e))),
             unit: p.unit.clone(),
+            routes: p.routes_phrase().unwrap_or_default(),
             truth: p.truth.map_or("–".into(), sig),
             error: p
                 .relative_error

@@ -37,6 +37,11 @@ impl Report {
                 p.name, p.estimate, se, p.unit, truth, err
             );
         }
+        for p in &self.run.parameters {
+            if let Some(both) = p.routes_phrase() {
+                s += &format!("{}: both routes, {both}\n", p.name);
+            }
+        }
         if let Some(c) = &self.run.cross_check {
             s += &format!(
                 "cross-check: {} from the amplitude decay of {} swings (appendix A.6): {:.4} ± {:.4} \

@@ -5,6 +5,7 @@
 //! nothing: seconds on a recording, and an answer to set beside the latent's.
 
 pub mod blobs;
+mod choose;
 mod fit;
 pub mod laws;
 pub mod link;
@@ -281,7 +282,7 @@ fn route_of(
             threshold,
             on_plane: Vec::new(),
         },
-        chosen: route::choose(&fitted.laws),
+        chosen: fitted.chosen,
         laws: fitted.laws,
         stick: None,
         plane: None,

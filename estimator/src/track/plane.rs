@@ -5,7 +5,7 @@
 //! pixel lengths are on, the picture's direction of a law on the plane, and how much one stick
 //! would have been off along the path (`perspective`).
 
-use super::{fit, route, LawSpan, TrackRoute};
+use super::{fit, LawSpan, TrackRoute};
 use crate::calibration::Plane;
 
 impl TrackRoute {
@@ -20,7 +20,7 @@ impl TrackRoute {
         let xy: Vec<(f64, f64)> = t.on_plane.iter().map(|p| (p.0 * k, p.1 * k)).collect();
         let fitted = fit::fit(&t.t, &xy);
         (t.along, t.axis, t.noise) = (fitted.along, fitted.axis, fitted.noise);
-        self.chosen = route::choose(&fitted.laws);
+        self.chosen = fitted.chosen;
         self.laws = fitted.laws;
         self.plane = Some(plane);
         self.in_metres(k)
@@ -129,7 +129,7 @@ mod tests {
                 threshold: 10.0,
                 on_plane: Vec::new(),
             },
-            chosen: route::choose(&fitted.laws),
+            chosen: fitted.chosen,
             laws: fitted.laws,
             stick: None,
             plane: None,

@@ -60,7 +60,7 @@ pub const FRAME_SIZES: f64 = 4.0;
 pub const FRAME_SHARE: f64 = 0.1;
 
 /// The track's oscillation guides the latent where its span holds at least this many periods…
-pub const GUIDING_PERIODS: f64 = 3.0;
+pub const GUIDING_PERIODS: f64 = 2.0;
 /// …and its γ0's standard error is at most this share of it.
 pub const GUIDING_ERROR: f64 = 0.01;
 
@@ -70,7 +70,7 @@ impl TrackRoute {
     pub fn guiding(&self) -> Option<&LawSpan> {
         let l = self.chosen_span()?;
         let g = l.values.iter().find(|v| v.name == "gamma0")?;
-        (l.law == TrackLaw::Oscillation
+        (matches!(l.law, TrackLaw::Oscillation | TrackLaw::AngularOscillation)
             && l.holds
             && l.periods.unwrap_or(0.0) >= GUIDING_PERIODS
             && g.error <= GUIDING_ERROR * g.value.abs())
@@ -94,7 +94,9 @@ impl TrackRoute {
         let t = &self.track;
         match l.law {
             TrackLaw::ConstantAcceleration => spread(&t.x[span.clone()]) + spread(&t.y[span]),
-            TrackLaw::Oscillation | TrackLaw::Swing => spread(&t.along[span]),
+            TrackLaw::Oscillation | TrackLaw::Swing | TrackLaw::AngularOscillation => {
+                spread(&t.along[span])
+            }
         }
     }
 
@@ -217,35 +219,6 @@ fn bounds(v: &[f64], l: &LawSpan) -> (f64, f64) {
             (lo.min(a), hi.max(a))
         })
 }
-
-/// The law that holds over the longest time; an oscillation only where its span holds at least
-/// one period (else nothing oscillated) and its amplitude does not grow by more than
-/// [`GROWING_ERRORS`] standard errors of its damping (a hand shaking the object drives it; a
-/// free motion loses energy); of two spans within a tenth of each other's length, the law with
-/// less freedom.
-pub(super) fn choose(laws: &[LawSpan]) -> Option<TrackLaw> {
-    let free = |l: &LawSpan| {
-        l.values
-            .iter()
-            .find(|v| v.name == "gamma1" || v.name == "damping")
-            .is_none_or(|d| d.value >= -GROWING_ERRORS * d.error)
-    };
-    let seen = |l: &&LawSpan| l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l);
-    let longest = laws
-        .iter()
-        .filter(seen)
-        .map(|l| l.last_s - l.first_s)
-        .fold(0.0, f64::max);
-    laws.iter()
-        .filter(seen)
-        .filter(|l| l.last_s - l.first_s >= 0.9 * longest)
-        .min_by_key(|l| l.law.freedom())
-        .map(|l| l.law)
-}
-
-/// An oscillation whose damping is below zero by more than this many standard errors grows:
-/// something drives it.
-const GROWING_ERRORS: f64 = 3.0;
 
 #[cfg(test)]
 mod tests {

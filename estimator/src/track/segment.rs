@@ -64,7 +64,7 @@ impl Samples<'_> {
         match law {
             TrackLaw::Oscillation => var(self.u[a..b].iter().copied()),
             // The arc's: the path's whole spread (x's and y's).
-            TrackLaw::Swing => {
+            TrackLaw::Swing | TrackLaw::AngularOscillation => {
                 let xy = &self.xy[a..b];
                 var(xy.iter().map(|p| p.0)) + var(xy.iter().map(|p| p.1))
             }
@@ -75,7 +75,7 @@ impl Samples<'_> {
         }
     }
 
-    fn fit(&self, law: TrackLaw, a: usize, b: usize, near: Option<&Fitted>) -> Option<Fitted> {
+    pub fn fit(&self, law: TrackLaw, a: usize, b: usize, near: Option<&Fitted>) -> Option<Fitted> {
         law.fit(&self.t[a..b], &self.u[a..b], &self.xy[a..b], near)
     }
 }
@@ -178,7 +178,7 @@ fn explains(
     let len = b - a;
     // The acceleration's residuals are x's then y's.
     let channels = match law {
-        TrackLaw::Oscillation | TrackLaw::Swing => 1,
+        TrackLaw::Oscillation | TrackLaw::Swing | TrackLaw::AngularOscillation => 1,
         TrackLaw::ConstantAcceleration => 2,
     };
     (0..channels).all(|c| {

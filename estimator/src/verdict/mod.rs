@@ -14,7 +14,7 @@ mod motion;
 mod plausible;
 mod premise;
 mod release;
-mod routes;
+pub mod routes;
 mod sampling;
 mod swing;
 mod training;
@@ -30,6 +30,25 @@ pub const CHOICE: &str = "choice";
 /// The verdict on `run`'s answer, from every check of [`CHECKS`].
 pub fn judge(run: &Run) -> Verdict {
     Verdict::of(CHECKS.iter().flat_map(|c| c.judge(run)).collect())
+}
+
+/// The checks that judge the answer's values themselves (how well they are determined, whether
+/// such a system could have them), not how the latent learned them.
+static ANSWER_CHECKS: &[&dyn Check] = &[&uncertainty::Determined, &plausible::Plausible];
+
+/// `verdict` with the reasons of the checks that judge the answer's values (`ANSWER_CHECKS`)
+/// judged again on `run`, whose values changed after the judgement (`guide::combine`: both
+/// routes' values weighed together); every other reason stands.
+pub fn rejudge_answer(verdict: Verdict, run: &Run) -> Verdict {
+    let names: Vec<&str> = ANSWER_CHECKS.iter().map(|c| c.name()).collect();
+    let kept = verdict
+        .reasons
+        .into_iter()
+        .filter(|r| !names.contains(&r.check));
+    Verdict::of(
+        kept.chain(ANSWER_CHECKS.iter().flat_map(|c| c.judge(run)))
+            .collect(),
+    )
 }
 
 /// One check of an answer.

@@ -263,6 +263,7 @@ mod tests {
             relative_error: None,
             standard_error,
             splits: Vec::new(),
+            routes: None,
         }]
     }
 

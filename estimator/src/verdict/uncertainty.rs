@@ -160,6 +160,7 @@ mod tests {
             relative_error: None,
             standard_error,
             splits: Vec::new(),
+            routes: None,
         }
     }
 

@@ -4,9 +4,9 @@
 
 pub mod browser;
 
-#[allow(unused_imports)]
-pub use physvid_testkit::stderr;
 pub use physvid_testkit::TestCommand;
+#[allow(unused_imports)]
+pub use physvid_testkit::{stderr, stdout};
 use std::path::{Path, PathBuf};
 
 /// `estimate` invocations.

@@ -3,7 +3,9 @@
 //! (γ0 = ω² + ζ², γ1 = 2ζ: the oscillator's z'' + γ1 z' + γ0 z = 0, and a swing's g/L at small
 //! angles), found by variable projection (ω and ζ searched, the rest solved for), and a
 //! constant acceleration in the picture's plane, p0 + v0 t + a t²/2 in x and y (a fall, a toss,
-//! a roll, the release's velocity free), and a swing about a pivot at any amplitude (`swing`).
+//! a roll, the release's velocity free), and a swing about a pivot (`swing`): its angle as the
+//! pendulum at any amplitude, or as the damped oscillator (a restoring turn that grows with the
+//! angle).
 //! Standard errors from the Jacobian, widened for residuals that follow one another (their
 //! lag-one correlation).
 
@@ -15,7 +17,7 @@ use acceleration::acceleration;
 use oscillation::oscillation;
 use physvid_shared::linalg::solve;
 use serde::Serialize;
-use swing::swing;
+use swing::{angular, swing};
 
 /// The laws a track is tried against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -24,13 +26,15 @@ pub enum TrackLaw {
     Oscillation,
     ConstantAcceleration,
     Swing,
+    AngularOscillation,
 }
 
 impl TrackLaw {
-    pub const ALL: [TrackLaw; 3] = [
+    pub const ALL: [TrackLaw; 4] = [
         TrackLaw::Oscillation,
         TrackLaw::ConstantAcceleration,
         TrackLaw::Swing,
+        TrackLaw::AngularOscillation,
     ];
 
     pub fn name(self) -> &'static str {
@@ -38,6 +42,7 @@ impl TrackLaw {
             TrackLaw::Oscillation => "oscillation",
             TrackLaw::ConstantAcceleration => "constant acceleration",
             TrackLaw::Swing => "swing",
+            TrackLaw::AngularOscillation => "angular oscillation",
         }
     }
 
@@ -47,7 +52,7 @@ impl TrackLaw {
         match self {
             TrackLaw::Oscillation => 5,
             TrackLaw::ConstantAcceleration => 6,
-            TrackLaw::Swing => 8,
+            TrackLaw::Swing | TrackLaw::AngularOscillation => 8,
         }
     }
 
@@ -65,6 +70,7 @@ impl TrackLaw {
             TrackLaw::Oscillation => oscillation(t, u, near.map(|f| f.shape)),
             TrackLaw::ConstantAcceleration => acceleration(t, xy),
             TrackLaw::Swing => swing(t, u, xy, near.map(|f| f.shape)),
+            TrackLaw::AngularOscillation => angular(t, u, xy, near.map(|f| f.shape)),
         }
     }
 }

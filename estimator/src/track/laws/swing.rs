@@ -53,17 +53,17 @@ fn integrate(t: &[f64], [w2, c, e, a0, v0]: [f64; 5]) -> Vec<f64> {
     out
 }
 
-/// The swing fitted to the picture positions `xy` at times `t` (their positions `u` along the
-/// axis give the curve drawn), from (c, Ω) = `start` where given; `None` where the path is no
-/// arc below a pivot spanning [`LEAST_ARC`], or the fit fails.
-pub(super) fn swing(
-    t: &[f64],
-    u: &[f64],
-    xy: &[(f64, f64)],
-    start: Option<[f64; 2]>,
-) -> Option<Fitted> {
-    let n = t.len();
-    if n < 8 {
+/// A path read as an arc below a pivot: the circle's radius and each point's angle from the
+/// vertical below its centre (radians).
+struct Arc {
+    radius: f64,
+    theta: Vec<f64>,
+}
+
+/// The arc of the picture positions `xy`; `None` where the path is no arc below a pivot
+/// spanning [`LEAST_ARC`].
+fn arc(xy: &[(f64, f64)]) -> Option<Arc> {
+    if xy.len() < 8 {
         return None;
     }
     let ((cx, cy), radius) = circle(xy)?;
@@ -77,9 +77,42 @@ pub(super) fn swing(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &a| {
             (l.min(a), h.max(a))
         });
-    if hi - lo < LEAST_ARC {
-        return None;
+    (hi - lo >= LEAST_ARC).then_some(Arc { radius, theta })
+}
+
+/// The angle about the pivot as the damped oscillator, θ'' + γ1 θ' + γ0 (θ − θe) = 0 (a swing
+/// whose restoring turn grows with its angle, as the oscillator's; `oscillation` on the
+/// angle), its residuals the arc's (pixels) and its amplitude in degrees; from (ζ, ω) = `start`
+/// where given. `None` where the path is no arc (`arc`) or the fit fails.
+pub(super) fn angular(
+    t: &[f64],
+    u: &[f64],
+    xy: &[(f64, f64)],
+    start: Option<[f64; 2]>,
+) -> Option<Fitted> {
+    let Arc { radius, theta } = arc(xy)?;
+    let mut f = oscillation(t, &theta, start)?;
+    f.residuals.iter_mut().for_each(|r| *r *= radius);
+    f.curve = u.iter().zip(&f.residuals).map(|(u, r)| u - r).collect();
+    for v in f.values.iter_mut().filter(|v| v.name == "amplitude") {
+        v.value = v.value.to_degrees();
+        v.error = v.error.to_degrees();
+        v.unit = "deg";
     }
+    Some(f)
+}
+
+/// The swing fitted to the picture positions `xy` at times `t` (their positions `u` along the
+/// axis give the curve drawn), from (c, Ω) = `start` where given; `None` where the path is no
+/// arc below a pivot spanning [`LEAST_ARC`], or the fit fails.
+pub(super) fn swing(
+    t: &[f64],
+    u: &[f64],
+    xy: &[(f64, f64)],
+    start: Option<[f64; 2]>,
+) -> Option<Fitted> {
+    let Arc { radius, theta } = arc(xy)?;
+    let n = t.len();
     let t0 = t[0];
     let ts: Vec<f64> = t.iter().map(|s| s - t0).collect();
     // Starts: the small-angle oscillation of the angle, its rate raised for the amplitude.

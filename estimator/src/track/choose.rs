@@ -1,0 +1,113 @@
+//! Which law the track follows: of the laws that hold on it, the one over the longest time,
+//! ties settled by penalised likelihood on common samples.
+
+use super::laws::TrackLaw;
+use super::LawSpan;
+
+/// The law that holds over the longest time; an oscillation only where its span holds at least
+/// one period (else nothing oscillated) and its amplitude does not grow by more than
+/// [`GROWING_ERRORS`] standard errors of its damping (a hand shaking the object drives it; a
+/// free motion loses energy); of spans within a tenth of the longest's length, the law of the
+/// least penalised likelihood (`penalised`) on the longest span's samples, where `refit` gives
+/// another law's residual there (pixels rms; `None` where it fits none).
+pub(super) fn choose(
+    laws: &[LawSpan],
+    refit: &dyn Fn(TrackLaw, usize, usize) -> Option<f64>,
+) -> Option<TrackLaw> {
+    let free = |l: &LawSpan| {
+        l.values
+            .iter()
+            .find(|v| v.name == "gamma1" || v.name == "damping")
+            .is_none_or(|d| d.value >= -GROWING_ERRORS * d.error)
+    };
+    let seen = |l: &&LawSpan| l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l);
+    let long = laws
+        .iter()
+        .filter(seen)
+        .max_by(|a, b| (a.last_s - a.first_s).total_cmp(&(b.last_s - b.first_s)))?;
+    let (first, n) = (long.first, long.samples);
+    let score = |l: &LawSpan| {
+        let rms = if l.law == long.law {
+            Some(l.rms_px)
+        } else {
+            refit(l.law, first, first + n)
+        };
+        rms.map_or(f64::INFINITY, |r| penalised(l.law, r, n))
+    };
+    laws.iter()
+        .filter(seen)
+        .filter(|l| l.last_s - l.first_s >= 0.9 * (long.last_s - long.first_s))
+        .min_by(|a, b| score(a).total_cmp(&score(b)))
+        .map(|l| l.law)
+}
+
+/// A span's fit by Schwarz's criterion a sample, ln(mean square) + k ln(n) / n (its residuals'
+/// Gaussian likelihood, a law's every free parameter charged ln n): a law with more freedom is
+/// chosen only where it follows the track closer than its freedom buys (a swing at 60° read as
+/// the angle's oscillation, not the sideways position's, whose picture is bent by the sine);
+/// between laws alike in fit, the one with less freedom.
+fn penalised(law: TrackLaw, rms: f64, samples: usize) -> f64 {
+    let n = samples.max(2) as f64;
+    (rms * rms).max(1e-12).ln() + law.freedom() as f64 * n.ln() / n
+}
+
+/// An oscillation whose damping is below zero by more than this many standard errors grows:
+/// something drives it.
+const GROWING_ERRORS: f64 = 3.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span(law: TrackLaw, seconds: f64, rms_px: f64) -> LawSpan {
+        LawSpan {
+            law,
+            holds: true,
+            first_s: 0.0,
+            last_s: seconds,
+            samples: (seconds * 20.0) as usize + 1,
+            values: Vec::new(),
+            halves: Vec::new(),
+            rms_px,
+            si: Vec::new(),
+            periods: Some(2.5),
+            curve: Vec::new(),
+            first: 0,
+        }
+    }
+
+    #[test]
+    fn of_spans_alike_in_length_the_law_that_follows_closer_than_its_freedom_costs() {
+        let laws = [
+            span(TrackLaw::Oscillation, 7.8, 0.97),
+            span(TrackLaw::AngularOscillation, 7.8, 0.47),
+        ];
+        let own = |law: TrackLaw, _: usize, _: usize| {
+            laws.iter().find(|l| l.law == law).map(|l| l.rms_px)
+        };
+        // Half the residual for three more parameters over 157 samples: the angle's.
+        assert_eq!(choose(&laws, &own), Some(TrackLaw::AngularOscillation));
+        // 2 % less residual does not pay for them (5 % would: e^(3 ln 157 / 314) = 1.049).
+        let close = [
+            laws[0].clone(),
+            span(TrackLaw::AngularOscillation, 7.8, 0.95),
+        ];
+        let own = |law: TrackLaw, _: usize, _: usize| {
+            close.iter().find(|l| l.law == law).map(|l| l.rms_px)
+        };
+        assert_eq!(choose(&close, &own), Some(TrackLaw::Oscillation));
+        // A shorter span is weighed by its fit refitted on the longest's samples.
+        let swing = [
+            span(TrackLaw::AngularOscillation, 5.1, 0.04),
+            span(TrackLaw::Swing, 4.65, 0.03),
+        ];
+        let refit = |law: TrackLaw, _: usize, _: usize| match law {
+            TrackLaw::Swing => Some(0.2),
+            _ => None,
+        };
+        assert_eq!(choose(&swing, &refit), Some(TrackLaw::AngularOscillation));
+        // A span under nine tenths of the longest is not weighed at all.
+        let short = [swing[0].clone(), span(TrackLaw::Swing, 4.0, 0.01)];
+        assert_eq!(choose(&short, &refit), Some(TrackLaw::AngularOscillation));
+    }
+}
