@@ -17,7 +17,7 @@ use crate::verdict::routes::ERRORS;
 
 /// The track's standard error of `v` over `span`: its fit's, or half the difference of its
 /// halves' values where that is more.
-pub fn track_error(span: &LawSpan, v: &Value) -> f64 {
+fn track_error(span: &LawSpan, v: &Value) -> f64 {
     let of = |half: &Vec<Value>| half.iter().find(|h| h.name == v.name).map(|h| h.value);
     let apart = match span.halves.as_slice() {
         [a, b] => of(a).zip(of(b)).map_or(0.0, |(a, b)| 0.5 * (a - b).abs()),

@@ -14,7 +14,7 @@ use crate::verdict;
 
 mod combine;
 mod reading;
-pub use combine::{combine, track_error};
+pub use combine::combine;
 pub use reading::second_route;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
@@ -241,15 +241,17 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
             .model_choice
             .as_ref()
             .and_then(choice::close::close_call);
-        report.verdict = verdict::judge(&report.run).with(close);
+        let judged = verdict::judge(&report.run).with(close);
         let combined = report
             .run
             .track
             .as_ref()
             .is_some_and(|route| combine(&mut report.run.parameters, route));
-        if combined {
-            report.verdict = verdict::rejudge_answer(report.verdict.clone(), &report.run);
-        }
+        report.verdict = if combined {
+            verdict::rejudge_answer(judged, &report.run)
+        } else {
+            judged
+        };
     }
 }
 

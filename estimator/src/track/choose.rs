@@ -34,11 +34,13 @@ pub(super) fn choose(
         };
         rms.map_or(f64::INFINITY, |r| penalised(l.law, r, n))
     };
+    // Each score once: a refit is a nonlinear fit.
     laws.iter()
         .filter(seen)
         .filter(|l| l.last_s - l.first_s >= 0.9 * (long.last_s - long.first_s))
-        .min_by(|a, b| score(a).total_cmp(&score(b)))
-        .map(|l| l.law)
+        .map(|l| (score(l), l.law))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, law)| law)
 }
 
 /// A span's fit by Schwarz's criterion a sample, ln(mean square) + k ln(n) / n (its residuals'

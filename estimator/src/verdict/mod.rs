@@ -14,7 +14,7 @@ mod motion;
 mod plausible;
 mod premise;
 mod release;
-pub mod routes;
+pub(crate) mod routes;
 mod sampling;
 mod swing;
 mod training;

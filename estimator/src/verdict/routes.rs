@@ -4,8 +4,9 @@
 //! picture and the law. An answer whose model does not oscillate, or whose rate lies away from
 //! the track's by more than both errors allow (two measurements of one number that disagree: one
 //! of them is wrong), is doubtful, and the reason names both; a latent rate without a standard
-//! error is held to the 2 % that separates a right answer from a wrong one. A constant acceleration in metres (by a stick or on a plane) is compared alike;
-//! by one stick, a track whose own halves disagree names perspective and `--plane`.
+//! error is held to the 2 % that separates a right answer from a wrong one. A constant
+//! acceleration in metres (by a stick or on a plane) is compared alike; by one stick, a track
+//! whose own halves disagree names perspective and `--plane`.
 
 use super::{consistency, Check, Grade, Reason};
 use crate::analysis::parameters::ParameterResult;
