@@ -26,8 +26,9 @@ use rank::Candidate;
 use std::path::{Path, PathBuf};
 
 /// Laws that differ only in what their answer is calibrated by: the frames cannot tell them
-/// apart, the calibration decides (the first when `--incline-deg` or meta.json gives an
-/// incline, the second otherwise).
+/// apart, the calibration or the track decides (the first when `--incline-deg` or meta.json
+/// gives an incline, or the track's constant acceleration lies off the picture's vertical,
+/// `data::falls`: a slide, a roll or a cart; the second otherwise).
 const SAME_LAW: &[(&str, &str)] = &[("sliding-block", "free-fall")];
 
 /// What a model choice reads of the request (`ChoiceRequest::of`).
@@ -112,7 +113,9 @@ pub fn candidates(
     };
     let calibration = meta.as_ref().map(|m| &m.calibration);
     let positions = req.positions || calibration.is_some_and(|c| !c.reference_positions.is_empty());
-    let incline = req.incline || calibration.is_some_and(|c| c.incline_deg.is_some());
+    let incline = req.incline
+        || calibration.is_some_and(|c| c.incline_deg.is_some())
+        || req.recording.tracked.is_some_and(|t| !t.falls());
     let left_out = |m: &ModelRef| {
         SAME_LAW.iter().any(|&(needs_incline, otherwise)| {
             m.name() == if incline { otherwise } else { needs_incline }
@@ -246,5 +249,41 @@ mod tests {
             (None, None),
             "a fall from rest is cut its own way"
         );
+    }
+
+    #[test]
+    fn a_tracked_acceleration_off_the_vertical_is_tried_as_a_slide() {
+        let names = |axis: Option<[f64; 2]>| {
+            let mut recording = RecordingRequest::default();
+            recording.tracked = axis.map(|axis| crate::data::TrackedMotion {
+                span: (0.0, 1.0),
+                release: Some(0.0),
+                axis,
+                travel: 0.5,
+                moving_before: false,
+            });
+            let req = ChoiceRequest {
+                input: PathBuf::from("clips.npy"),
+                recording,
+                positions: false,
+                incline: false,
+                files: Vec::new(),
+                in_memory: true,
+                memory_meta: None,
+            };
+            let (models, _) = candidates(&req).unwrap();
+            models.iter().map(|m| m.name()).collect::<Vec<_>>()
+        };
+        for (axis, tried, not) in [
+            (None, "free-fall", "sliding-block"),
+            (Some([0.02, 1.0]), "free-fall", "sliding-block"),
+            // A cart pulled along a level track, either way; a roll down a 20° ramp.
+            (Some([1.0, 0.0]), "sliding-block", "free-fall"),
+            (Some([-1.0, -1e-4]), "sliding-block", "free-fall"),
+            (Some([0.94, 0.34]), "sliding-block", "free-fall"),
+        ] {
+            let got = names(axis);
+            assert!(got.contains(&tried) && !got.contains(&not), "{axis:?}: {got:?}");
+        }
     }
 }

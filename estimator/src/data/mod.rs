@@ -26,7 +26,7 @@ mod tracked;
 
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};
-pub use request::{Frames, LoadRequest, RecordingRequest, TrackedMotion};
+pub use request::{falls, Frames, LoadRequest, RecordingRequest, TrackedMotion, FALL_DEG};
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;

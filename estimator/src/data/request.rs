@@ -93,6 +93,25 @@ pub struct TrackedMotion {
     pub moving_before: bool,
 }
 
+/// A fall's acceleration lies within this many degrees of the picture's vertical (a camera is
+/// levelled within a few: the shared drop's and toss's lie 1.4° and 1.7° off it; a ramp seen
+/// from the side shows its slope: the shared rolls' lie 68° and 71° off; one steeper than 60°
+/// is all but a fall); further off, a slide, a roll or a cart pulled along a level track.
+pub const FALL_DEG: f64 = 30.0;
+
+/// Whether an acceleration drawn along `axis` (the picture's, y down) is a fall's
+/// ([`FALL_DEG`]), not a slide's.
+pub fn falls(axis: [f64; 2]) -> bool {
+    (axis[1].atan2(axis[0]).to_degrees() - 90.0).abs() <= FALL_DEG
+}
+
+impl TrackedMotion {
+    /// Whether its acceleration is a fall's (`falls`), not a slide's.
+    pub fn falls(&self) -> bool {
+        falls(self.axis)
+    }
+}
+
 /// A recording's flags: decoding, framing and cutting into clips. Their model-dependent
 /// defaults (Table 5's clip) are resolved in `data::recording` once the model is known.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]

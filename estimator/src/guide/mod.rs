@@ -6,7 +6,7 @@
 
 use crate::choice;
 use crate::config::Request;
-use crate::data::{Framing, TrackedMotion};
+use crate::data::{falls, Framing, TrackedMotion};
 use crate::physics::ModelRef;
 use crate::report::Report;
 use crate::track::{LawSpan, TrackRoute};
@@ -69,17 +69,11 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     Some((g, why))
 }
 
-/// A fall's acceleration lies within this many degrees of the picture's vertical (a camera is
-/// levelled within a few: the shared drop's and toss's lie 1.4° and 1.7° off it; a ramp seen
-/// from the side shows its slope: the shared rolls' lie 68° and 71° off; one steeper than 60°
-/// is all but a fall); further off, a slide or a roll.
-pub const FALL_DEG: f64 = 30.0;
-
 /// Where a stick (`--stick`) or a plane (`--plane`) gives the track's scale and the track's
 /// chosen law is a constant acceleration that holds (`TrackRoute::accelerating`): the request
 /// whose latent route is calibrated by the track's readings (`TrackRoute::readings`, where no
 /// `--reference` is given, or one that fixes their origin); where the model is the tool's to
-/// choose, trained for the law the acceleration's direction names (`FALL_DEG`: free-fall, else
+/// choose, trained for the law the acceleration's direction names (`data::falls`: free-fall, else
 /// sliding-block); for a motion from rest, its release and line read from the track
 /// (`tracked_motion`). With the warning that says so.
 pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
@@ -102,10 +96,9 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     let direction = direction(span);
     if free {
         // In the picture, whichever way a plane's corners were given.
-        let [x, y] = route.picture_axis(span, direction);
-        let drawn = y.atan2(x).to_degrees();
-        let falls = (drawn - 90.0).abs() <= FALL_DEG;
-        let name = if falls { "free-fall" } else { "sliding-block" };
+        let axis = route.picture_axis(span, direction);
+        let drawn = axis[1].atan2(axis[0]).to_degrees();
+        let name = if falls(axis) { "free-fall" } else { "sliding-block" };
         g.choose = false;
         g.load.model = ModelRef::by_name(name);
         did.push(format!(
@@ -193,10 +186,16 @@ fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> Tracked
     }
 }
 
+/// A descent's acceleration points above the picture's horizontal by at most this many degrees
+/// (a camera's roll: levelled within a few, the shared drop's and toss's 1.4° and 1.7°; a cart
+/// pulled along a level track accelerates along it, a hair either side of the horizontal).
+pub const LEVEL_DEG: f64 = 10.0;
+
 /// Without a stick or a plane, where the track's chosen law is a constant acceleration that
-/// holds, points down the picture (gravity's pull: a fall's, a slide's or a roll's from rest;
-/// one that points up is no descent, whatever else moves so for a second, as a pendulum's bob
-/// past its lowest point) and its vertex lies where the track saw the object
+/// holds, does not point up the picture (gravity's pull, a fall's, a slide's or a roll's from
+/// rest, or a cart's pulled by a hanging mass, along a level track: [`LEVEL_DEG`]; one that
+/// points up is no descent, whatever else moves so for a second, as a pendulum's bob past its
+/// lowest point) and its vertex lies where the track saw the object
 /// (`tracked_motion`): a motion from rest (the model given, or each such candidate tried)
 /// released there and on the track's line, in place of the picture's guess; the model and its
 /// calibration as asked.
@@ -204,7 +203,7 @@ pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     let span = route
         .accelerating()
         .filter(|_| route.per_metre().is_none())
-        .filter(|s| direction(s).to_radians().sin() > 0.0)?;
+        .filter(|s| direction(s).to_radians().sin() >= -LEVEL_DEG.to_radians().sin())?;
     if req.load.model.is_some_and(|m| !m.released_from_rest()) {
         return None;
     }
@@ -283,6 +282,17 @@ mod tests {
             .filter(|v| v.name == "direction")
             .for_each(|v| v.value = -128.0);
         assert!(sighted(&req, &up).is_none());
+        // One along the picture's horizontal, a hair above it either way, is a cart's pulled
+        // along a level track.
+        for level in [-0.003, -179.999, 3.0] {
+            let mut cart = route.clone();
+            cart.laws[0]
+                .values
+                .iter_mut()
+                .filter(|v| v.name == "direction")
+                .for_each(|v| v.value = level);
+            assert!(sighted(&req, &cart).is_some(), "{level}");
+        }
         // With one, `measured` does the work; for a model not from rest, nothing.
         let stuck = route
             .clone()
