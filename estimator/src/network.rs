@@ -84,6 +84,7 @@ impl Network {
                 integrator: cfg.integrator,
                 dt: cfg.dt,
                 timed: data.train_start.is_some(),
+                rising: data.rising,
                 calibrated: reference.is_some(),
                 start: cfg.rollout_start,
             },

@@ -283,7 +283,10 @@ mod tests {
             (Some([0.94, 0.34]), "sliding-block", "free-fall"),
         ] {
             let got = names(axis);
-            assert!(got.contains(&tried) && !got.contains(&not), "{axis:?}: {got:?}");
+            assert!(
+                got.contains(&tried) && !got.contains(&not),
+                "{axis:?}: {got:?}"
+            );
         }
     }
 }

@@ -47,6 +47,9 @@ pub struct ClipData {
     /// gives `clip_start_times` (systems released from rest at the start of the recording).
     pub train_start: Option<Tensor>,
     pub val_start: Option<Tensor>,
+    /// The start times before the release are on the law's rise toward it (a toss,
+    /// `Descent::rising`), not at rest.
+    pub rising: bool,
     pub frames_per_clip: i64,
     pub inputs: i64,
     pub shape: [usize; 5],
@@ -257,7 +260,12 @@ pub fn load_clips(
         .zip(frames)
         .map(|(summary, f)| (summary, f.unsqueeze(0)));
     let background = &mean / &std;
+    let rising = recording
+        .as_ref()
+        .and_then(|(s, _)| s.descent)
+        .is_some_and(|d| d.rising);
     Ok(ClipData {
+        rising,
         background,
         train: all.narrow(0, 0, n_train),
         val: all.narrow(0, n_train, n_val),

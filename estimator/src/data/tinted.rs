@@ -115,6 +115,7 @@ pub fn in_colour(
     Some(Descent {
         crowded: crowded_against(&colour, &spread, end, alone),
         colour: true,
+        rising: false,
         ..grey.released_at(own.release)
     })
 }

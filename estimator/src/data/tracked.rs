@@ -1,8 +1,8 @@
 //! A descent read from the object's track (`TrackedMotion`: a constant acceleration the track
 //! holds, `guide::measured`): its release where the track saw it, and its line where the path's
-//! own is another (a toss's path bends; its fall is along the acceleration); the whole descent
-//! where the picture finds none. The track does the picture's work there: no colour, no
-//! share of the picture that moves.
+//! own is another (a toss's path bends; its fall is along the acceleration); a toss's rise kept
+//! with its fall; the whole descent where the picture finds none. The track does the picture's
+//! work there: no colour, no share of the picture that moves.
 
 use super::descent::Descent;
 use super::request::TrackedMotion;
@@ -77,18 +77,36 @@ pub fn descent(found: Option<Descent>, t: &TrackedMotion, g: &Geometry) -> Optio
             line: Line { axis, bend: 0.0 },
             crowded: 0.0,
             colour: false,
+            rising: false,
         };
-        return Some(d.released_at(release));
+        return Some(rising(d.released_at(release), t, g));
     };
     if let Some(r) = release {
-        d = d.released_at(r);
+        // The vertex of the law the track holds within its noise: no position pulled by
+        // a hand beside the object reads it (`Descent::crowded` is the picture's).
+        d = Descent {
+            crowded: 0.0,
+            ..d.released_at(r)
+        };
     }
+    d = rising(d, t, g);
     let cos = (axis[0] * d.line.axis[0] + axis[1] * d.line.axis[1]).abs();
     if cos < SAME_LINE {
         d.line = Line { axis, bend: 0.0 };
         d.bend = None;
     }
     Some(d)
+}
+
+/// `d`, where the track saw the object rise toward its release (`moving_before`: a toss), kept
+/// from the track's span's start, the law holding on both sides of the vertex.
+fn rising(mut d: Descent, t: &TrackedMotion, g: &Geometry) -> Descent {
+    if t.moving_before {
+        let start = g.frame(t.span.0).ceil().max(0.0) as usize;
+        d.first = start.min(d.release.floor().max(0.0) as usize);
+        d.rising = true;
+    }
+    d
 }
 
 #[cfg(test)]
@@ -120,7 +138,12 @@ mod tests {
         assert!((d.release - 15.0).abs() < 1e-9);
         assert_eq!(d.last, 45);
         assert_eq!(d.line.axis, [0.0, 1.0]);
-        assert!(d.first <= 15);
+        // A toss: kept from the track's span's start (1.2 s, frame 6), its rise.
+        assert_eq!((d.first, d.rising), (6, true));
+        let mut dropped = toss(Some(1.5));
+        dropped.moving_before = false;
+        let d = descent(None, &dropped, &geometry()).unwrap();
+        assert!(d.first > 6 && d.first <= 15 && !d.rising, "{d:?}");
         // A release the track did not see gives no descent of its own.
         assert!(descent(None, &toss(None), &geometry()).is_none());
     }
@@ -139,9 +162,16 @@ mod tests {
             },
             crowded: 0.0,
             colour: false,
+            rising: false,
         };
-        let d = descent(Some(picture), &toss(Some(1.2)), &geometry()).unwrap();
+        let crowded = Descent {
+            crowded: 0.4,
+            ..picture
+        };
+        let d = descent(Some(crowded), &toss(Some(1.2)), &geometry()).unwrap();
         assert_eq!(d.line.bend, 0.01);
+        // The release is the track's, not read where a hand crowds the picture.
+        assert_eq!(d.crowded, 0.0);
         assert!((d.release - 6.0).abs() < 1e-9);
         // Across the picture's line: the acceleration's, unbent.
         let mut across = toss(None);

@@ -36,17 +36,7 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let mut g = req.clone();
     g.choose = false;
     g.load.model = Some(model);
-    let framed = match r.crop {
-        None => {
-            let crop = route.frame_of(span);
-            g.load.recording.crop = Some(Framing::Track(crop));
-            format!(
-                ", framed on the object's path (--crop {},{},{},{})",
-                crop.x, crop.y, crop.w, crop.h
-            )
-        }
-        Some(_) => String::new(),
-    };
+    let framed = framed(&mut g, route, span);
     // Started from the track's answer (the oscillator's values by the same names).
     g.init = span
         .values
@@ -98,7 +88,11 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
         // In the picture, whichever way a plane's corners were given.
         let axis = route.picture_axis(span, direction);
         let drawn = axis[1].atan2(axis[0]).to_degrees();
-        let name = if falls(axis) { "free-fall" } else { "sliding-block" };
+        let name = if falls(axis) {
+            "free-fall"
+        } else {
+            "sliding-block"
+        };
         g.choose = false;
         g.load.model = ModelRef::by_name(name);
         did.push(format!(
@@ -143,13 +137,29 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     if did.is_empty() {
         return None;
     }
+    let framed = framed(&mut g, route, span);
     let why = format!(
         "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
-         file, read in metres ({}): the latent route {}",
+         file, read in metres ({}): the latent route {}{framed}",
         route.scale_flag().unwrap_or_default(),
         did.join(", and ")
     );
     Some((g, why))
+}
+
+/// `g` framed on the object's path over `span` (`TrackRoute::frame_of`) where no `--crop` is
+/// given (in place of where the picture moves most: a hand beside a toss), and the words that
+/// say so.
+fn framed(g: &mut Request, route: &TrackRoute, span: &LawSpan) -> String {
+    if g.load.recording.crop.is_some() {
+        return String::new();
+    }
+    let crop = route.frame_of(span);
+    g.load.recording.crop = Some(Framing::Track(crop));
+    format!(
+        ", framed on the object's path (--crop {},{},{},{})",
+        crop.x, crop.y, crop.w, crop.h
+    )
 }
 
 /// The direction of a constant acceleration's span (degrees from the picture's right, y down).
@@ -212,10 +222,11 @@ pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
     g.load.recording.tracked = Some(tracked);
+    let framed = framed(&mut g, route, span);
     let why = format!(
         "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
          file from its vertex at {release:.4} s: a fall or slide from rest is released there, on \
-         the track's line"
+         the track's line{framed}"
     );
     Some((g, why))
 }

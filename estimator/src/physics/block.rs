@@ -63,6 +63,8 @@ pub struct BlockOptions {
     pub dt: f64,
     /// The clips' start times since the release are known (motion from rest).
     pub timed: bool,
+    /// Times before the release are on the law's rise toward it (a toss), not at rest.
+    pub rising: bool,
     /// Reference frames of known value will be passed to [`PhysicsBlock::calibrate`].
     pub calibrated: bool,
     /// Where the oscillator's rollout starts.

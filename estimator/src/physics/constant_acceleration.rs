@@ -69,9 +69,9 @@ impl Model for ConstantAcceleration {
         &self.info
     }
     fn build(&self, path: &nn::Path, init: &[f64], opts: BlockOptions) -> Box<dyn PhysicsBlock> {
-        Box::new(ConstantAccelerationBlock::new(
-            path, init, opts.dt, opts.timed,
-        ))
+        Box::new(
+            ConstantAccelerationBlock::new(path, init, opts.dt, opts.timed).rising(opts.rising),
+        )
     }
     /// The acceleration in SI needs the latent's scale (g for free fall); the block's μ also
     /// the incline's angle.
@@ -170,7 +170,8 @@ impl MotionHooks for ConstantAcceleration {
 /// z'' = 0 at the extreme) and the calibrated acceleration comes out wrong. Known start times
 /// since the release pin it: the velocity at a clip's first frame is then a·t0, so the block
 /// rolls out from one frame, z\[k\] = z0 + a·t0·k·dt + a·(k·dt)²/2, which only the latent affine
-/// in s fits (times before the release, t0 + k·dt < 0, count as at rest). Without start times
+/// in s fits (times before the release, t0 + k·dt < 0, count as at rest; for a toss, `rising`,
+/// they are its rise, the same parabola on the vertex's other side). Without start times
 /// it rolls out from two frames, z\[k\] = z0 + k·(z1 − z0) + a·dt²·k(k−1)/2 (the paper's Euler
 /// step gives the same sequence).
 /// Parameter: acceleration a in latent units/s² (a/α in SI for z = α·s + c).
@@ -179,6 +180,7 @@ pub struct ConstantAccelerationBlock {
     per_frame: Tensor,
     dt: f64,
     timed: bool,
+    rising: bool,
 }
 
 impl ConstantAccelerationBlock {
@@ -187,7 +189,13 @@ impl ConstantAccelerationBlock {
             per_frame: path.var("accel_per_frame", &[], nn::Init::Const(init[0] * dt * dt)),
             dt,
             timed,
+            rising: false,
         }
+    }
+
+    /// The block whose times before the release are a toss's rise (`rising`), not rest.
+    pub fn rising(self, rising: bool) -> Self {
+        ConstantAccelerationBlock { rising, ..self }
     }
 }
 
@@ -205,9 +213,13 @@ impl PhysicsBlock for ConstantAccelerationBlock {
         match clips.start.filter(|_| self.timed) {
             Some(t0) => {
                 // From rest: frames before the release (t0 < 0, a recording's rest kept before
-                // its descent) stay where they are.
+                // its descent) stay where they are; a toss's rise is the parabola's other side.
                 let since = (t0 / self.dt).unsqueeze(1);
-                let moved = (&since + &k).clamp_min(0.0).square() - since.clamp_min(0.0).square();
+                let moved = if self.rising {
+                    (&since + &k).square() - since.square()
+                } else {
+                    (&since + &k).clamp_min(0.0).square() - since.clamp_min(0.0).square()
+                };
                 &z0 + &self.per_frame * moved * 0.5
             }
             None => {
@@ -273,5 +285,29 @@ mod tests {
             .max()
             .double_value(&[]);
         assert!(err > 1e-2, "{err}");
+    }
+
+    /// A clip across a toss's apex (from 0.1 s before it): the rising block rolls the
+    /// parabola through the vertex, the block from rest holds it still until the release.
+    #[test]
+    fn a_toss_rises_to_its_vertex_on_the_same_parabola() {
+        let vs = nn::VarStore::new(tch::Device::Cpu);
+        let (a, dt, t0) = (9.8, 1.0 / 30.0, -0.1);
+        let z: Vec<f32> = (0..8)
+            .map(|k| (a * (t0 + k as f64 * dt).powi(2) / 2.0) as f32)
+            .collect();
+        let z = Tensor::from_slice(&z).view([1, 8]);
+        let start = Tensor::from_slice(&[t0 as f32]);
+        let clips = Clips {
+            start: Some(&start),
+            ids: None,
+        };
+        let off = |b: ConstantAccelerationBlock| {
+            (b.rollout(&z, clips, 8) - &z).abs().max().double_value(&[])
+        };
+        let block = || ConstantAccelerationBlock::new(&vs.root(), &[a], dt, true);
+        let err = off(block().rising(true));
+        assert!(err < 1e-5, "{err}");
+        assert!(off(block()) > 1e-2);
     }
 }

@@ -145,6 +145,7 @@ mod tests {
             integrator: Integrator::Exact,
             dt,
             timed: false,
+            rising: false,
             calibrated: false,
             start: RolloutStart::Fit,
         };
@@ -182,6 +183,7 @@ mod tests {
             integrator: Integrator::Exact,
             dt,
             timed: false,
+            rising: false,
             calibrated: false,
             start: RolloutStart::Fit,
         };

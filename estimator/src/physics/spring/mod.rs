@@ -267,6 +267,7 @@ mod tests {
                 integrator: Integrator::Exact,
                 dt: 0.3,
                 timed: false,
+                rising: false,
                 calibrated: false,
                 start: crate::physics::RolloutStart::Fit,
             };
