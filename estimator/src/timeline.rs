@@ -91,7 +91,7 @@ pub fn timeline(
             let idx = Tensor::from_slice(&idx).to_device(frames.device());
             let x = frames.index_select(1, &idx);
             let t0 = data.train_start.as_ref().map(|_| {
-                Tensor::from_slice(&[(start as f64 / summary.fps) as f32])
+                Tensor::from_slice(&[summary.since_release(start) as f32])
                     .to_device(frames.device())
             });
             let clips = Clips {

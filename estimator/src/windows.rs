@@ -53,7 +53,7 @@ impl Windows {
         let starts = data.train_start.as_ref().map(|_| {
             let t: Vec<f32> = frames
                 .iter()
-                .map(|w| (w[0] as f64 / summary.fps) as f32)
+                .map(|w| summary.since_release(w[0]) as f32)
                 .collect();
             Tensor::from_slice(&t).to_device(device)
         });

@@ -43,7 +43,7 @@ pub(crate) fn recording_source(
         rec.summary
             .clip_starts
             .iter()
-            .map(|&s| (s as f64 - rec.summary.release) / rec.summary.fps)
+            .map(|&s| rec.summary.since_release(s))
             .collect()
     });
     Ok(Source {

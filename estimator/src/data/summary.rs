@@ -63,6 +63,12 @@ pub struct RecordingSummary {
 }
 
 impl RecordingSummary {
+    /// The time (s) from the release to `frame` of the part kept: a clip's or a window's start
+    /// time for a motion from rest (negative before it: the rest kept, or a toss's rise).
+    pub fn since_release(&self, frame: usize) -> f64 {
+        (frame as f64 - self.release) / self.fps
+    }
+
     /// The clip frame (clip, frame in it) nearest to `t` seconds of the recording's own
     /// timeline (as `--start` counts, at the container's frame rate; an image folder's at
     /// `--fps`), or why there is none. A time among the still frames left out at either end

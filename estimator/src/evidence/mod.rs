@@ -241,7 +241,10 @@ pub(crate) fn covariance(
 }
 
 /// The fold of the latent against the frames' principal components: a recording's every frame
-/// with its latent, or up to [`FOLD_FRAMES`] frames spread over a data set's clips.
+/// with its latent (for a toss, `Descent::rising`, those from its release on: its path's one
+/// branch, where the height along its acceleration the latent reads is one to one with the
+/// picture; up to the apex the other branch gives each height again, further across), or up
+/// to [`FOLD_FRAMES`] frames spread over a data set's clips.
 fn frames_fold(
     network: &Network,
     data: &ClipData,
@@ -251,11 +254,20 @@ fn frames_fold(
         return None;
     }
     let (frames, z, timed) = match (&data.recording, recording_latents) {
-        (Some((_, frames)), Some(latents)) => {
+        (Some((summary, frames)), Some(latents)) => {
+            let from = match summary.descent {
+                Some(d) if d.rising => {
+                    (summary.release.ceil().max(0.0) as usize).min(latents.len())
+                }
+                _ => 0,
+            };
             let f = frames.squeeze_dim(0);
             (
-                f,
-                latents.iter().map(|&v| v as f64).collect::<Vec<_>>(),
+                f.narrow(0, from as i64, f.size()[0] - from as i64),
+                latents[from..]
+                    .iter()
+                    .map(|&v| v as f64)
+                    .collect::<Vec<_>>(),
                 true,
             )
         }
