@@ -254,14 +254,16 @@ mod tests {
     #[test]
     fn a_tracked_acceleration_off_the_vertical_is_tried_as_a_slide() {
         let names = |axis: Option<[f64; 2]>| {
-            let mut recording = RecordingRequest::default();
-            recording.tracked = axis.map(|axis| crate::data::TrackedMotion {
-                span: (0.0, 1.0),
-                release: Some(0.0),
-                axis,
-                travel: 0.5,
-                moving_before: false,
-            });
+            let recording = RecordingRequest {
+                tracked: axis.map(|axis| crate::data::TrackedMotion {
+                    span: (0.0, 1.0),
+                    release: Some(0.0),
+                    axis,
+                    travel: 0.5,
+                    moving_before: false,
+                }),
+                ..RecordingRequest::default()
+            };
             let req = ChoiceRequest {
                 input: PathBuf::from("clips.npy"),
                 recording,

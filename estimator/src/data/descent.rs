@@ -48,16 +48,14 @@ pub struct Descent {
     /// The share of the early frames (the first 30 % of the way, where the release is read)
     /// on which what is measured spreads over 1.3× as far as later: something else moves or
     /// differs where the object starts (the shared ball: the hand that held it opening beside
-    /// it), which pulls those positions and the release with them (0 where the release is the
-    /// track's, `data::tracked`).
+    /// it), which pulls those positions and the release with them (0 for the track's release).
     pub crowded: f64,
     /// Whether the release was read on the object's path in colour (`tinted`: the grey
     /// difference was crowded where it starts, and its colour tells it apart) rather than on
     /// its grey difference's.
     pub colour: bool,
-    /// The track saw the object move toward its release before it (a toss's rise,
-    /// `TrackedMotion::moving_before`): the law holds on both sides of the vertex, and the
-    /// part kept starts where the track's span does, not at rest.
+    /// A toss's rise seen by the track (`TrackedMotion::moving_before`): the law holds on both
+    /// sides of the vertex, the part kept from the track's span's start, not at rest.
     pub rising: bool,
 }
 

@@ -6,15 +6,18 @@
 
 use crate::choice;
 use crate::config::Request;
-use crate::data::{falls, Framing, TrackedMotion};
+use crate::data::{falls, Framing};
 use crate::physics::ModelRef;
 use crate::report::Report;
 use crate::track::{LawSpan, TrackRoute};
 use crate::verdict;
 
 mod combine;
+mod descent;
 mod reading;
 pub use combine::combine;
+use descent::{direction, tracked_motion};
+pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
@@ -162,75 +165,6 @@ fn framed(g: &mut Request, route: &TrackRoute, span: &LawSpan) -> String {
     )
 }
 
-/// The direction of a constant acceleration's span (degrees from the picture's right, y down).
-fn direction(span: &LawSpan) -> f64 {
-    span.values
-        .iter()
-        .find(|v| v.name == "direction")
-        .map_or(0.0, |d| d.value)
-}
-
-/// The constant acceleration of `route` over `span` (pointing `direction` degrees from the
-/// picture's right) as a descent reads it: the release where the track saw it (the vertex
-/// within the span where the law holds, give or take a frame or three of its standard errors:
-/// one extrapolated from a span that starts later is the law's guess, not a sighting), the
-/// line, and whether the track saw it move before the release (the law's travel from the
-/// span's start to its vertex over the object's size: a toss's rise, no rest).
-fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> TrackedMotion {
-    let value = |name: &str| span.values.iter().find(|v| v.name == name);
-    let vertex = value("vertex").filter(|v| {
-        let frame = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
-        let slack = frame.max(3.0 * v.error);
-        (span.first_s - slack..=span.last_s + slack).contains(&v.value)
-    });
-    let rise = match (vertex, value("acceleration")) {
-        (Some(v), Some(a)) => 0.5 * a.value.abs() * (v.value - span.first_s).max(0.0).powi(2),
-        _ => 0.0,
-    };
-    TrackedMotion {
-        span: route.file_span(span),
-        release: vertex.map(|v| route.file_time(v.value)),
-        axis: route.picture_axis(span, direction),
-        travel: route.travel(span),
-        moving_before: rise > route.track.size,
-    }
-}
-
-/// A descent's acceleration points above the picture's horizontal by at most this many degrees
-/// (a camera's roll: levelled within a few, the shared drop's and toss's 1.4° and 1.7°; a cart
-/// pulled along a level track accelerates along it, a hair either side of the horizontal).
-pub const LEVEL_DEG: f64 = 10.0;
-
-/// Without a stick or a plane, where the track's chosen law is a constant acceleration that
-/// holds, does not point up the picture (gravity's pull, a fall's, a slide's or a roll's from
-/// rest, or a cart's pulled by a hanging mass, along a level track: [`LEVEL_DEG`]; one that
-/// points up is no descent, whatever else moves so for a second, as a pendulum's bob past its
-/// lowest point) and its vertex lies where the track saw the object
-/// (`tracked_motion`): a motion from rest (the model given, or each such candidate tried)
-/// released there and on the track's line, in place of the picture's guess; the model and its
-/// calibration as asked.
-pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
-    let span = route
-        .accelerating()
-        .filter(|_| route.per_metre().is_none())
-        .filter(|s| direction(s).to_radians().sin() >= -LEVEL_DEG.to_radians().sin())?;
-    if req.load.model.is_some_and(|m| !m.released_from_rest()) {
-        return None;
-    }
-    let tracked = tracked_motion(route, span, direction(span));
-    let release = tracked.release?;
-    let (first, last) = route.file_span(span);
-    let mut g = req.clone();
-    g.load.recording.tracked = Some(tracked);
-    let framed = framed(&mut g, route, span);
-    let why = format!(
-        "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
-         file from its vertex at {release:.4} s: a fall or slide from rest is released there, on \
-         the track's line{framed}"
-    );
-    Some((g, why))
-}
-
 /// The request the track guides: its clear oscillation's (`guided`), else, with a stick or a
 /// plane, its constant acceleration's (`measured`), else a release it saw (`sighted`).
 pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
@@ -269,60 +203,6 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
 mod tests {
     use super::*;
     use crate::track::metres::tests::tossed;
-
-    #[test]
-    fn a_release_the_track_saw_is_taken_and_a_rise_before_it_is_no_rest() {
-        let route = tossed();
-        let span = route.accelerating().unwrap();
-        // The toss rises 19 px (over its 6 px size) from the span's start to its apex.
-        let t = tracked_motion(&route, span, 90.0);
-        let apex = t.release.unwrap();
-        assert!((apex - 1.375).abs() < 1e-6, "{apex}");
-        assert!(t.moving_before);
-        // Without a stick, every fall or slide from rest is released there.
-        let req = Request::new("toss.mp4");
-        let (g, why) = sighted(&req, &route).unwrap();
-        let got = g.load.recording.tracked.unwrap();
-        assert_eq!((got.release, got.moving_before), (t.release, true));
-        assert!(why.contains("released there"), "{why}");
-        // An acceleration up the picture is no descent from rest (a bob past its lowest point).
-        let mut up = route.clone();
-        up.laws[0]
-            .values
-            .iter_mut()
-            .filter(|v| v.name == "direction")
-            .for_each(|v| v.value = -128.0);
-        assert!(sighted(&req, &up).is_none());
-        // One along the picture's horizontal, a hair above it either way, is a cart's pulled
-        // along a level track.
-        for level in [-0.003, -179.999, 3.0] {
-            let mut cart = route.clone();
-            cart.laws[0]
-                .values
-                .iter_mut()
-                .filter(|v| v.name == "direction")
-                .for_each(|v| v.value = level);
-            assert!(sighted(&req, &cart).is_some(), "{level}");
-        }
-        // With one, `measured` does the work; for a model not from rest, nothing.
-        let stuck = route
-            .clone()
-            .with_stick(crate::calibration::Stick::parse("0,0:0,200=1").unwrap());
-        assert!(sighted(&req, &stuck).is_none());
-        let mut osc = req.clone();
-        osc.load.model = ModelRef::by_name("damped-oscillator");
-        assert!(sighted(&osc, &route).is_none());
-        // A vertex where the span starts (a drop from rest): no rise before it.
-        let mut dropped = route.clone();
-        let l = &mut dropped.laws[0];
-        let first = l.first_s;
-        l.values
-            .iter_mut()
-            .filter(|v| v.name == "vertex")
-            .for_each(|v| v.value = first);
-        let t = tracked_motion(&dropped, dropped.accelerating().unwrap(), 90.0);
-        assert!(t.release.is_some() && !t.moving_before);
-    }
 
     #[test]
     fn with_a_stick_one_reading_fixes_the_origin() {
