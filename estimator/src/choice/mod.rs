@@ -261,6 +261,7 @@ mod tests {
                     axis,
                     travel: 0.5,
                     moving_before: false,
+                    frame: None,
                 }),
                 ..RecordingRequest::default()
             };

@@ -5,7 +5,7 @@
 use super::probe::RecordingPlan;
 use super::summary::RecordingSummary;
 use super::{framing, kept, object, stillness};
-use super::{LoadRequest, RecordingRequest, Source};
+use super::{Framing, LoadRequest, RecordingRequest, Source};
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::contact_sheet::{contact_sheet, encode_png};
@@ -86,13 +86,22 @@ pub fn load_recording(
         MAX_DEFAULT_CLIPS,
     )?;
     let started = std::time::Instant::now();
-    // What the encoder sees: the flag's rectangle, the whole frame, or where it moves.
+    // What the encoder sees: the flag's rectangle, the whole frame, a fall's or slide's path on
+    // its track, or where it moves.
+    let on_path = RecordingRequest {
+        crop: flags.tracked.and_then(|t| t.frame).map(Framing::Track),
+        ..flags.clone()
+    };
+    let framed_by = match flags.crop {
+        None if model.released_from_rest() && on_path.crop.is_some() => &on_path,
+        _ => flags,
+    };
     let framing::Framed {
         crop,
         how: framing,
         survey,
         size,
-    } = framing::frame(input, info.as_ref(), flags)?;
+    } = framing::frame(input, info.as_ref(), framed_by)?;
     let survey_s = started.elapsed().as_secs_f64();
     let mut opts = VideoOptions {
         fps: Some(fps),

@@ -91,6 +91,10 @@ pub struct TrackedMotion {
     /// The track saw the object move, by more than its own size, before the release (a toss's
     /// rise): what comes before the release is no rest, and a reading there is not taken at it.
     pub moving_before: bool,
+    /// The rectangle of the displayed frame the object keeps to over the span: a fall's or a
+    /// slide's frames where no `--crop` is given (not where the picture moves most: a hand
+    /// beside a toss); other models keep their own framing.
+    pub frame: Option<physvid_shared::video::Crop>,
 }
 
 /// A fall's acceleration lies within this many degrees of the picture's vertical (a camera is

@@ -129,6 +129,7 @@ mod tests {
             release,
             axis: [0.0, 1.0],
             travel: 0.4,
+            frame: None,
         }
     }
 

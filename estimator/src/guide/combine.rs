@@ -11,20 +11,8 @@
 //! (`verdict::rejudge_answer`).
 
 use crate::analysis::parameters::{ParameterResult, RouteValues};
-use crate::track::laws::Value;
-use crate::track::{LawSpan, TrackRoute};
+use crate::track::TrackRoute;
 use crate::verdict::routes::ERRORS;
-
-/// The track's standard error of `v` over `span`: its fit's, or half the difference of its
-/// halves' values where that is more.
-fn track_error(span: &LawSpan, v: &Value) -> f64 {
-    let of = |half: &Vec<Value>| half.iter().find(|h| h.name == v.name).map(|h| h.value);
-    let apart = match span.halves.as_slice() {
-        [a, b] => of(a).zip(of(b)).map_or(0.0, |(a, b)| 0.5 * (a - b).abs()),
-        _ => 0.0,
-    };
-    v.error.max(apart)
-}
 
 /// `p` combined with the track's value `v` (standard error `e`), where both have a standard
 /// error and they agree.
@@ -61,7 +49,8 @@ pub fn combine(parameters: &mut [ParameterResult], route: &TrackRoute) -> bool {
         let Some(v) = span.values.iter().find(|v| v.name == p.name) else {
             continue;
         };
-        if let Some(c) = combined(p, v.value, track_error(span, v)) {
+        let error = span.error_of(v.name).unwrap_or(v.error);
+        if let Some(c) = combined(p, v.value, error) {
             *p = c;
             any = true;
         }
@@ -72,6 +61,8 @@ pub fn combine(parameters: &mut [ParameterResult], route: &TrackRoute) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::track::laws::Value;
+    use crate::track::LawSpan;
 
     fn latent(estimate: f64, error: f64) -> ParameterResult {
         ParameterResult {
@@ -134,10 +125,15 @@ mod tests {
             curve: Vec::new(),
             first: 0,
         };
+        let error = |span: &LawSpan, whole: Value| {
+            let mut span = span.clone();
+            span.values = vec![whole];
+            span.error_of("gamma1").unwrap()
+        };
         span.halves = vec![vec![v(0.0686, 0.003)], vec![v(0.0533, 0.004)]];
-        assert!((track_error(&span, &v(0.059, 0.0038)) - 0.00765).abs() < 1e-12);
-        assert_eq!(track_error(&span, &v(0.059, 0.01)), 0.01);
+        assert!((error(&span, v(0.059, 0.0038)) - 0.00765).abs() < 1e-12);
+        assert_eq!(error(&span, v(0.059, 0.01)), 0.01);
         span.halves.clear();
-        assert_eq!(track_error(&span, &v(0.059, 0.0038)), 0.0038);
+        assert_eq!(error(&span, v(0.059, 0.0038)), 0.0038);
     }
 }

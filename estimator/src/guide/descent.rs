@@ -2,7 +2,6 @@
 //! a fall or slide from rest reads them (`tracked_motion`), and the request it guides without a
 //! stick or a plane (`sighted`).
 
-use super::framed;
 use crate::config::Request;
 use crate::data::TrackedMotion;
 use crate::track::{LawSpan, TrackRoute};
@@ -38,6 +37,19 @@ pub(super) fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64)
         axis: route.picture_axis(span, direction),
         travel: route.travel(span),
         moving_before: rise > route.track.size,
+        frame: Some(route.frame_of(span)),
+    }
+}
+
+/// Where no `--crop` is given, the words that say a descent's frames are its path's
+/// (`TrackedMotion::frame`).
+pub(super) fn on_path(req: &Request, t: &TrackedMotion) -> String {
+    match (req.load.recording.crop, t.frame) {
+        (None, Some(c)) => format!(
+            ", its frames framed on the object's path (--crop {},{},{},{})",
+            c.x, c.y, c.w, c.h
+        ),
+        _ => String::new(),
     }
 }
 
@@ -67,7 +79,7 @@ pub fn sighted(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
     g.load.recording.tracked = Some(tracked);
-    let framed = framed(&mut g, route, span);
+    let framed = on_path(req, &tracked);
     let why = format!(
         "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
          file from its vertex at {release:.4} s: a fall or slide from rest is released there, on \

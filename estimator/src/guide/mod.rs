@@ -16,7 +16,7 @@ mod combine;
 mod descent;
 mod reading;
 pub use combine::combine;
-use descent::{direction, tracked_motion};
+use descent::{direction, on_path, tracked_motion};
 pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
 
@@ -104,8 +104,12 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
         ));
     }
     if g.load.model.is_some_and(|m| m.released_from_rest()) {
-        g.load.recording.tracked = Some(tracked_motion(route, span, direction));
-        did.push("read its release and line from the track".into());
+        let tracked = tracked_motion(route, span, direction);
+        g.load.recording.tracked = Some(tracked);
+        did.push(format!(
+            "read its release and line from the track{}",
+            on_path(req, &tracked)
+        ));
     }
     if !typed || origin.is_some() {
         let from = g
@@ -140,10 +144,9 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
     if did.is_empty() {
         return None;
     }
-    let framed = framed(&mut g, route, span);
     let why = format!(
         "the object's track accelerates at a constant rate over {first:.2}–{last:.2} s of the \
-         file, read in metres ({}): the latent route {}{framed}",
+         file, read in metres ({}): the latent route {}",
         route.scale_flag().unwrap_or_default(),
         did.join(", and ")
     );
@@ -151,8 +154,8 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
 }
 
 /// `g` framed on the object's path over `span` (`TrackRoute::frame_of`) where no `--crop` is
-/// given (in place of where the picture moves most: a hand beside a toss), and the words that
-/// say so.
+/// given (in place of where the picture moves most: a hand beside the mass), and the words that
+/// say so. A descent's path frames its fall's or slide's frames alone (`TrackedMotion::frame`).
 fn framed(g: &mut Request, route: &TrackRoute, span: &LawSpan) -> String {
     if g.load.recording.crop.is_some() {
         return String::new();

@@ -37,6 +37,21 @@ pub struct LawSpan {
     pub first: usize,
 }
 
+impl LawSpan {
+    /// The standard error of its value `name`: its fit's, or half the difference of its
+    /// halves' values where that is more (a bias that changes over the span, as a light
+    /// circling the scene or a perspective gives, shows there and not in the fit's residuals).
+    pub fn error_of(&self, name: &str) -> Option<f64> {
+        let v = self.values.iter().find(|v| v.name == name)?;
+        let of = |half: &Vec<Value>| half.iter().find(|h| h.name == name).map(|h| h.value);
+        let apart = match self.halves.as_slice() {
+            [a, b] => of(a).zip(of(b)).map_or(0.0, |(a, b)| 0.5 * (a - b).abs()),
+            _ => 0.0,
+        };
+        Some(v.error.max(apart))
+    }
+}
+
 /// The track route's answer: the track, every law's span, and the law chosen (the one that
 /// holds over the longest time; an oscillation only where its span holds a whole period).
 #[derive(Debug, Clone, Serialize)]

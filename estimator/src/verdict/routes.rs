@@ -114,7 +114,8 @@ const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
 
 /// Where a stick or a plane puts the track's constant acceleration in metres
 /// (`TrackRoute::with_stick`, `TrackRoute::on_plane`): the latent's acceleration in SI compared
-/// with it as two measurements of one number, by the same limits as the rates (`separation`);
+/// with it as two measurements of one number, by the same limits as the rates (`separation`),
+/// the track's error the larger of its fit's and its halves' (`LawSpan::error_of`);
 /// and, on a plane, its perspective named where the picture's scale changes along the path by
 /// more than [`APART`] (what one stick would have been off by there); by one stick, where the
 /// track's own halves disagree (`one_stick`).
@@ -143,8 +144,21 @@ fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
         )
         .measured(change, APART)
     });
-    let a = l.si.iter().find(|v| v.name == "acceleration");
-    let disagree = a.and_then(|a| apart(check, a, &r.parameters, by));
+    // Its error widened by its halves' (`LawSpan::error_of`), in metres as the value is.
+    let a = l.si.iter().find(|v| v.name == "acceleration").map(|a| {
+        let px = l.values.iter().find(|v| v.name == "acceleration");
+        let widened = px
+            .zip(l.error_of("acceleration"))
+            .filter(|(px, _)| px.value != 0.0)
+            .map_or(a.error, |(px, e)| {
+                a.error.max(e * (a.value / px.value).abs())
+            });
+        Value {
+            error: widened,
+            ..a.clone()
+        }
+    });
+    let disagree = a.and_then(|a| apart(check, &a, &r.parameters, by));
     perspective
         .into_iter()
         .chain(one_stick(check, route, l))
