@@ -1,8 +1,9 @@
 //! A descent read from the object's track (`TrackedMotion`: a constant acceleration the track
-//! holds, `guide::measured`): its release where the track saw it, and its line where the path's
-//! own is another (a toss's path bends; its fall is along the acceleration); a toss's rise kept
-//! with its fall; the whole descent where the picture finds none. The track does the picture's
-//! work there: no colour, no share of the picture that moves.
+//! holds, `guide::measured` and `guide::sighted`): its release where the track saw it, and its
+//! line where the path's own is another (a toss's path bends; its fall is along the
+//! acceleration); a toss's rise kept with its fall; the whole descent where the picture finds
+//! none. The track does the picture's work there: no colour, no share of the picture that
+//! moves.
 
 use super::descent::Descent;
 use super::request::TrackedMotion;
