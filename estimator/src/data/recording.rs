@@ -88,12 +88,15 @@ pub fn load_recording(
     let started = std::time::Instant::now();
     // What the encoder sees: the flag's rectangle, the whole frame, a fall's or slide's path on
     // its track, or where it moves.
-    let on_path = RecordingRequest {
-        crop: flags.tracked.and_then(|t| t.frame).map(Framing::Track),
-        ..flags.clone()
-    };
-    let framed_by = match flags.crop {
-        None if model.released_from_rest() && on_path.crop.is_some() => &on_path,
+    let on_path;
+    let framed_by = match (flags.crop, flags.tracked.and_then(|t| t.frame)) {
+        (None, Some(c)) if model.released_from_rest() => {
+            on_path = RecordingRequest {
+                crop: Some(Framing::Track(c)),
+                ..flags.clone()
+            };
+            &on_path
+        }
         _ => flags,
     };
     let framing::Framed {

@@ -5,6 +5,7 @@
 use crate::config::Request;
 use crate::data::TrackedMotion;
 use crate::track::{LawSpan, TrackRoute};
+use physvid_shared::video::Crop;
 
 /// The direction of a constant acceleration's span (degrees from the picture's right, y down).
 pub(super) fn direction(span: &LawSpan) -> f64 {
@@ -45,12 +46,17 @@ pub(super) fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64)
 /// (`TrackedMotion::frame`).
 pub(super) fn on_path(req: &Request, t: &TrackedMotion) -> String {
     match (req.load.recording.crop, t.frame) {
-        (None, Some(c)) => format!(
-            ", its frames framed on the object's path (--crop {},{},{},{})",
-            c.x, c.y, c.w, c.h
-        ),
+        (None, Some(c)) => format!(", its frames{}", path_words(c)),
         _ => String::new(),
     }
+}
+
+/// The words that say frames are framed on the object's path `c`.
+pub(super) fn path_words(c: Crop) -> String {
+    format!(
+        " framed on the object's path (--crop {},{},{},{})",
+        c.x, c.y, c.w, c.h
+    )
 }
 
 /// A descent's acceleration points above the picture's horizontal by at most this many degrees

@@ -9,14 +9,14 @@ use crate::config::Request;
 use crate::data::{falls, Framing};
 use crate::physics::ModelRef;
 use crate::report::Report;
-use crate::track::{LawSpan, TrackRoute};
+use crate::track::TrackRoute;
 use crate::verdict;
 
 mod combine;
 mod descent;
 mod reading;
 pub use combine::combine;
-use descent::{direction, on_path, tracked_motion};
+use descent::{direction, on_path, path_words, tracked_motion};
 pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
 
@@ -39,7 +39,16 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let mut g = req.clone();
     g.choose = false;
     g.load.model = Some(model);
-    let framed = framed(&mut g, route, span);
+    // Framed on the object's path where no --crop is given (not where the picture moves
+    // most: a hand beside the mass).
+    let framed = match r.crop {
+        None => {
+            let crop = route.frame_of(span);
+            g.load.recording.crop = Some(Framing::Track(crop));
+            format!(",{}", path_words(crop))
+        }
+        Some(_) => String::new(),
+    };
     // Started from the track's answer (the oscillator's values by the same names).
     g.init = span
         .values
@@ -151,21 +160,6 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
         did.join(", and ")
     );
     Some((g, why))
-}
-
-/// `g` framed on the object's path over `span` (`TrackRoute::frame_of`) where no `--crop` is
-/// given (in place of where the picture moves most: a hand beside the mass), and the words that
-/// say so. A descent's path frames its fall's or slide's frames alone (`TrackedMotion::frame`).
-fn framed(g: &mut Request, route: &TrackRoute, span: &LawSpan) -> String {
-    if g.load.recording.crop.is_some() {
-        return String::new();
-    }
-    let crop = route.frame_of(span);
-    g.load.recording.crop = Some(Framing::Track(crop));
-    format!(
-        ", framed on the object's path (--crop {},{},{},{})",
-        crop.x, crop.y, crop.w, crop.h
-    )
 }
 
 /// The request the track guides: its clear oscillation's (`guided`), else, with a stick or a
