@@ -9,6 +9,7 @@ use crate::config::Request;
 use crate::data::{falls, Framing};
 use crate::physics::ModelRef;
 use crate::report::Report;
+use crate::track::laws::TrackLaw;
 use crate::track::TrackRoute;
 use crate::verdict;
 
@@ -34,7 +35,14 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         && r.start.is_none()
         && r.end.is_none();
     let span = route.guiding().filter(|_| free)?;
-    let model = ModelRef::by_name("damped-oscillator")?;
+    // A swing's period depends on its amplitude: the pendulum, on the track's angles.
+    let swings = span.law == TrackLaw::Swing;
+    let name = if swings {
+        "pendulum"
+    } else {
+        "damped-oscillator"
+    };
+    let model = ModelRef::by_name(name)?;
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
     g.choose = false;
@@ -60,10 +68,25 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     // The end is excluded: half a frame past the last sample.
     let step = (last - first) / (span.samples.max(2) - 1) as f64;
     g.load.recording.end = Some(last + 0.5 * step);
+    // The pendulum's angle scale from the track's angles, where none were typed.
+    let c = &req.calibration;
+    let angles = match swings && c.values.is_empty() && c.times.is_empty() {
+        true => route.angles(span),
+        false => Vec::new(),
+    };
+    let calibrated = match angles.len() {
+        0 => String::new(),
+        k => format!(", calibrated by the track's {k} angles about its pivot"),
+    };
+    if !angles.is_empty() {
+        g.load.recording.measured_at = angles.iter().map(|a| a.0).collect();
+        g.calibration.times = angles;
+    }
     let why = format!(
-        "the object's track oscillates over {:.2}–{:.2} s of the file ({:.1} periods): the \
-         latent route trained the damped-oscillator there{framed}, started from the track's \
-         answer (give --model or --start to choose yourself)",
+        "the object's track {} over {:.2}–{:.2} s of the file ({:.1} periods): the latent \
+         route trained the {name} there{framed}, started from the track's answer{calibrated} \
+         (give --model or --start to choose yourself)",
+        span.law.verb(),
         first,
         last,
         span.periods.unwrap_or(0.0)

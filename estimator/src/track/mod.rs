@@ -1,12 +1,15 @@
 //! The object's own track, the second route to an answer: a recording decoded at
 //! [`TRACK_SIDE`] pixels, what differs from its median background followed from frame to frame
-//! (`blobs`, `link`), the longest-lived thing kept, its position along its motion's own axis,
-//! and each law of `laws` fitted where it holds (`segment`). It reads no model and trains
+//! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
+//! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
+//! it holds (`segment`). It reads no model and trains
 //! nothing: seconds on a recording, and an answer to set beside the latent's.
 
+mod angles;
 pub mod blobs;
 mod choose;
 mod fit;
+mod guiding;
 pub mod laws;
 pub mod link;
 pub(crate) mod metres;
@@ -15,9 +18,10 @@ mod route;
 pub mod segment;
 pub mod template;
 
-pub use route::{LawSpan, TrackRoute, GUIDING_ERROR, GUIDING_PERIODS};
+pub use guiding::{GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
+pub use route::{LawSpan, TrackRoute};
 
-use physvid_shared::video::{small_frames, VideoError, VideoInfo};
+use physvid_shared::video::{small_chroma, small_frames, SmallFrames, VideoError, VideoInfo};
 use serde::Serialize;
 use std::path::Path;
 use template::Match;
@@ -173,7 +177,8 @@ pub fn follow_file(
 
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
-/// where it holds: what `follow` chooses among.
+/// where it holds; where no law explains any of them, the same of the frames' colour
+/// (`small_chroma`): what `follow` chooses among.
 pub fn candidates(
     input: &Path,
     info: &VideoInfo,
@@ -186,8 +191,6 @@ pub fn candidates(
         return Ok(Vec::new());
     }
     let (w, h) = frames.size;
-    let bg = blobs::background(&frames);
-    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(&frames, i, &bg)).collect();
     let (t_all, file_all) = times(info, span, n, fps);
     let mut steps: Vec<f64> = t_all
         .windows(2)
@@ -196,24 +199,43 @@ pub fn candidates(
         .collect();
     steps.sort_by(f64::total_cmp);
     let frame_s = steps.get(steps.len() / 2).copied().unwrap_or(1.0 / 30.0);
-    let reach = (FASTEST * frame_s).min(0.5) * w.max(h) as f64;
-    let tracklets = link::tracklets(&found, reach, LEAST_FRAMES, LEAST_EXTENT);
-    let scale = info.width.max(info.height) as f64 / w.max(h) as f64;
     let clock = Clock {
         t: &t_all,
         file: &file_all,
-        scale,
+        scale: info.width.max(info.height) as f64 / w.max(h) as f64,
         picture: (info.width, info.height),
+        reach: (FASTEST * frame_s).min(0.5) * w.max(h) as f64,
     };
-    Ok(tracklets
+    let mut all = readings(&frames, &clock);
+    // Where no law explains what the grey shows, the same frames' colour: an object as
+    // bright as the wall behind it differs there (read second: a ball's colour follows it
+    // through its bounce too, whose arc outlasts the drop the grey kept).
+    if !all.iter().any(|c| c.explained() > 0.0) {
+        let chroma = small_chroma(input, info, span, TRACK_SIDE)?;
+        if chroma.len() == n && chroma.size == frames.size {
+            all.extend(readings(&chroma, &clock));
+        }
+    }
+    Ok(all)
+}
+
+/// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
+/// tracklets that move the most, each read as its blobs' centroids and as its picture's
+/// matches.
+fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
+    let n = frames.len();
+    let bg = blobs::background(frames);
+    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, &bg)).collect();
+    let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
+    tracklets
         .iter()
         .take(TRIED)
         .flat_map(|t| {
             let size = t.usual_area().sqrt();
-            [(centroids(t), size), (template::refine(&frames, t), size)]
+            [(centroids(t), size), (template::refine(frames, t), size)]
         })
-        .filter_map(|(sightings, size)| route_of(&sightings, size, &clock, n, bg.threshold))
-        .collect())
+        .filter_map(|(sightings, size)| route_of(&sightings, size, clock, n, bg.threshold))
+        .collect()
 }
 
 /// The frames' times, their scale to the displayed picture and its size.
@@ -222,6 +244,8 @@ struct Clock<'a> {
     file: &'a [f64],
     scale: f64,
     picture: (usize, usize),
+    /// How far the object may move in a frame (pixels of the frames read).
+    reach: f64,
 }
 
 /// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against

@@ -1,6 +1,5 @@
-//! The track route's answer: each law's span on the track, the law chosen, and whether its
-//! oscillation is clear enough to guide the latent route (`guiding`) and to judge its answer
-//! (`verdict::routes`).
+//! The track route's answer: each law's span on the track, the law chosen, how much motion it
+//! explains and how long it holds, and the frame and times of its span.
 
 use super::laws::{TrackLaw, Value};
 use super::Track;
@@ -74,24 +73,7 @@ pub const FRAME_SIZES: f64 = 4.0;
 /// …or by this share of the frame's short side, where that is more.
 pub const FRAME_SHARE: f64 = 0.1;
 
-/// The track's oscillation guides the latent where its span holds at least this many periods…
-pub const GUIDING_PERIODS: f64 = 2.0;
-/// …and its γ0's standard error is at most this share of it.
-pub const GUIDING_ERROR: f64 = 0.01;
-
 impl TrackRoute {
-    /// The chosen law's span where it is an oscillation clear enough to set the latent's law,
-    /// span and start (`GUIDING_PERIODS`, `GUIDING_ERROR`).
-    pub fn guiding(&self) -> Option<&LawSpan> {
-        let l = self.chosen_span()?;
-        let g = l.values.iter().find(|v| v.name == "gamma0")?;
-        (matches!(l.law, TrackLaw::Oscillation | TrackLaw::AngularOscillation)
-            && l.holds
-            && l.periods.unwrap_or(0.0) >= GUIDING_PERIODS
-            && g.error <= GUIDING_ERROR * g.value.abs())
-        .then_some(l)
-    }
-
     /// How much motion the chosen law explains: its span's samples times their variance
     /// (pixels²) in what the law is fitted to: along the axis for an oscillation or a swing, in
     /// the picture's plane (x and y) for an acceleration, fitted in both (a toss's bent path
@@ -236,12 +218,12 @@ fn bounds(v: &[f64], l: &LawSpan) -> (f64, f64) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A route whose object moves between `x` 100–140 and `y` 50–60 of a 400×300 picture (its
     /// size 6 px), its one law holding on samples 2..8.
-    fn route() -> (TrackRoute, LawSpan) {
+    pub(crate) fn route() -> (TrackRoute, LawSpan) {
         let n = 10;
         let x: Vec<f64> = (0..n)
             .map(|i| {

@@ -123,7 +123,7 @@ pub(super) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
     };
     let (measured, limit) = routes::separation(p, &g);
     // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
-    routes::RATE_NAMES.contains(&p.name.as_str())
+    crate::track::RATE_NAMES.contains(&p.name.as_str())
         && a.error.is_finite()
         && b.error.is_finite()
         && apart([a.value, b.value], [a.error, b.error]).is_none()

@@ -12,8 +12,8 @@ use super::{consistency, Check, Grade, Reason};
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
-use crate::track::GUIDING_PERIODS;
 use crate::track::{LawSpan, TrackRoute};
+use crate::track::{GUIDING_PERIODS, RATE_NAMES};
 use physvid_shared::cli::approx;
 
 pub struct Routes;
@@ -23,9 +23,6 @@ pub struct Routes;
 pub const ERRORS: f64 = 3.0;
 /// …or, where the latent's rate has no standard error, further apart than this share.
 pub const APART: f64 = 0.02;
-
-/// The names a rate² goes by among the models' values.
-pub(super) const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
 
 /// How far the latent's rate `p` lies from the track's `g`, and the limit beyond which they
 /// disagree: joint standard errors against [`ERRORS`], or, where `p` has none, the share of
@@ -49,14 +46,16 @@ impl Check for Routes {
             return accelerations(self.name(), r);
         };
         let periods = span.periods.unwrap_or(0.0);
-        let Some(g) = span.values.iter().find(|v| v.name == "gamma0") else {
+        let Some(g) = span.rate() else {
             return Vec::new();
         };
         let track = format!(
-            "the object's track oscillates over {}–{} s ({} periods) with γ0 {} ± {} 1/s^2",
+            "the object's track {} over {}–{} s ({} periods) with {} {} ± {} 1/s^2",
+            span.law.verb(),
             approx(span.first_s),
             approx(span.last_s),
             approx(periods),
+            g.symbol(),
             approx(g.value),
             approx(g.error)
         );

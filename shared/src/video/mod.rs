@@ -24,7 +24,7 @@ pub use decode::decode;
 pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::FrameResizer;
-pub use small::{small_frames, SmallFrames};
+pub use small::{small_chroma, small_frames, SmallFrames};
 pub use still::still;
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 

@@ -1,11 +1,12 @@
-//! A recording decoded whole to grey at a small size (the long side at most a given number of
-//! pixels, a byte a pixel), held in memory: what the survey and the object's track read.
+//! A recording decoded whole at a small size (the long side at most a given number of pixels,
+//! a byte a pixel: its grey, or its colour's distance from grey), held in memory: what the
+//! survey and the object's track read.
 
-use super::tools::{gray_frames, read_full, tool, trimmed_input, EVERY_FRAME};
+use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{VideoError, VideoInfo};
 use std::path::Path;
 
-/// Grey frames of one size, row-major, one after another.
+/// Frames of one size (grey, or chroma: `small_chroma`), row-major, one after another.
 pub struct SmallFrames {
     pub pixels: Vec<u8>,
     pub size: (usize, usize),
@@ -33,8 +34,37 @@ impl SmallFrames {
 pub fn small_frames(
     input: &Path,
     info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    side: usize,
+) -> Result<SmallFrames, VideoError> {
+    decode_small(input, info, span, side, Picture::Grey)
+}
+
+/// `input` decoded as [`small_frames`] decodes it, each pixel its colour's distance from grey
+/// instead of its brightness (the chroma: √((U − 128)² + (V − 128)²) of its YUV, 0 for every
+/// grey): a coloured object before a wall as bright as it stands out here and not in the grey.
+pub fn small_chroma(
+    input: &Path,
+    info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    side: usize,
+) -> Result<SmallFrames, VideoError> {
+    decode_small(input, info, span, side, Picture::Chroma)
+}
+
+/// What a small frame's byte holds.
+#[derive(Clone, Copy, PartialEq)]
+enum Picture {
+    Grey,
+    Chroma,
+}
+
+fn decode_small(
+    input: &Path,
+    info: &VideoInfo,
     (start, end): (Option<f64>, Option<f64>),
     side: usize,
+    picture: Picture,
 ) -> Result<SmallFrames, VideoError> {
     let scale = (side as f64 / info.width.max(info.height) as f64).min(1.0);
     let w = ((info.width as f64 * scale).round() as usize).max(2);
@@ -49,11 +79,23 @@ pub fn small_frames(
             None => format!("scale={w}:{h}:flags=area"),
         },
     ]);
-    let (mut child, mut stdout) = gray_frames(cmd, input)?;
+    let n = w * h;
+    let (format, planes) = match picture {
+        Picture::Grey => ("gray", 1),
+        Picture::Chroma => ("yuv444p", 3),
+    };
+    let (mut child, mut stdout) = raw_frames(cmd, input, format)?;
     let mut pixels = Vec::new();
-    let mut buf = vec![0u8; w * h];
-    while read_full(&mut stdout, &mut buf).is_ok_and(|n| n == buf.len()) {
-        pixels.extend_from_slice(&buf);
+    let mut buf = vec![0u8; n * planes];
+    while read_full(&mut stdout, &mut buf).is_ok_and(|k| k == buf.len()) {
+        match picture {
+            Picture::Grey => pixels.extend_from_slice(&buf),
+            Picture::Chroma => pixels.extend((0..n).map(|p| {
+                let u = buf[n + p] as f64 - 128.0;
+                let v = buf[2 * n + p] as f64 - 128.0;
+                u.hypot(v).round().min(255.0) as u8
+            })),
+        }
     }
     let _ = child.wait();
     Ok(SmallFrames {

@@ -46,6 +46,16 @@ impl TrackLaw {
         }
     }
 
+    /// What the track does where the law holds, for a sentence ("the track swings over …").
+    pub fn verb(self) -> &'static str {
+        match self {
+            TrackLaw::Oscillation => "oscillates",
+            TrackLaw::ConstantAcceleration => "accelerates at a constant rate",
+            TrackLaw::Swing => "swings",
+            TrackLaw::AngularOscillation => "oscillates about a pivot",
+        }
+    }
+
     /// Free parameters of the law (both coordinates for the acceleration; the swing's circle
     /// and its five).
     pub fn freedom(self) -> usize {
@@ -82,6 +92,18 @@ pub struct Value {
     pub value: f64,
     pub error: f64,
     pub unit: &'static str,
+}
+
+impl Value {
+    /// Its symbol in a sentence (γ0, g/L; else its name).
+    pub fn symbol(&self) -> &'static str {
+        match self.name {
+            "gamma0" => "γ0",
+            "gamma1" => "γ1",
+            "g_over_l" => "g/L",
+            other => other,
+        }
+    }
 }
 
 /// A law fitted to one span.

@@ -1,7 +1,8 @@
 //! A swing about a pivot, in the motion's own coordinate: the pivot and the radius fitted to
 //! the path (a circle by algebraic least squares), the angle from the vertical below the pivot,
 //! and θ'' = −Ω² sin(θ − θe) − c θ' (a pendulum at any amplitude; θe a camera's roll)
-//! integrated by RK4 and fitted by Levenberg–Marquardt, its residuals the arc's (pixels).
+//! integrated by RK4 and fitted by Levenberg–Marquardt, its residuals the arc's (pixels); θe is
+//! its value `rest` (degrees).
 
 use super::oscillation::oscillation;
 use super::{covariance, jacobian, least_squares, linear, sum_sq, Fitted, Value};
@@ -170,6 +171,12 @@ pub(super) fn swing(
                 error: 0.0,
                 unit: "deg",
             },
+            Value {
+                name: "rest",
+                value: e.to_degrees(),
+                error: cov[2 * k + 2].max(0.0).sqrt().to_degrees(),
+                unit: "deg",
+            },
         ],
         residuals: r,
         curve,
@@ -215,6 +222,7 @@ mod tests {
         assert!(g.error > 0.0 && g.error < 0.1, "{g:?}");
         assert!((f.value("damping").unwrap().value - 0.2).abs() < 0.01);
         assert!((f.value("amplitude").unwrap().value - 90.0).abs() < 1.0);
+        assert!(f.value("rest").unwrap().value.abs() < 0.1);
         assert!(f.rms() < 0.1, "{}", f.rms());
         // The small-angle oscillation cannot follow it.
         let small = oscillation(&t, &u, None).unwrap();
