@@ -127,9 +127,10 @@ def generate(
 @dataclass(frozen=True)
 class Parameter:
     """One answer: its value, standard error (None where unknown), unit, ``SI`` or ``latent``,
-    and the truth with the relative error where the data set gives them; where the value
-    combines the latent's and the track's (weighed by their errors), ``routes`` holds each
-    one's (``latent``, ``latent_error``, ``track``, ``track_error``)."""
+    and the truth with the relative error where the data set gives them; where the track
+    measured the value too, ``routes`` holds each route's (``latent``, ``latent_error``: None
+    where it has none, ``track``, ``track_error``) and ``agree``: the value is both weighed by
+    their errors where they agree, else the track's."""
 
     name: str
     value: float
@@ -138,7 +139,7 @@ class Parameter:
     units: str
     truth: Optional[float] = None
     relative_error: Optional[float] = None
-    routes: Optional[Dict[str, float]] = None
+    routes: Optional[Dict[str, Any]] = None
 
 
 @dataclass(frozen=True)

@@ -32,27 +32,41 @@ pub struct ParameterResult {
 }
 
 /// One value as each route measured it (the track's error the larger of its fit's and half
-/// its halves' difference).
+/// its halves' difference; the latent's `None` where it has none), and whether they agree (the
+/// value is then both weighed by their errors, else the track's).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RouteValues {
     pub latent: f64,
-    pub latent_error: f64,
+    pub latent_error: Option<f64>,
     pub track: f64,
     pub track_error: f64,
+    #[serde(default = "agreed")]
+    pub agree: bool,
+}
+
+/// Reports written before `agree` was: every value combined agreed.
+fn agreed() -> bool {
+    true
 }
 
 impl ParameterResult {
-    /// Where the value combines both routes: each one's, in a phrase ("the latent's 0.117 ±
-    /// 0.03 and the track's 0.076 ± 0.0015, weighed by their errors").
+    /// Where the value is both routes' or the track's: each one's, in a phrase ("both routes,
+    /// the latent's 0.117 ± 0.03 and the track's 0.076 ± 0.0015, weighed by their errors").
     pub fn routes_phrase(&self) -> Option<String> {
         let r = self.routes?;
-        Some(format!(
-            "the latent's {} ± {} and the track's {} ± {}, weighed by their errors",
-            sig(r.latent),
-            significant(r.latent_error),
-            sig(r.track),
-            significant(r.track_error)
-        ))
+        let latent = match r.latent_error {
+            Some(e) => format!("{} ± {}", sig(r.latent), significant(e)),
+            None => format!("{} (no standard error)", sig(r.latent)),
+        };
+        let track = format!("{} ± {}", sig(r.track), significant(r.track_error));
+        Some(match r.agree {
+            true => format!(
+                "both routes, the latent's {latent} and the track's {track}, weighed by their errors"
+            ),
+            false => format!(
+                "the track's {track}; the latent's {latent} disagrees with it (the routes check)"
+            ),
+        })
     }
 
     /// The result for a derived value, with the truth looked up in `truth` by its key.

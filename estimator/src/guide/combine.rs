@@ -1,61 +1,124 @@
 //! Both routes' answer: where the track oscillates clearly (`TrackRoute::guiding`), a value both
-//! routes measured (the oscillator's γ0 and γ1) on which they agree within the routes check's
-//! [`ERRORS`] joint standard errors is reported as their precision-weighted mean, two
-//! measurements of one number, each route's own kept beside it (`ParameterResult::routes`).
+//! routes measured (the oscillator's γ0 and γ1, the pendulum's g/L and damping) on which they
+//! agree within the routes check's `ERRORS` joint standard errors is reported as their
+//! precision-weighted mean, two measurements of one number; where they disagree, the track's:
+//! it is read off the object's own path with no encoder between the picture and the law, and
+//! the latent's is the second opinion (`verdict::routes` names the disagreement: doubtful).
+//! Each route's own value is kept beside it (`ParameterResult::routes`), and a value the model
+//! derives from one that changed (the pendulum's length from g/L) is carried with it.
 //! The track's error is the larger of its fit's and half the difference of its span's halves
 //! (a bias that changes over the span, as a light circling the scene gives, shows there and not
-//! in the fit's residuals). Where they disagree, or the latent's value has no standard error,
-//! the latent's stands (the `routes` check names a γ0 that disagrees). The verdict is judged
-//! on the latent's own values before this, and the checks of the answer's values themselves
-//! (how well they are determined, whether they are physical) again after it
-//! (`verdict::rejudge_answer`).
+//! in the fit's residuals). The verdict is judged on the latent's own values before this, and
+//! the checks of the answer's values themselves (how well they are determined, whether they are
+//! physical) again after it (`verdict::rejudge_answer`).
 
 use crate::analysis::parameters::{ParameterResult, RouteValues};
+use crate::analysis::Run;
+use crate::calibration::{Calibration, DerivedValue, Readings};
+use crate::physics::ModelRef;
+use crate::track::laws::Value;
 use crate::track::TrackRoute;
-use crate::verdict::routes::ERRORS;
+use crate::verdict::routes::separation;
 
-/// `p` combined with the track's value `v` (standard error `e`), where both have a standard
-/// error and they agree.
-fn combined(p: &ParameterResult, v: f64, e: f64) -> Option<ParameterResult> {
-    let s = p.standard_error.filter(|s| *s > 0.0 && s.is_finite())?;
-    if !(e > 0.0 && e.is_finite() && v.is_finite()) || (p.estimate - v).abs() > ERRORS * s.hypot(e)
-    {
+/// `p` and the track's value `v` (standard error `e`) as one: their precision-weighted mean
+/// where both have a standard error and they agree, else the track's where they disagree;
+/// `None` where the track's is not a measurement (no finite value or error).
+fn combined(p: &ParameterResult, v: &Value, e: f64) -> Option<ParameterResult> {
+    if !(e > 0.0 && e.is_finite() && v.value.is_finite()) {
         return None;
     }
-    let (wl, wt) = (1.0 / (s * s), 1.0 / (e * e));
-    let estimate = (wl * p.estimate + wt * v) / (wl + wt);
+    let track = Value {
+        error: e,
+        ..v.clone()
+    };
+    let (apart, limit) = separation(p, &track);
+    let s = p.standard_error.filter(|s| *s > 0.0 && s.is_finite());
+    let (estimate, standard_error) = match s {
+        Some(s) if apart <= limit => {
+            let (wl, wt) = (1.0 / (s * s), 1.0 / (e * e));
+            (
+                (wl * p.estimate + wt * v.value) / (wl + wt),
+                (wl + wt).sqrt().recip(),
+            )
+        }
+        None if apart <= limit => return None,
+        _ => (v.value, e),
+    };
     Some(ParameterResult {
         estimate,
-        standard_error: Some((wl + wt).sqrt().recip()),
+        standard_error: Some(standard_error),
         relative_error: p.truth.filter(|t| *t != 0.0).map(|t| (estimate - t) / t),
         routes: Some(RouteValues {
             latent: p.estimate,
             latent_error: s,
-            track: v,
+            track: v.value,
             track_error: e,
+            agree: apart <= limit,
         }),
         ..p.clone()
     })
 }
 
-/// `parameters` with each value that the clearly oscillating track measured too combined with
-/// it where the two agree (`combined`); the rest as they are. Whether any was.
-pub fn combine(parameters: &mut [ParameterResult], route: &TrackRoute) -> bool {
+/// `run`'s values with each one the clearly oscillating track measured too made one with it
+/// (`combined`), and the values the model derives from them carried along (`carry`); the rest
+/// as they are. Whether any changed.
+pub fn combine(run: &mut Run, route: &TrackRoute) -> bool {
     let Some(span) = route.guiding() else {
         return false;
     };
-    let mut any = false;
-    for p in parameters.iter_mut() {
+    let mut params = run.final_values.clone();
+    let names = run.config.model.parameter_names();
+    let mut changed = Vec::new();
+    for p in run.parameters.iter_mut() {
         let Some(v) = span.values.iter().find(|v| v.name == p.name) else {
             continue;
         };
         let error = span.error_of(v.name).unwrap_or(v.error);
-        if let Some(c) = combined(p, v.value, error) {
+        if let Some(c) = combined(p, v, error) {
+            if let Some(i) = names.iter().position(|n| *n == p.name) {
+                params[i] = c.estimate;
+            }
+            changed.push(p.name.clone());
             *p = c;
-            any = true;
         }
     }
-    any
+    if !changed.is_empty() {
+        let (model, cal) = (run.config.model, &run.calibration);
+        let was = &run.final_values;
+        carry(model, cal, [was, &params], &mut run.parameters, &changed);
+    }
+    !changed.is_empty()
+}
+
+/// Each value of `parameters` not in `changed` that `model` derives from its block's
+/// parameters differently at `now` (the changed values put in) than at `was` (the latent's):
+/// scaled by the ratio of the two derivations, its standard error alike (the pendulum's length,
+/// g over g/L).
+fn carry(
+    model: ModelRef,
+    cal: &Calibration,
+    [was, now]: [&[f64]; 2],
+    parameters: &mut [ParameterResult],
+    changed: &[String],
+) {
+    let readings = Readings::default();
+    let (was, now) = (
+        model.derive(was, cal, &readings).0,
+        model.derive(now, cal, &readings).0,
+    );
+    for p in parameters.iter_mut().filter(|p| !changed.contains(&p.name)) {
+        let of = |rows: &[DerivedValue]| rows.iter().find(|v| v.name == p.name).map(|v| v.estimate);
+        let Some((a, b)) = of(&was).zip(of(&now)) else {
+            continue;
+        };
+        let ratio = b / a;
+        if a == b || !ratio.is_finite() || ratio == 0.0 {
+            continue;
+        }
+        p.estimate *= ratio;
+        p.standard_error = p.standard_error.map(|s| s * ratio.abs());
+        p.relative_error = p.truth.filter(|t| *t != 0.0).map(|t| (p.estimate - t) / t);
+    }
 }
 
 #[cfg(test)]
@@ -78,29 +141,61 @@ mod tests {
         }
     }
 
+    fn track(value: f64) -> Value {
+        Value {
+            name: "gamma1",
+            value,
+            error: 0.0,
+            unit: "1/s",
+        }
+    }
+
     #[test]
     fn two_measurements_that_agree_are_weighed_by_their_errors() {
         // The latent's 0.117 ± 0.030 and the track's 0.076 ± 0.0015 (a light circling a
         // rod and bob): the track's weighs 400 times more.
-        let c = combined(&latent(0.117, 0.030), 0.076, 0.0015).unwrap();
+        let c = combined(&latent(0.117, 0.030), &track(0.076), 0.0015).unwrap();
         let w = (1.0 / 0.03f64.powi(2), 1.0 / 0.0015f64.powi(2));
         let want = (w.0 * 0.117 + w.1 * 0.076) / (w.0 + w.1);
         assert!((c.estimate - want).abs() < 1e-12, "{}", c.estimate);
         assert!((c.standard_error.unwrap() - (w.0 + w.1).sqrt().recip()).abs() < 1e-12);
         assert!((c.relative_error.unwrap() - (want / 0.08 - 1.0)).abs() < 1e-12);
         let r = c.routes.unwrap();
-        assert_eq!((r.latent, r.track), (0.117, 0.076));
+        assert_eq!((r.latent, r.track, r.agree), (0.117, 0.076, true));
     }
 
     #[test]
-    fn two_that_disagree_or_a_latent_without_an_error_stay_the_latents() {
-        // 4 joint standard errors apart.
+    fn where_they_disagree_the_answer_is_the_tracks() {
+        // 4 joint standard errors apart: the track's, with its error, the latent's beside it.
         let far = 0.076 + 4.0 * 0.010f64.hypot(0.0015);
-        assert!(combined(&latent(far, 0.010), 0.076, 0.0015).is_none());
+        let c = combined(&latent(far, 0.010), &track(0.076), 0.0015).unwrap();
+        assert_eq!((c.estimate, c.standard_error), (0.076, Some(0.0015)));
+        assert!((c.relative_error.unwrap() - (0.076 / 0.08 - 1.0)).abs() < 1e-12);
+        let r = c.routes.unwrap();
+        assert_eq!(
+            (r.latent, r.latent_error, r.agree),
+            (far, Some(0.010), false)
+        );
+        // 2.9 apart: weighed.
+        let near = 0.076 + 2.9 * 0.010f64.hypot(0.0015);
+        assert!(
+            combined(&latent(near, 0.010), &track(0.076), 0.0015)
+                .unwrap()
+                .routes
+                .unwrap()
+                .agree
+        );
+        // A latent without an error: the track's where they are more than 2 % apart, else
+        // the latent's stands.
         let mut bare = latent(0.08, 0.01);
         bare.standard_error = None;
-        assert!(combined(&bare, 0.076, 0.0015).is_none());
-        assert!(combined(&latent(0.08, 0.01), 0.076, f64::NAN).is_none());
+        let c = combined(&bare, &track(0.076), 0.0015).unwrap();
+        assert_eq!((c.estimate, c.routes.unwrap().latent_error), (0.076, None));
+        bare.estimate = 0.0765;
+        assert!(combined(&bare, &track(0.076), 0.0015).is_none());
+        // A track's value that is no measurement changes nothing.
+        assert!(combined(&latent(0.08, 0.01), &track(0.076), f64::NAN).is_none());
+        assert!(combined(&latent(0.08, 0.01), &track(f64::NAN), 0.001).is_none());
     }
 
     #[test]
@@ -135,5 +230,34 @@ mod tests {
         assert_eq!(error(&span, v(0.059, 0.01)), 0.01);
         span.halves.clear();
         assert_eq!(error(&span, v(0.059, 0.0038)), 0.0038);
+    }
+
+    #[test]
+    fn a_value_derived_from_one_that_changed_is_carried_with_it() {
+        // The pendulum's length is g over g/L: the latent's g/L 123.4 put at the track's 18.02.
+        let model = ModelRef::by_name("pendulum").unwrap();
+        let cal = Calibration {
+            g: 9.81,
+            ..Calibration::default()
+        };
+        let was = [123.43, 5e-4, 1.0, 0.0];
+        let now = [18.02, 5e-4, 1.0, 0.0];
+        let length = cal.g / was[0];
+        let mut parameters = vec![latent(length, 0.01 * length), latent(5e-4, 1e-4)];
+        parameters[0].name = "length".into();
+        parameters[1].name = "damping".into();
+        carry(
+            model,
+            &cal,
+            [&was, &now],
+            &mut parameters,
+            &["g_over_l".into()],
+        );
+        assert!((parameters[0].estimate - cal.g / 18.02).abs() < 1e-12);
+        assert!(
+            (parameters[0].standard_error.unwrap() / parameters[0].estimate - 0.01).abs() < 1e-12
+        );
+        // The damping did not change: as it was.
+        assert_eq!(parameters[1].estimate, 5e-4);
     }
 }

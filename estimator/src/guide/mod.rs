@@ -194,8 +194,8 @@ pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
 }
 
 /// `report` with the track and the route's warnings set on its run, its verdict judged again
-/// with them (the model choice's close call kept), then each value both routes measured alike
-/// combined (`combine`) and the answer's own checks judged again on it
+/// with them (the model choice's close call kept), then each value both routes measured made
+/// one (`combine`: both weighed where they agree, else the track's) and the answer's own checks judged again on it
 /// (`verdict::rejudge_answer`).
 pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
     report.run.warnings.extend(warnings);
@@ -206,11 +206,11 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
             .as_ref()
             .and_then(choice::close::close_call);
         let judged = verdict::judge(&report.run).with(close);
-        let combined = report
-            .run
-            .track
+        let route = report.run.track.take();
+        let combined = route
             .as_ref()
-            .is_some_and(|route| combine(&mut report.run.parameters, route));
+            .is_some_and(|route| combine(&mut report.run, route));
+        report.run.track = route;
         report.verdict = if combined {
             verdict::rejudge_answer(judged, &report.run)
         } else {

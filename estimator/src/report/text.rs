@@ -39,7 +39,7 @@ impl Report {
         }
         for p in &self.run.parameters {
             if let Some(both) = p.routes_phrase() {
-                s += &format!("{}: both routes, {both}\n", p.name);
+                s += &format!("{}: {both}\n", p.name);
             }
         }
         if let Some(c) = &self.run.cross_check {

@@ -46,8 +46,8 @@ impl TrackRoute {
 #[cfg(test)]
 mod tests {
     use crate::track::laws::TrackLaw;
+    use crate::track::reading::{route_of, Clock};
     use crate::track::template::Match;
-    use crate::track::{route_of, Clock};
 
     #[test]
     fn a_swing_s_angles_are_read_from_its_rest() {

@@ -14,6 +14,7 @@ pub mod laws;
 pub mod link;
 pub(crate) mod metres;
 mod plane;
+mod reading;
 mod route;
 pub mod segment;
 pub mod template;
@@ -21,10 +22,10 @@ pub mod template;
 pub use guiding::{GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 pub use route::{LawSpan, TrackRoute};
 
-use physvid_shared::video::{small_chroma, small_frames, SmallFrames, VideoError, VideoInfo};
+use physvid_shared::video::{small_chroma, small_frames, VideoError, VideoInfo};
+use reading::{readings, Clock};
 use serde::Serialize;
 use std::path::Path;
-use template::Match;
 
 /// The long side of the frames the track is read on (pixels).
 pub const TRACK_SIDE: usize = 320;
@@ -217,98 +218,4 @@ pub fn candidates(
         }
     }
     Ok(all)
-}
-
-/// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
-/// tracklets that move the most, each read as its blobs' centroids and as its picture's
-/// matches.
-fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
-    let n = frames.len();
-    let bg = blobs::background(frames);
-    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, &bg)).collect();
-    let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
-    tracklets
-        .iter()
-        .take(TRIED)
-        .flat_map(|t| {
-            let size = t.usual_area().sqrt();
-            [(centroids(t), size), (template::refine(frames, t), size)]
-        })
-        .filter_map(|(sightings, size)| route_of(&sightings, size, clock, n, bg.threshold))
-        .collect()
-}
-
-/// The frames' times, their scale to the displayed picture and its size.
-struct Clock<'a> {
-    t: &'a [f64],
-    file: &'a [f64],
-    scale: f64,
-    picture: (usize, usize),
-    /// How far the object may move in a frame (pixels of the frames read).
-    reach: f64,
-}
-
-/// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against
-/// its usual size.
-fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
-    let usual = tracklet.usual_area();
-    tracklet
-        .frames
-        .iter()
-        .zip(&tracklet.blobs)
-        .map(|(&k, b)| {
-            let score = b.area.min(usual) / b.area.max(usual);
-            (
-                k,
-                Match {
-                    x: b.x,
-                    y: b.y,
-                    score,
-                },
-            )
-        })
-        .collect()
-}
-
-/// The route of one reading of a tracklet (`centroids`, or `template`'s matches): the axis, the
-/// noise and each law's span.
-fn route_of(
-    matches: &[(usize, Match)],
-    size: f64,
-    clock: &Clock,
-    n: usize,
-    threshold: f64,
-) -> Option<TrackRoute> {
-    if matches.len() < LEAST_FRAMES {
-        return None;
-    }
-    let scale = clock.scale;
-    let t: Vec<f64> = matches.iter().map(|(k, _)| clock.t[*k]).collect();
-    let file_s: Vec<f64> = matches.iter().map(|(k, _)| clock.file[*k]).collect();
-    let x: Vec<f64> = matches.iter().map(|(_, m)| (m.x + 0.5) * scale).collect();
-    let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale).collect();
-    let quality = matches.iter().map(|(_, m)| m.score).collect();
-    let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
-    let fitted = fit::fit(&t, &xy);
-    Some(TrackRoute {
-        track: Track {
-            t,
-            x,
-            y,
-            quality,
-            file_s,
-            along: fitted.along,
-            axis: fitted.axis,
-            noise: fitted.noise,
-            size: size * scale,
-            picture: clock.picture,
-            frames: n,
-            threshold,
-            on_plane: Vec::new(),
-        },
-        chosen: fitted.chosen,
-        laws: fitted.laws,
-        stick: None,
-        plane: None,
-    })
 }

@@ -1,111 +1,14 @@
-//! The two routes compared: where the object's own track (`track`) oscillates clearly
-//! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate is a
-//! measurement of the same γ0 (or g/L) the latent's answer gives, with no encoder between the
-//! picture and the law. An answer whose model does not oscillate, or whose rate lies away from
-//! the track's by more than both errors allow (two measurements of one number that disagree: one
-//! of them is wrong), is doubtful, and the reason names both; a latent rate without a standard
-//! error is held to the 2 % that separates a right answer from a wrong one. A constant
-//! acceleration in metres (by a stick or on a plane) is compared alike; by one stick, a track
-//! whose own halves disagree names perspective and `--plane`.
+//! The routes compared where the track accelerates at a constant rate in metres (by a stick
+//! or on a plane): the latent's acceleration in SI against the track's, a plane's perspective
+//! named, and by one stick, a track whose own halves disagree.
 
-use super::{consistency, Check, Grade, Reason};
+use super::{separation, APART, ERRORS};
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
 use crate::track::{LawSpan, TrackRoute};
-use crate::track::{GUIDING_PERIODS, RATE_NAMES};
+use crate::verdict::{consistency, Grade, Reason};
 use physvid_shared::cli::approx;
-
-pub struct Routes;
-
-/// Rates further apart than [`ERRORS`] joint standard errors disagree (the usual three: a
-/// chance of about 0.3 % for two right answers with errors as stated)…
-pub const ERRORS: f64 = 3.0;
-/// …or, where the latent's rate has no standard error, further apart than this share.
-pub const APART: f64 = 0.02;
-
-/// How far the latent's rate `p` lies from the track's `g`, and the limit beyond which they
-/// disagree: joint standard errors against [`ERRORS`], or, where `p` has none, the share of
-/// the value against [`APART`].
-pub(super) fn separation(p: &ParameterResult, g: &Value) -> (f64, f64) {
-    let gap = (p.estimate - g.value).abs();
-    let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
-    match p.standard_error {
-        Some(_) if joint > 0.0 => (gap / joint, ERRORS),
-        Some(_) => (if gap > 0.0 { f64::INFINITY } else { 0.0 }, ERRORS),
-        None => (gap / g.value.abs().max(f64::MIN_POSITIVE), APART),
-    }
-}
-
-impl Check for Routes {
-    fn name(&self) -> &'static str {
-        "routes"
-    }
-    fn judge(&self, r: &Run) -> Vec<Reason> {
-        let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
-            return accelerations(self.name(), r);
-        };
-        let periods = span.periods.unwrap_or(0.0);
-        let Some(g) = span.rate() else {
-            return Vec::new();
-        };
-        let track = format!(
-            "the object's track {} over {}–{} s ({} periods) with {} {} ± {} 1/s^2",
-            span.law.verb(),
-            approx(span.first_s),
-            approx(span.last_s),
-            approx(periods),
-            g.symbol(),
-            approx(g.value),
-            approx(g.error)
-        );
-        if !r.config.model.oscillates(&r.final_values) {
-            return vec![Reason::new(
-                self.name(),
-                Grade::Doubtful,
-                format!(
-                    "{track}, but the answer is a {} that does not: try --model \
-                     damped-oscillator (or pendulum), with --start {} to keep the free motion",
-                    r.model,
-                    approx(span.first_s)
-                ),
-            )
-            .measured(periods, GUIDING_PERIODS)];
-        }
-        let Some(p) = r
-            .parameters
-            .iter()
-            .find(|p| RATE_NAMES.contains(&p.name.as_str()))
-        else {
-            return Vec::new();
-        };
-        let gap = (p.estimate - g.value).abs();
-        let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
-        let share = gap / g.value.abs().max(f64::MIN_POSITIVE);
-        let (measured, limit) = separation(p, g);
-        if measured <= limit {
-            return Vec::new();
-        }
-        vec![Reason::new(
-            self.name(),
-            Grade::Doubtful,
-            format!(
-                "{track}; the latent's {} is {} ± {}, {} % away ({} joint standard errors): \
-                 one of the two is wrong; look at the track in report.html",
-                p.name,
-                approx(p.estimate),
-                approx(p.standard_error.unwrap_or(f64::NAN)),
-                approx(100.0 * share),
-                approx(if joint > 0.0 {
-                    gap / joint
-                } else {
-                    f64::INFINITY
-                })
-            ),
-        )
-        .measured(measured, limit)]
-    }
-}
 
 /// The names a constant acceleration goes by among the models' values in SI (the fall's g, the
 /// slide's acceleration).
@@ -118,7 +21,7 @@ const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
 /// and, on a plane, its perspective named where the picture's scale changes along the path by
 /// more than [`APART`] (what one stick would have been off by there); by one stick, where the
 /// track's own halves disagree (`one_stick`).
-fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
+pub(super) fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
     let Some((route, l)) = r.track.as_ref().and_then(|t| Some((t, t.accelerating()?))) else {
         return Vec::new();
     };

@@ -1,0 +1,176 @@
+//! The two routes compared: where the object's own track (`track`) oscillates clearly
+//! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate and damping
+//! are measurements of the same γ0 and γ1 (or g/L and damping) the latent's answer gives, with
+//! no encoder between the picture and the law. An answer whose model does not oscillate, or
+//! one of whose values lies away from the track's by more than both errors allow (two
+//! measurements of one number that disagree: one of them is wrong), is doubtful, and the reason
+//! names both (the answer is then the track's: `guide::combine`); a latent value without a
+//! standard error is held to the 2 % that separates a right answer from a wrong one. A constant
+//! acceleration in metres (by a stick or on a plane) is compared alike; by one stick, a track
+//! whose own halves disagree names perspective and `--plane`.
+
+use super::{Check, Grade, Reason};
+use crate::analysis::parameters::ParameterResult;
+use crate::analysis::Run;
+use crate::track::laws::Value;
+use crate::track::{GUIDING_PERIODS, RATE_NAMES};
+use physvid_shared::cli::approx;
+
+mod acceleration;
+use acceleration::accelerations;
+
+pub struct Routes;
+
+/// Rates further apart than [`ERRORS`] joint standard errors disagree (the usual three: a
+/// chance of about 0.3 % for two right answers with errors as stated)…
+pub const ERRORS: f64 = 3.0;
+/// …or, where the latent's rate has no standard error, further apart than this share.
+pub const APART: f64 = 0.02;
+
+/// How far the latent's rate `p` lies from the track's `g`, and the limit beyond which they
+/// disagree: joint standard errors against [`ERRORS`], or, where `p` has none, the share of
+/// the value against [`APART`].
+pub fn separation(p: &ParameterResult, g: &Value) -> (f64, f64) {
+    let gap = (p.estimate - g.value).abs();
+    let joint = p.standard_error.unwrap_or(0.0).hypot(g.error);
+    match p.standard_error {
+        Some(_) if joint > 0.0 => (gap / joint, ERRORS),
+        Some(_) => (if gap > 0.0 { f64::INFINITY } else { 0.0 }, ERRORS),
+        None => (gap / g.value.abs().max(f64::MIN_POSITIVE), APART),
+    }
+}
+
+impl Check for Routes {
+    fn name(&self) -> &'static str {
+        "routes"
+    }
+    fn judge(&self, r: &Run) -> Vec<Reason> {
+        let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
+            return accelerations(self.name(), r);
+        };
+        let periods = span.periods.unwrap_or(0.0);
+        let Some(g) = span.rate() else {
+            return Vec::new();
+        };
+        let track = format!(
+            "the object's track {} over {}–{} s ({} periods) with {} {} ± {} 1/s^2",
+            span.law.verb(),
+            approx(span.first_s),
+            approx(span.last_s),
+            approx(periods),
+            g.symbol(),
+            approx(g.value),
+            approx(g.error)
+        );
+        if !r.config.model.oscillates(&r.final_values) {
+            return vec![Reason::new(
+                self.name(),
+                Grade::Doubtful,
+                format!(
+                    "{track}, but the answer is a {} that does not: try --model \
+                     damped-oscillator (or pendulum), with --start {} to keep the free motion",
+                    r.model,
+                    approx(span.first_s)
+                ),
+            )
+            .measured(periods, GUIDING_PERIODS)];
+        }
+        // Each value both routes measured: the rate by its fit's error, the others (the
+        // damping) by the larger of its fit's and its halves' (as `guide::combine` weighs them).
+        r.parameters
+            .iter()
+            .filter_map(|p| {
+                let v = span.values.iter().find(|v| v.name == p.name)?;
+                let error = match RATE_NAMES.contains(&v.name) {
+                    true => v.error,
+                    false => span.error_of(v.name)?,
+                };
+                let v = Value { error, ..v.clone() };
+                differs(self.name(), p, &v, &track)
+            })
+            .collect()
+    }
+}
+
+/// Where the latent's `p` and the track's `v` (the same value) lie further apart than
+/// `separation` allows: doubtful, naming both, the answer the track's.
+fn differs(check: &'static str, p: &ParameterResult, v: &Value, track: &str) -> Option<Reason> {
+    let gap = (p.estimate - v.value).abs();
+    let joint = p.standard_error.unwrap_or(0.0).hypot(v.error);
+    let share = gap / v.value.abs().max(f64::MIN_POSITIVE);
+    let (measured, limit) = separation(p, v);
+    if measured <= limit {
+        return None;
+    }
+    let of_track = match RATE_NAMES.contains(&v.name) {
+        true => String::new(),
+        false => format!(
+            " ({} {} ± {} {})",
+            v.name,
+            approx(v.value),
+            approx(v.error),
+            v.unit
+        ),
+    };
+    Some(
+        Reason::new(
+            check,
+            Grade::Doubtful,
+            format!(
+                "{track}{of_track}; the latent's {} is {} ± {}, {} % away ({} joint standard \
+                 errors): one of the two is wrong, and the answer is the track's, read off the \
+                 object's path with no encoder; look at the track in report.html",
+                p.name,
+                approx(p.estimate),
+                approx(p.standard_error.unwrap_or(f64::NAN)),
+                approx(100.0 * share),
+                approx(if joint > 0.0 {
+                    gap / joint
+                } else {
+                    f64::INFINITY
+                })
+            ),
+        )
+        .measured(measured, limit),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_damping_the_routes_disagree_on_is_named_with_both() {
+        // A clutter render's: the latent's γ1 −0.034 ± 0.032, the track's 0.0793 ± 0.00056.
+        let p = ParameterResult {
+            name: "gamma1".into(),
+            estimate: -0.034,
+            units: "SI".into(),
+            unit: "1/s".into(),
+            truth: None,
+            relative_error: None,
+            standard_error: Some(0.032),
+            splits: Vec::new(),
+            routes: None,
+        };
+        let v = Value {
+            name: "gamma1",
+            value: 0.0793,
+            error: 0.00056,
+            unit: "1/s",
+        };
+        let r = differs("routes", &p, &v, "the track").expect("3.5 errors apart");
+        assert_eq!(r.grade, Grade::Doubtful);
+        assert!(
+            r.detail.contains("gamma1 0.0793") && r.detail.contains("the track's"),
+            "{}",
+            r.detail
+        );
+        // 2.9 errors apart: two measurements of one number.
+        let near = ParameterResult {
+            estimate: 0.0793 - 2.9 * 0.032f64.hypot(0.00056),
+            ..p
+        };
+        assert!(differs("routes", &near, &v, "the track").is_none());
+    }
+}
