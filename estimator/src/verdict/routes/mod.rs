@@ -76,25 +76,34 @@ impl Check for Routes {
             .measured(periods, GUIDING_PERIODS)];
         }
         // Each value both routes measured: the rate by its fit's error, the others (the
-        // damping) by the larger of its fit's and its halves' (as `guide::combine` weighs them).
+        // damping) by the larger of its fit's and its halves' (as `guide::combine` weighs
+        // every one, the rate too).
         r.parameters
             .iter()
             .filter_map(|p| {
                 let v = span.values.iter().find(|v| v.name == p.name)?;
+                let weighed = span.error_of(v.name)?;
                 let error = match RATE_NAMES.contains(&v.name) {
                     true => v.error,
-                    false => span.error_of(v.name)?,
+                    false => weighed,
                 };
                 let v = Value { error, ..v.clone() };
-                differs(self.name(), p, &v, &track)
+                differs(self.name(), p, &v, &track, weighed)
             })
             .collect()
     }
 }
 
 /// Where the latent's `p` and the track's `v` (the same value) lie further apart than
-/// `separation` allows: doubtful, naming both, the answer the track's.
-fn differs(check: &'static str, p: &ParameterResult, v: &Value, track: &str) -> Option<Reason> {
+/// `separation` allows: doubtful, naming both, and the answer: the track's, or both weighed
+/// where they agree within the track's error `weighed` (its halves' included: `guide::combine`).
+fn differs(
+    check: &'static str,
+    p: &ParameterResult,
+    v: &Value,
+    track: &str,
+    weighed: f64,
+) -> Option<Reason> {
     let gap = (p.estimate - v.value).abs();
     let joint = p.standard_error.unwrap_or(0.0).hypot(v.error);
     let share = gap / v.value.abs().max(f64::MIN_POSITIVE);
@@ -102,6 +111,18 @@ fn differs(check: &'static str, p: &ParameterResult, v: &Value, track: &str) -> 
     if measured <= limit {
         return None;
     }
+    let wide = Value {
+        error: weighed,
+        ..v.clone()
+    };
+    let (far, beyond) = separation(p, &wide);
+    let answer = match far <= beyond {
+        true => format!(
+            "the answer weighs both, the track's error widened to {} by its span's halves",
+            approx(weighed)
+        ),
+        false => "the answer is the track's, read off the object's path with no encoder".into(),
+    };
     let of_track = match RATE_NAMES.contains(&v.name) {
         true => String::new(),
         false => format!(
@@ -118,8 +139,7 @@ fn differs(check: &'static str, p: &ParameterResult, v: &Value, track: &str) -> 
             Grade::Doubtful,
             format!(
                 "{track}{of_track}; the latent's {} is {} ± {}, {} % away ({} joint standard \
-                 errors): one of the two is wrong, and the answer is the track's, read off the \
-                 object's path with no encoder; look at the track in report.html",
+                 errors): one of the two is wrong; {answer}; look at the track in report.html",
                 p.name,
                 approx(p.estimate),
                 approx(p.standard_error.unwrap_or(f64::NAN)),
@@ -159,7 +179,7 @@ mod tests {
             error: 0.00056,
             unit: "1/s",
         };
-        let r = differs("routes", &p, &v, "the track").expect("3.5 errors apart");
+        let r = differs("routes", &p, &v, "the track", 0.00056).expect("3.5 errors apart");
         assert_eq!(r.grade, Grade::Doubtful);
         assert!(
             r.detail.contains("gamma1 0.0793") && r.detail.contains("the track's"),
@@ -169,8 +189,11 @@ mod tests {
         // 2.9 errors apart: two measurements of one number.
         let near = ParameterResult {
             estimate: 0.0793 - 2.9 * 0.032f64.hypot(0.00056),
-            ..p
+            ..p.clone()
         };
-        assert!(differs("routes", &near, &v, "the track").is_none());
+        assert!(differs("routes", &near, &v, "the track", 0.00056).is_none());
+        // Apart by the fit's error, together by the halves': both weighed, and said so.
+        let r = differs("routes", &p, &v, "the track", 0.05).unwrap();
+        assert!(r.detail.contains("weighs both"), "{}", r.detail);
     }
 }
