@@ -195,8 +195,8 @@ pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
 
 /// `report` with the track and the route's warnings set on its run, its verdict judged again
 /// with them (the model choice's close call kept), then each value both routes measured made
-/// one (`combine`: both weighed where they agree, else the track's) and the answer's own checks judged again on it
-/// (`verdict::rejudge_answer`).
+/// one (`combine`: both weighed where they agree, else the track's) and the answer's own
+/// checks judged again on it (`verdict::rejudge_answer`).
 pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
     report.run.warnings.extend(warnings);
     if let Some(route) = route {

@@ -9,8 +9,9 @@ use super::{blobs, fit, link, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRI
 use physvid_shared::video::SmallFrames;
 
 /// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
-/// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read as its blobs' centroids, as those of its whole
-/// blobs alone (`whole`) and as its picture's matches.
+/// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
+/// as its blobs' centroids, as those of its whole blobs alone (`whole`) and as its picture's
+/// matches.
 pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let n = frames.len();
     let bg = blobs::background(frames);
