@@ -187,12 +187,21 @@ pub fn rejoined(all: &[Tracklet], first: usize) -> Option<Tracklet> {
     };
     let mut joined: Vec<(usize, Blob)> =
         one.frames.iter().copied().zip(one.blobs.clone()).collect();
+    // The frames the joined pieces hold.
+    let frames = all
+        .iter()
+        .flat_map(|t| t.frames.last())
+        .max()
+        .map_or(0, |k| k + 1);
+    let mut held = vec![false; frames];
+    one.frames.iter().for_each(|&k| held[k] = true);
     let mut pieces = 1;
     for t in &all[first + 1..] {
         let a = t.usual_area();
         let alike = a.max(usual) / a.min(usual).max(f64::MIN_POSITIVE) < SAME_SIZE;
-        let apart = t.frames.iter().all(|k| !joined.iter().any(|(j, _)| j == k));
+        let apart = t.frames.iter().all(|&k| !held[k]);
         if alike && apart && t.blobs.iter().all(inside) {
+            t.frames.iter().for_each(|&k| held[k] = true);
             joined.extend(t.frames.iter().copied().zip(t.blobs.clone()));
             pieces += 1;
         }
