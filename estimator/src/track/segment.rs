@@ -198,6 +198,18 @@ fn explains(
 mod tests {
     use super::*;
 
+    /// The noise of `u` (a motion along a line at times `t`) and the oscillation's longest span
+    /// on it, from a 40-sample window.
+    fn oscillating(t: &[f64], u: &[f64]) -> (f64, Span) {
+        let xy: Vec<(f64, f64)> = u.iter().map(|&v| (0.0, v)).collect();
+        let s = Samples { t, u, xy: &xy };
+        let sigma = noise(u).unwrap();
+        (
+            sigma,
+            longest(&s, TrackLaw::Oscillation, 40, sigma).unwrap(),
+        )
+    }
+
     /// A mass held still by a hand that shakes it, then let go to oscillate.
     #[test]
     fn the_span_starts_where_the_hand_lets_go() {
@@ -215,14 +227,7 @@ mod tests {
                 }
             })
             .collect();
-        let xy: Vec<(f64, f64)> = u.iter().map(|&v| (0.0, v)).collect();
-        let s = Samples {
-            t: &t,
-            u: &u,
-            xy: &xy,
-        };
-        let sigma = noise(&u).unwrap();
-        let span = longest(&s, TrackLaw::Oscillation, 40, sigma).unwrap();
+        let (_, span) = oscillating(&t, &u);
         assert!(span.holds);
         assert!((88..=92).contains(&span.first), "{}", span.first);
         assert_eq!(span.last, 300);
@@ -275,15 +280,8 @@ mod tests {
             .iter()
             .map(|&s| 20.0 * (-0.04 * s).exp() * (2.0 * s).cos() + 0.15 * (0.7 * s).sin())
             .collect();
-        let xy: Vec<(f64, f64)> = u.iter().map(|&v| (0.0, v)).collect();
-        let s = Samples {
-            t: &t,
-            u: &u,
-            xy: &xy,
-        };
-        let sigma = noise(&u).unwrap();
+        let (sigma, span) = oscillating(&t, &u);
         assert_eq!(sigma, LEAST_NOISE);
-        let span = longest(&s, TrackLaw::Oscillation, 40, sigma).unwrap();
         assert!(span.holds);
         assert_eq!((span.first, span.last), (0, 300));
         let g0 = span.fitted.value("gamma0").unwrap().value;
