@@ -104,8 +104,12 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
     if r["agree"] == true {
         let (lo, hi) = (f("latent").min(f("track")), f("latent").max(f("track")));
         assert!((lo..=hi).contains(&estimate), "{estimate} outside {r}");
+        // The error of the mean, widened by the joint errors they lie apart beyond one.
         let se = p["standard_error"].as_f64().unwrap();
-        assert!(se < f("latent_error") && se < f("track_error"), "{se} {r}");
+        let (le, te) = (f("latent_error"), f("track_error"));
+        let apart = (f("latent") - f("track")).abs() / le.hypot(te);
+        let want = (le.powi(-2) + te.powi(-2)).sqrt().recip() * apart.max(1.0);
+        assert!((se - want).abs() <= 1e-9 * want, "{se} for {want}: {r}");
         assert!(
             stdout(&o).contains("gamma0: both routes, the latent's"),
             "{}",

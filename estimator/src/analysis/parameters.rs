@@ -59,9 +59,19 @@ impl ParameterResult {
             None => format!("{} (no standard error)", sig(r.latent)),
         };
         let track = format!("{} ± {}", sig(r.track), significant(r.track_error));
+        // How many joint errors apart they lie: more than one widens the mean's error.
+        let apart = r
+            .latent_error
+            .map(|e| (r.latent - r.track).abs() / e.hypot(r.track_error))
+            .filter(|a| *a > 1.0);
+        let widened = match apart {
+            Some(a) => format!(" (its error ×{}: they lie that many errors apart)", significant(a)),
+            None => String::new(),
+        };
         Some(match r.agree {
             true => format!(
-                "both routes, the latent's {latent} and the track's {track}, weighed by their errors"
+                "both routes, the latent's {latent} and the track's {track}, weighed by their \
+                 errors{widened}"
             ),
             false => format!(
                 "the track's {track}; the latent's {latent} disagrees with it (the routes check)"
@@ -83,5 +93,50 @@ impl ParameterResult {
             splits: Vec::new(),
             routes: None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_routes_phrase_says_whose_value_and_any_widening() {
+        let mut p = ParameterResult {
+            name: "gamma1".into(),
+            estimate: 0.0715,
+            units: "SI".into(),
+            unit: "1/s".into(),
+            truth: None,
+            relative_error: None,
+            standard_error: Some(0.0075),
+            splits: Vec::new(),
+            routes: None,
+        };
+        assert_eq!(p.routes_phrase(), None);
+        // 2.2 joint errors apart (a shaken rod and bob): weighed, the error widened.
+        let mut r = RouteValues {
+            latent: 0.0609,
+            latent_error: Some(0.0059),
+            track: 0.0769,
+            track_error: 0.0042,
+            agree: true,
+        };
+        p.routes = Some(r);
+        let both = p.routes_phrase().unwrap();
+        assert!(both.starts_with("both routes, the latent's 0.0609000 ± 0.0059"), "{both}");
+        assert!(both.ends_with("(its error ×2.2: they lie that many errors apart)"), "{both}");
+        // Within one joint error: no widening.
+        r.latent = 0.0760;
+        p.routes = Some(r);
+        assert!(p.routes_phrase().unwrap().ends_with("weighed by their errors"));
+        r.agree = false;
+        r.latent_error = None;
+        p.routes = Some(r);
+        assert_eq!(
+            p.routes_phrase().unwrap(),
+            "the track's 0.0769000 ± 0.0042; the latent's 0.0760000 (no standard error) \
+             disagrees with it (the routes check)"
+        );
     }
 }

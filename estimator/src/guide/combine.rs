@@ -1,7 +1,9 @@
 //! Both routes' answer: where the track oscillates clearly (`TrackRoute::guiding`), a value both
 //! routes measured (the oscillator's γ0 and γ1, the pendulum's g/L and damping) on which they
 //! agree within the routes check's `ERRORS` joint standard errors is reported as their
-//! precision-weighted mean, two measurements of one number; where they disagree, the track's:
+//! precision-weighted mean, two measurements of one number, its error widened by their
+//! spread where that exceeds their errors (the Particle Data Group's scale factor
+//! S = √(χ²/(N − 1)), here the number of joint errors apart); where they disagree, the track's:
 //! it is read off the object's own path with no encoder between the picture and the law, and
 //! the latent's is the second opinion (`verdict::routes` names the disagreement: doubtful).
 //! Each route's own value is kept beside it (`ParameterResult::routes`), and a value the model
@@ -36,9 +38,11 @@ fn combined(p: &ParameterResult, v: &Value, e: f64) -> Option<ParameterResult> {
     let (estimate, standard_error) = match s {
         Some(s) if apart <= limit => {
             let (wl, wt) = (1.0 / (s * s), 1.0 / (e * e));
+            // `apart` is √χ² of the two about their mean (one degree of freedom): more than
+            // 1, their errors understate their spread, and the mean's error is widened by it.
             (
                 (wl * p.estimate + wt * v.value) / (wl + wt),
-                (wl + wt).sqrt().recip(),
+                (wl + wt).sqrt().recip() * apart.max(1.0),
             )
         }
         None if apart <= limit => return None,
@@ -158,10 +162,16 @@ mod tests {
         let w = (1.0 / 0.03f64.powi(2), 1.0 / 0.0015f64.powi(2));
         let want = (w.0 * 0.117 + w.1 * 0.076) / (w.0 + w.1);
         assert!((c.estimate - want).abs() < 1e-12, "{}", c.estimate);
-        assert!((c.standard_error.unwrap() - (w.0 + w.1).sqrt().recip()).abs() < 1e-12);
+        // 1.37 joint errors apart: the mean's error widened by that.
+        let apart = (0.117f64 - 0.076) / 0.03f64.hypot(0.0015);
+        let error = (w.0 + w.1).sqrt().recip();
+        assert!((c.standard_error.unwrap() - error * apart).abs() < 1e-12);
         assert!((c.relative_error.unwrap() - (want / 0.08 - 1.0)).abs() < 1e-12);
         let r = c.routes.unwrap();
         assert_eq!((r.latent, r.track, r.agree), (0.117, 0.076, true));
+        // Within one joint error: as the errors say.
+        let c = combined(&latent(0.077, 0.030), &track(0.076), 0.0015).unwrap();
+        assert!((c.standard_error.unwrap() - error).abs() < 1e-12);
     }
 
     #[test]
