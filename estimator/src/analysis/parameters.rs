@@ -65,7 +65,10 @@ impl ParameterResult {
             .map(|e| (r.latent - r.track).abs() / e.hypot(r.track_error))
             .filter(|a| *a > 1.0);
         let widened = match apart {
-            Some(a) => format!(" (its error ×{}: they lie that many errors apart)", significant(a)),
+            Some(a) => format!(
+                " (its error ×{}: they lie that many errors apart)",
+                significant(a)
+            ),
             None => String::new(),
         };
         Some(match r.agree {
@@ -124,12 +127,21 @@ mod tests {
         };
         p.routes = Some(r);
         let both = p.routes_phrase().unwrap();
-        assert!(both.starts_with("both routes, the latent's 0.0609000 ± 0.0059"), "{both}");
-        assert!(both.ends_with("(its error ×2.2: they lie that many errors apart)"), "{both}");
+        assert!(
+            both.starts_with("both routes, the latent's 0.0609000 ± 0.0059"),
+            "{both}"
+        );
+        assert!(
+            both.ends_with("(its error ×2.2: they lie that many errors apart)"),
+            "{both}"
+        );
         // Within one joint error: no widening.
         r.latent = 0.0760;
         p.routes = Some(r);
-        assert!(p.routes_phrase().unwrap().ends_with("weighed by their errors"));
+        assert!(p
+            .routes_phrase()
+            .unwrap()
+            .ends_with("weighed by their errors"));
         r.agree = false;
         r.latent_error = None;
         p.routes = Some(r);

@@ -6,7 +6,7 @@
 
 use crate::choice;
 use crate::config::Request;
-use crate::data::{falls, Framing};
+use crate::data::Framing;
 use crate::physics::ModelRef;
 use crate::report::Report;
 use crate::track::laws::TrackLaw;
@@ -17,7 +17,7 @@ mod combine;
 mod descent;
 mod reading;
 pub use combine::combine;
-use descent::{direction, on_path, path_words, tracked_motion};
+use descent::{direction, named_by_direction, on_path, path_words, tracked_motion};
 pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
 
@@ -114,26 +114,12 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
         (true, [one]) => Some(*one),
         _ => None,
     };
-    let free = chooses && req.candidates.is_empty() && req.init.is_empty();
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
     let mut did = Vec::new();
     let direction = direction(span);
-    if free {
-        // In the picture, whichever way a plane's corners were given.
-        let axis = route.picture_axis(span, direction);
-        let drawn = axis[1].atan2(axis[0]).to_degrees();
-        let name = if falls(axis) {
-            "free-fall"
-        } else {
-            "sliding-block"
-        };
-        g.choose = false;
-        g.load.model = ModelRef::by_name(name);
-        did.push(format!(
-            "trained the {name} (the acceleration points {drawn:.0}° from the picture's \
-             right, y down; give --model to choose yourself)"
-        ));
+    if let Some(named) = named_by_direction(&mut g, route, span, chooses) {
+        did.push(named);
     }
     if g.load.model.is_some_and(|m| m.released_from_rest()) {
         let tracked = tracked_motion(route, span, direction);
@@ -186,11 +172,12 @@ pub fn measured(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Req
 }
 
 /// The request the track guides: its clear oscillation's (`guided`), else, with a stick or a
-/// plane, its constant acceleration's (`measured`), else a release it saw (`sighted`).
+/// plane, its constant acceleration's (`measured`), else a release it saw (`sighted`); in the
+/// last two, the law the acceleration's direction names where the model is the tool's.
 pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     guided(req, route, chooses)
         .or_else(|| measured(req, route, chooses))
-        .or_else(|| sighted(req, route))
+        .or_else(|| sighted(req, route, chooses))
 }
 
 /// `report` with the track and the route's warnings set on its run, its verdict judged again
