@@ -94,8 +94,17 @@ pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
     estimation_watched(req, Watch::default())
 }
 
+/// The pool of `threads` that the track's readings and the shooting fits run on (the first
+/// run of a process sizes it; later ones find it made).
+fn pool(threads: usize) {
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global();
+}
+
 /// [`estimation`], followed and stopped as `watch` says.
 pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
+    pool(req.training.threads);
     let mut warnings = Vec::new();
     let route = guide::second_route(req, &mut warnings)?;
     let guided = route
@@ -192,10 +201,7 @@ pub fn choose(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
 pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let start = Instant::now();
     tch::set_num_threads(req.training.threads as i32);
-    // The shooting fits' pool (the first run of a process sizes it; later ones find it made).
-    let _ = rayon::ThreadPoolBuilder::new()
-        .num_threads(req.training.threads)
-        .build_global();
+    pool(req.training.threads);
     let (device, device_warning) = select_device(req.training.device)?;
     let cfg = RunConfig::resolve(req, probe(&req.load)?)?;
     let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;

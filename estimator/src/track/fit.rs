@@ -4,6 +4,7 @@
 use super::laws::TrackLaw;
 use super::segment::{self, longest, noise, Samples};
 use super::LawSpan;
+use rayon::prelude::*;
 
 /// The window a law starts from: an oscillation's or a swing's an eighth of the track (at
 /// least 12 samples), an acceleration's 10 samples.
@@ -31,8 +32,9 @@ pub(super) fn fit(t: &[f64], xy: &[(f64, f64)]) -> Fitted {
     let (along, axis) = principal_axis(&x, &y);
     let sigma = noise(&along).unwrap_or(segment::LEAST_NOISE);
     let samples = Samples { t, u: &along, xy };
+    // Each law on a thread of the pool (in the order of `TrackLaw::ALL`).
     let laws = TrackLaw::ALL
-        .iter()
+        .par_iter()
         .filter_map(|&law| {
             let s = longest(&samples, law, least_window(law, t.len()), sigma)?;
             Some(LawSpan {

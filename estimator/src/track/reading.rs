@@ -7,6 +7,7 @@
 use super::template::{self, Match};
 use super::{blobs, fit, link, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED};
 use physvid_shared::video::SmallFrames;
+use rayon::prelude::*;
 
 /// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
 /// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
@@ -19,19 +20,24 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
     // The thing that moves the most, its pieces hidden from each other joined, tried too.
     let joined = link::rejoined(&tracklets, 0);
-    tracklets
-        .iter()
-        .take(TRIED)
-        .chain(joined.iter())
-        .flat_map(|t| {
+    let tried: Vec<&link::Tracklet> = tracklets.iter().take(TRIED).chain(joined.iter()).collect();
+    // Each tracklet's readings and their routes on the pool's threads (most of a track's time:
+    // the matches and the laws' fits), in the order tried.
+    tried
+        .par_iter()
+        .map(|t| {
             let all = centroids(t);
             let whole = whole(&all);
+            let size = t.usual_area().sqrt();
             [Some(all), whole, Some(template::refine(frames, t))]
                 .into_iter()
                 .flatten()
-                .map(move |sightings| (sightings, t.usual_area().sqrt()))
+                .filter_map(|sightings| route_of(&sightings, size, clock, n, bg.threshold))
+                .collect::<Vec<_>>()
         })
-        .filter_map(|(sightings, size)| route_of(&sightings, size, clock, n, bg.threshold))
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
         .collect()
 }
 
