@@ -1,4 +1,4 @@
-//! Where to train: `--device`, with libtorch's CUDA half opened on demand. `estimate` is not
+//! Where to train: `--device` and the CPU threads (`cpu_threads`), with libtorch's CUDA half opened on demand. `estimate` is not
 //! linked against libtorch_cuda (loading it and its CUDA libraries costs 0.35 s and 400 MB on
 //! every run); when an NVIDIA driver is present it is opened here, before anything asks libtorch
 //! about CUDA (ATen disables CUDA for good if asked before the library is loaded).
@@ -20,6 +20,15 @@ pub enum DeviceChoice {
     Auto,
     Cpu,
     Cuda,
+}
+
+/// The CPU threads a run uses: libtorch's, and the pool that the track's readings and the
+/// shooting fits run on (the first run of a process sizes it; later ones find it made).
+pub fn cpu_threads(threads: usize) {
+    tch::set_num_threads(threads as i32);
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global();
 }
 
 /// libtorch's library directory, recorded at build time.

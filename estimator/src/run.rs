@@ -7,7 +7,7 @@ use crate::choice;
 use crate::choice::ChoiceRequest;
 use crate::config::{Request, RunConfig};
 use crate::data::{load_clips, probe, ClipData};
-use crate::device::select_device;
+use crate::device::{cpu_threads, select_device};
 use crate::error::EstimateError;
 use crate::guide;
 use crate::output::{check_out, clear_earlier, write_outputs};
@@ -94,17 +94,9 @@ pub fn estimation(req: &Request) -> anyhow::Result<Estimation> {
     estimation_watched(req, Watch::default())
 }
 
-/// The pool of `threads` that the track's readings and the shooting fits run on (the first
-/// run of a process sizes it; later ones find it made).
-fn pool(threads: usize) {
-    let _ = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build_global();
-}
-
 /// [`estimation`], followed and stopped as `watch` says.
 pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
-    pool(req.training.threads);
+    cpu_threads(req.training.threads);
     let mut warnings = Vec::new();
     let route = guide::second_route(req, &mut warnings)?;
     let guided = route
@@ -200,8 +192,7 @@ pub fn choose(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
 /// Loads the data and trains (and the ensemble's further members); writes nothing.
 pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let start = Instant::now();
-    tch::set_num_threads(req.training.threads as i32);
-    pool(req.training.threads);
+    cpu_threads(req.training.threads);
     let (device, device_warning) = select_device(req.training.device)?;
     let cfg = RunConfig::resolve(req, probe(&req.load)?)?;
     let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;
