@@ -17,8 +17,10 @@ pub struct ModelArgs {
     /// The governing equation: a built-in model, a model file FILE.toml (see README, "Your own
     /// model"), or auto (each candidate fitted, the one the evidence favours kept; see README,
     /// "Choosing the model"; on a video whose object's track oscillates clearly, the
-    /// oscillator on the track's span instead, unless --start or --end is given). Taken from
-    /// meta.json for a data set; without it, a recording or a bare .npy is auto.
+    /// oscillator on the track's span instead, unless --start or --end is given; where it
+    /// accelerates at a constant rate down or along the picture, the fall, or off the vertical
+    /// (or with --incline-deg) the slide). Taken from meta.json for a data set; without it, a
+    /// recording or a bare .npy is auto.
     #[arg(long, value_parser = model_parser(), value_name = "MODEL|FILE.toml|auto")]
     pub model: Option<ModelSpec>,
     /// A model file tried beside the built-in models when the model is chosen (--model auto,
