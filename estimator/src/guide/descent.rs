@@ -102,8 +102,9 @@ pub(super) fn named_by_direction(
 /// points up is no descent, whatever else moves so for a second, as a pendulum's bob past its
 /// lowest point) and its vertex lies where the track saw the object
 /// (`tracked_motion`): a motion from rest released there and on the track's line, in place of
-/// the picture's guess; the model given, or where it is the tool's to choose (`chooses`), the
-/// law the direction names (`named_by_direction`); the calibration as asked.
+/// the picture's guess; the model given, or where it is the tool's to choose (`chooses`) and
+/// the motion moves away from its vertex, the law the direction names (`named_by_direction`);
+/// the calibration as asked.
 pub fn sighted(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     let span = route
         .accelerating()
@@ -115,7 +116,13 @@ pub fn sighted(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
     let tracked = tracked_motion(route, span, direction(span));
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
-    let named = named_by_direction(&mut g, route, span, chooses);
+    // Named where the motion moves away from its vertex, as from a release (a level that slows
+    // towards one, as a draining jar's, is no fall).
+    let away = span
+        .values
+        .iter()
+        .any(|v| v.name == "vertex" && v.value <= span.last_s);
+    let named = named_by_direction(&mut g, route, span, chooses && away);
     let released = match tracked.release {
         Some(release) => {
             g.load.recording.tracked = Some(tracked);
@@ -228,6 +235,17 @@ mod tests {
         inclined.calibration.incline_deg = Some(10.0);
         let (g, why) = sighted(&inclined, &route, true).unwrap();
         assert_eq!(g.load.model, ModelRef::by_name("sliding-block"), "{why}");
+        // Slowing towards a vertex after the span (a draining level): nothing named.
+        let mut slowing = cart.clone();
+        let last = slowing.laws[0].last_s;
+        for v in slowing.laws[0]
+            .values
+            .iter_mut()
+            .filter(|v| v.name == "vertex")
+        {
+            v.value = last + 5.0;
+        }
+        assert!(sighted(&req, &slowing, true).is_none());
         // Not the tool's to choose: nothing named, and without a release, no request.
         assert!(sighted(&req, &cart, false).is_none());
         let mut init = req.clone();
