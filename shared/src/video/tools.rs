@@ -5,17 +5,30 @@ use super::{bad, VideoError};
 use std::io::Read;
 use std::path::Path;
 use std::process::{Child, ChildStdout, Command, Stdio};
+use std::sync::OnceLock;
 
-/// `name` (ffmpeg, ffprobe) as a command, or the error that says how to install it.
+/// `name` (ffmpeg, ffprobe) as a command, or the error that says how to install it. Whether
+/// it runs is asked once a process (`name -version`: a twentieth of a second each time, eight
+/// times in a run on a recording).
 pub(crate) fn tool(name: &'static str) -> Result<Command, VideoError> {
-    match Command::new(name)
-        .arg("-version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-    {
-        Ok(_) => Ok(Command::new(name)),
-        Err(_) => Err(VideoError::ToolMissing { tool: name }),
+    static FFMPEG: OnceLock<bool> = OnceLock::new();
+    static FFPROBE: OnceLock<bool> = OnceLock::new();
+    let runs = || {
+        Command::new(name)
+            .arg("-version")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .is_ok()
+    };
+    let runs = match name {
+        "ffmpeg" => *FFMPEG.get_or_init(runs),
+        "ffprobe" => *FFPROBE.get_or_init(runs),
+        _ => runs(),
+    };
+    match runs {
+        true => Ok(Command::new(name)),
+        false => Err(VideoError::ToolMissing { tool: name }),
     }
 }
 
