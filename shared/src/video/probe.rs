@@ -6,6 +6,7 @@ use super::fields::{self, Fields, FieldsChoice};
 use super::tools::tool;
 use super::{bad, VideoError};
 use std::path::Path;
+use std::sync::Mutex;
 
 /// What ffprobe says about a recording.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -112,8 +113,41 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
     probe_as(path, FieldsChoice::Auto)
 }
 
-/// As [`probe`], its fields read as `choice` says (`--fields`).
+/// As [`probe`], its fields read as `choice` says (`--fields`). One of the last eight files
+/// probed in this process, unchanged since (its size and modification time), is not probed
+/// again (the track and the latent route each ask: two ffprobe runs and a look at its fields).
 pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
+    type Key = (
+        std::path::PathBuf,
+        FieldsChoice,
+        u64,
+        Option<std::time::SystemTime>,
+    );
+    static PROBED: Mutex<Vec<(Key, VideoInfo)>> = Mutex::new(Vec::new());
+    let key = std::fs::metadata(path).ok().map(|m| {
+        let at = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        (at, choice, m.len(), m.modified().ok())
+    });
+    let lock = || PROBED.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(k) = &key {
+        if let Some((_, info)) = lock().iter().find(|(was, _)| was == k) {
+            return Ok(info.clone());
+        }
+    }
+    let info = probe_fresh(path, choice)?;
+    if let Some(k) = key {
+        let mut probed = lock();
+        // The last few files (a session in Python may probe hundreds).
+        if probed.len() >= 8 {
+            probed.remove(0);
+        }
+        probed.push((k, info.clone()));
+    }
+    Ok(info)
+}
+
+/// [`probe_as`] by ffprobe, every time.
+fn probe_fresh(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
     crate::input::check_kind(path).map_err(|e| bad(path, e))?;
     let out = tool("ffprobe")?
         .args([
