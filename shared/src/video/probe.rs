@@ -282,6 +282,35 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_file_probed_again_is_read_again_once_it_changed() {
+        let dir = std::env::temp_dir().join(format!("physvid-probe-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("clip.mp4");
+        let render = |size: &str| {
+            tool("ffmpeg").ok().and_then(|mut c| {
+                c.args(["-v", "error", "-y", "-f", "lavfi", "-i"])
+                    .arg(format!("testsrc=size={size}:rate=10"))
+                    .args(["-frames:v", "5", "-pix_fmt", "yuv420p"])
+                    .arg(&file)
+                    .status()
+                    .ok()
+                    .filter(|s| s.success())
+            })
+        };
+        if render("32x24").is_none() {
+            return; // no ffmpeg here
+        }
+        let first = probe(&file).unwrap();
+        assert_eq!((first.width, first.height), (32, 24));
+        // Unchanged: the same answer (from the process's record).
+        assert_eq!(probe(&file).unwrap(), first);
+        // Written again, another size: probed afresh.
+        render("48x24").unwrap();
+        assert_eq!(probe(&file).unwrap().width, 48);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn frames_before_an_edit_lists_cut_are_not_presented() {
         assert_eq!(presented(vec![-0.5, -0.1, 0.0, 0.1]), vec![0.0, 0.1]);
         assert_eq!(presented(vec![-0.2, -0.1]), vec![-0.2, -0.1]);
