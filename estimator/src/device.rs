@@ -1,7 +1,8 @@
-//! Where to train: `--device` and the CPU threads (`cpu_threads`), with libtorch's CUDA half opened on demand. `estimate` is not
-//! linked against libtorch_cuda (loading it and its CUDA libraries costs 0.35 s and 400 MB on
-//! every run); when an NVIDIA driver is present it is opened here, before anything asks libtorch
-//! about CUDA (ATen disables CUDA for good if asked before the library is loaded).
+//! Where to train: `--device` and the CPU threads (`cpu_threads`), with libtorch's CUDA half
+//! opened on demand. `estimate` is not linked against libtorch_cuda (loading it and its CUDA
+//! libraries costs 0.35 s and 400 MB on every run); when an NVIDIA driver is present it is
+//! opened here, before anything asks libtorch about CUDA (ATen disables CUDA for good if asked
+//! before the library is loaded).
 
 use crate::error::EstimateError;
 use serde::Serialize;
