@@ -108,15 +108,8 @@ mod tests {
 
     fn p(name: &str, estimate: f64) -> ParameterResult {
         ParameterResult {
-            name: name.into(),
-            estimate,
-            units: "SI".into(),
-            unit: "m/s^2".into(),
             truth: Some(4.0),
-            relative_error: None,
-            standard_error: None,
-            splits: Vec::new(),
-            routes: None,
+            ..ParameterResult::si(name, estimate, "m/s^2", None)
         }
     }
 

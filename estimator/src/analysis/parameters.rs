@@ -82,6 +82,23 @@ impl ParameterResult {
         })
     }
 
+    /// A value in SI named `name`, in `unit`, with no truth, splits or routes: the tests'
+    /// fixture.
+    #[cfg(test)]
+    pub fn si(name: &str, estimate: f64, unit: &str, standard_error: Option<f64>) -> Self {
+        ParameterResult {
+            name: name.into(),
+            estimate,
+            units: "SI".into(),
+            unit: unit.into(),
+            truth: None,
+            relative_error: None,
+            standard_error,
+            splits: Vec::new(),
+            routes: None,
+        }
+    }
+
     /// The result for a derived value, with the truth looked up in `truth` by its key.
     pub fn new(value: DerivedValue, truth: &BTreeMap<String, f64>) -> ParameterResult {
         let t = value.truth_key.and_then(|k| truth.get(k).copied());
@@ -105,17 +122,7 @@ mod tests {
 
     #[test]
     fn the_routes_phrase_says_whose_value_and_any_widening() {
-        let mut p = ParameterResult {
-            name: "gamma1".into(),
-            estimate: 0.0715,
-            units: "SI".into(),
-            unit: "1/s".into(),
-            truth: None,
-            relative_error: None,
-            standard_error: Some(0.0075),
-            splits: Vec::new(),
-            routes: None,
-        };
+        let mut p = ParameterResult::si("gamma1", 0.0715, "1/s", Some(0.0075));
         assert_eq!(p.routes_phrase(), None);
         // 2.2 joint errors apart (a shaken rod and bob): weighed, the error widened.
         let mut r = RouteValues {

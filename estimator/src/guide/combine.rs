@@ -133,15 +133,9 @@ mod tests {
 
     fn latent(estimate: f64, error: f64) -> ParameterResult {
         ParameterResult {
-            name: "gamma1".into(),
-            estimate,
-            units: "SI".into(),
-            unit: "1/s".into(),
             truth: Some(0.08),
             relative_error: Some(estimate / 0.08 - 1.0),
-            standard_error: Some(error),
-            splits: Vec::new(),
-            routes: None,
+            ..ParameterResult::si("gamma1", estimate, "1/s", Some(error))
         }
     }
 

@@ -151,17 +151,7 @@ mod tests {
     use super::*;
 
     fn damping(estimate: f64, standard_error: Option<f64>) -> ParameterResult {
-        ParameterResult {
-            name: "gamma1".into(),
-            estimate,
-            units: "SI".into(),
-            unit: "1/s".into(),
-            truth: None,
-            relative_error: None,
-            standard_error,
-            splits: Vec::new(),
-            routes: None,
-        }
+        ParameterResult::si("gamma1", estimate, "1/s", standard_error)
     }
 
     #[test]

@@ -173,17 +173,7 @@ mod tests {
     }
 
     fn latent(estimate: f64, standard_error: Option<f64>) -> Vec<ParameterResult> {
-        vec![ParameterResult {
-            name: "g".into(),
-            estimate,
-            units: "SI".into(),
-            unit: "m/s^2".into(),
-            truth: None,
-            relative_error: None,
-            standard_error,
-            splits: Vec::new(),
-            routes: None,
-        }]
+        vec![ParameterResult::si("g", estimate, "m/s^2", standard_error)]
     }
 
     #[test]

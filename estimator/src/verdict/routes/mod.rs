@@ -162,17 +162,7 @@ mod tests {
     #[test]
     fn a_damping_the_routes_disagree_on_is_named_with_both() {
         // A clutter render's: the latent's γ1 −0.034 ± 0.032, the track's 0.0793 ± 0.00056.
-        let p = ParameterResult {
-            name: "gamma1".into(),
-            estimate: -0.034,
-            units: "SI".into(),
-            unit: "1/s".into(),
-            truth: None,
-            relative_error: None,
-            standard_error: Some(0.032),
-            splits: Vec::new(),
-            routes: None,
-        };
+        let p = ParameterResult::si("gamma1", -0.034, "1/s", Some(0.032));
         let v = Value {
             name: "gamma1",
             value: 0.0793,
