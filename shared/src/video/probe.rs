@@ -113,9 +113,14 @@ pub fn probe(path: &Path) -> Result<VideoInfo, VideoError> {
     probe_as(path, FieldsChoice::Auto)
 }
 
-/// As [`probe`], its fields read as `choice` says (`--fields`). One of the last eight files
-/// probed in this process, unchanged since (its size and modification time), is not probed
-/// again (the track and the latent route each ask: two ffprobe runs and a look at its fields).
+/// How many files' probes a process keeps: a run reads one or two files; a Python session may
+/// probe hundreds, whose frame times would otherwise pile up. Not a threshold on any recording.
+const KEPT_PROBES: usize = 8;
+
+/// As [`probe`], its fields read as `choice` says (`--fields`). One of the last
+/// [`KEPT_PROBES`] files probed in this process, unchanged since (its size and modification
+/// time), is not probed again (the track and the latent route each ask: two ffprobe runs and a
+/// look at its fields).
 pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
     type Key = (
         std::path::PathBuf,
@@ -137,8 +142,7 @@ pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoErr
     let info = probe_fresh(path, choice)?;
     if let Some(k) = key {
         let mut probed = lock();
-        // The last few files (a session in Python may probe hundreds).
-        if probed.len() >= 8 {
+        if probed.len() >= KEPT_PROBES {
             probed.remove(0);
         }
         probed.push((k, info.clone()));
