@@ -385,11 +385,18 @@ _TRACK_COLUMNS = ("t", "file_s", "x", "y", "quality", "along")
 def _track_table(route: Dict[str, Any]):
     """report.json's ``track`` as a table: t (s of real time), file_s (the file's own time), x and
     y (pixels of the displayed frame), quality, along (the position along the motion's own axis,
-    pixels); the laws fitted, the law chosen, the axis and the noise in ``attrs`` (a DataFrame) or
-    under those keys (a dict)."""
+    pixels); the laws fitted, the law chosen, the axis, the noise and how the positions were read
+    (``reading``: centroids, whole, rod or matches) in ``attrs`` (a DataFrame) or under those keys
+    (a dict)."""
     t = route["track"]
     columns = {c: np.asarray(t[c], dtype=np.float64) for c in _TRACK_COLUMNS}
-    about = {"laws": route.get("laws", []), "chosen": route.get("chosen"), "axis": t["axis"], "noise": t["noise"]}
+    about = {
+        "laws": route.get("laws", []),
+        "chosen": route.get("chosen"),
+        "axis": t["axis"],
+        "noise": t["noise"],
+        "reading": t.get("reading"),
+    }
     try:
         import pandas as pd
     except ImportError:
@@ -418,8 +425,9 @@ def track(
     ``estimate --start``; ``fps``: frames a second of real time, as ``--fps``), in seconds and
     without training: a pandas DataFrame (t, file_s, x, y, quality, along) where pandas is
     installed, else a dict of numpy arrays; the laws fitted where they hold (a damped
-    oscillation, a constant acceleration, a swing), the one chosen, the axis and the noise in
-    ``attrs`` (or under those keys). None where nothing lives long enough to follow. Raises
+    oscillation, a constant acceleration, a swing), the one chosen, the axis, the noise and how
+    the positions were read (``reading``: a rod's read by its axes) in ``attrs`` (or under those
+    keys). None where nothing lives long enough to follow. Raises
     ``BadInputError`` for a file that is no video."""
     found = _core.track(str(Path(video)), start=start, end=end, fps=fps)
     return None if found is None else _track_table(json.loads(found))

@@ -46,7 +46,7 @@ impl TrackRoute {
 #[cfg(test)]
 mod tests {
     use crate::track::laws::TrackLaw;
-    use crate::track::reading::{route_of, Clock};
+    use crate::track::reading::{route_of, Clock, Reading};
     use crate::track::template::Match;
 
     #[test]
@@ -75,7 +75,7 @@ mod tests {
             picture: (400, 400),
             reach: 100.0,
         };
-        let route = route_of(&matches, 10.0, &clock, t.len(), 10.0).unwrap();
+        let route = route_of(&matches, Reading::Centroids, 10.0, &clock, t.len(), 10.0).unwrap();
         let l = route
             .laws
             .iter()

@@ -1,26 +1,10 @@
-//! What differs from the background in each frame: each frame's level (a camera's exposure or
-//! a drifting light moves the whole picture at once, and is taken off), the sensor's noise read
-//! off the differences from each pixel's median over the recording, the object's polarity (darker or
-//! lighter than what it passes: the sign most of the large differences take), the background
-//! as each pixel's value that the object leaves alone (a high percentile for a dark object, a
-//! low one for a light one: a slow or small motion puts the object on the same pixels for much
-//! of the recording, where a median would keep its ghost), and the connected blobs of the
-//! pixels that differ from it by well over the noise, in the object's sense.
+//! What differs from the background (`background`) in each frame: the connected blobs of the
+//! pixels that differ from it by well over the noise, in the object's sense, each with its
+//! centroid, its area and its long axis.
 
+use super::background::Background;
 use physvid_shared::video::region::components;
 use physvid_shared::video::SmallFrames;
-
-/// At most this many frames, evenly spread, make the median background.
-const BACKGROUND_FRAMES: usize = 255;
-
-/// A pixel differs from the background when its difference is this many noise spreads…
-const NOISE_SPREADS: f64 = 6.0;
-/// …and at least this many grey levels (a GIF's or a clean render's noise is near zero).
-const LEAST_LEVELS: f64 = 10.0;
-
-/// The background is each pixel's value at this share of its frames from the object's side: a
-/// pixel the object covers for less than the rest of the time keeps the wall's value.
-const BACKGROUND_SHARE: f64 = 0.85;
 
 /// Blobs smaller than this many pixels are noise.
 const LEAST_AREA: usize = 3;
@@ -32,138 +16,26 @@ pub struct Blob {
     /// The centroid weighted by the difference.
     pub x: f64,
     pub y: f64,
+    /// Its long axis (the principal direction of its difference-weighted second moments),
+    /// radians from the picture's x towards its y, in (−π/2, π/2]…
+    pub axis: f64,
+    /// …and how much longer it is along that axis than across it: the ratio of the second
+    /// moments along and across (1 for a disc or a square; (L/W)² for a thin bar).
+    pub elongation: f64,
 }
 
-/// The background and the difference that counts as a change.
-pub struct Background {
-    /// Each pixel's value without the object (`BACKGROUND_SHARE`), on the frames' common level.
-    pub median: Vec<u8>,
-    /// Each frame's level against the others (grey levels): the median of its differences
-    /// from the median picture, a camera's exposure or a drifting light moving the whole
-    /// picture at once. A frame is compared with the background less its level.
-    pub level: Vec<i16>,
-    /// The object's sense: −1 darker than the background, +1 lighter.
-    pub polarity: f64,
-    /// Grey levels.
-    pub threshold: f64,
-    /// The differences' robust spread (grey levels).
-    pub noise: f64,
-}
-
-/// Each frame's level (the median of its differences from `median`, whole grey levels).
-fn levels(frames: &SmallFrames, median: &[u8]) -> Vec<i16> {
-    (0..frames.len())
-        .map(|i| {
-            let mut histogram = [0u64; 511];
-            for (a, b) in frames.frame(i).iter().zip(median) {
-                histogram[(*a as i32 - *b as i32 + 255) as usize] += 1;
-            }
-            let total: u64 = histogram.iter().sum();
-            let mut seen = 0;
-            let at = histogram
-                .iter()
-                .position(|&c| {
-                    seen += c;
-                    2 * seen >= total
-                })
-                .unwrap_or(255);
-            at as i16 - 255
-        })
-        .collect()
-}
-
-/// The pictures' values at a pixel for the frames `picked`, each less its frame's level,
-/// sorted.
-fn column(frames: &SmallFrames, picked: &[usize], level: &[i16], p: usize, into: &mut Vec<i16>) {
-    into.clear();
-    into.extend(picked.iter().map(|&i| frames.frame(i)[p] as i16 - level[i]));
-    into.sort_unstable();
-}
-
-/// The noise of the differences from each pixel's median over up to [`BACKGROUND_FRAMES`]
-/// frames (1.4826 × their median absolute deviation, from a histogram), each frame taken at
-/// the common level (`levels`), the polarity of the larger ones, and the background the object
-/// leaves alone.
-pub fn background(frames: &SmallFrames) -> Background {
-    let n = frames.len();
-    let pixels = frames.size.0 * frames.size.1;
-    let picked: Vec<usize> = if n <= BACKGROUND_FRAMES {
-        (0..n).collect()
-    } else {
-        (0..BACKGROUND_FRAMES)
-            .map(|k| k * (n - 1) / (BACKGROUND_FRAMES - 1))
-            .collect()
-    };
-    let mut values = Vec::with_capacity(picked.len());
-    let flat = vec![0i16; n];
-    let raw: Vec<u8> = (0..pixels)
-        .map(|p| {
-            column(frames, &picked, &flat, p, &mut values);
-            values[values.len() / 2].clamp(0, 255) as u8
-        })
-        .collect();
-    let level = levels(frames, &raw);
-    let mut median = vec![0i16; pixels];
-    let mut low = vec![0u8; pixels];
-    let mut high = vec![0u8; pixels];
-    let at = |share: f64, len: usize| ((share * (len - 1) as f64).round() as usize).min(len - 1);
-    let grey = |v: i16| v.clamp(0, 255) as u8;
-    for p in 0..pixels {
-        column(frames, &picked, &level, p, &mut values);
-        median[p] = values[values.len() / 2];
-        low[p] = grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]);
-        high[p] = grey(values[at(BACKGROUND_SHARE, values.len())]);
-    }
-    let difference = |i: usize, p: usize, a: u8| (a as i16 - level[i] - median[p]) as f64;
-    let mut histogram = [0u64; 256];
-    for &i in &picked {
-        for (p, &a) in frames.frame(i).iter().enumerate() {
-            histogram[difference(i, p, a).abs().min(255.0) as usize] += 1;
+#[cfg(test)]
+impl Blob {
+    /// A round blob of `area` pixels centred at (`x`, `y`).
+    pub fn round(area: f64, x: f64, y: f64) -> Blob {
+        Blob {
+            area,
+            x,
+            y,
+            axis: 0.0,
+            elongation: 1.0,
         }
     }
-    let med = histogram_median(&histogram);
-    let mut deviations = [0u64; 256];
-    for (d, &c) in histogram.iter().enumerate() {
-        deviations[(d as f64 - med).abs().round().min(255.0) as usize] += c;
-    }
-    let noise = 1.4826 * histogram_median(&deviations);
-    let threshold = (NOISE_SPREADS * noise).max(LEAST_LEVELS);
-    // The polarity: which sign the differences beyond the threshold mostly take.
-    let (mut darker, mut lighter) = (0.0, 0.0);
-    for &i in &picked {
-        for (p, &a) in frames.frame(i).iter().enumerate() {
-            let d = difference(i, p, a);
-            if d < -threshold {
-                darker -= d;
-            } else if d > threshold {
-                lighter += d;
-            }
-        }
-    }
-    let (polarity, median) = if darker >= lighter {
-        (-1.0, high)
-    } else {
-        (1.0, low)
-    };
-    Background {
-        median,
-        level,
-        polarity,
-        threshold,
-        noise,
-    }
-}
-
-fn histogram_median(h: &[u64; 256]) -> f64 {
-    let total: u64 = h.iter().sum();
-    let mut seen = 0;
-    for (v, &c) in h.iter().enumerate() {
-        seen += c;
-        if 2 * seen >= total {
-            return v as f64;
-        }
-    }
-    255.0
 }
 
 /// The blobs of frame `k` against `bg`: pixels beyond the threshold in the object's sense (the
@@ -181,23 +53,38 @@ pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
     let on: Vec<bool> = diff.iter().map(|&d| d > bg.threshold).collect();
     let on = dilate(&erode(&on, w, h), w, h);
     let (labels, count) = components(&on, w, h);
-    let mut sums = vec![(0usize, 0.0, 0.0, 0.0); count];
+    // Each blob's pixels, weight and its moments: x, y, x², y², xy.
+    let mut sums = vec![(0usize, 0.0, [0.0; 5]); count];
     for (i, l) in labels.iter().enumerate() {
         if let Some(l) = l {
             let s = &mut sums[*l];
             let d = diff[i];
+            let (x, y) = ((i % w) as f64, (i / w) as f64);
             s.0 += 1;
             s.1 += d;
-            s.2 += d * (i % w) as f64;
-            s.3 += d * (i / w) as f64;
+            for (m, v) in s.2.iter_mut().zip([x, y, x * x, y * y, x * y]) {
+                *m += d * v;
+            }
         }
     }
     sums.into_iter()
         .filter(|s| s.0 >= LEAST_AREA && s.1 > 0.0)
-        .map(|(area, wsum, xs, ys)| Blob {
-            area: area as f64,
-            x: xs / wsum,
-            y: ys / wsum,
+        .map(|(area, wsum, m)| {
+            let (x, y) = (m[0] / wsum, m[1] / wsum);
+            let (xx, yy, xy) = (
+                m[2] / wsum - x * x,
+                m[3] / wsum - y * y,
+                m[4] / wsum - x * y,
+            );
+            // The second moments' eigenvalues: along and across the long axis.
+            let (mean, half) = ((xx + yy) / 2.0, ((xx - yy) / 2.0).hypot(xy));
+            Blob {
+                area: area as f64,
+                x,
+                y,
+                axis: 0.5 * (2.0 * xy).atan2(xx - yy),
+                elongation: (mean + half) / (mean - half).max(1e-9),
+            }
         })
         .collect()
 }
@@ -236,6 +123,7 @@ fn cross(on: &[bool], w: usize, h: usize, all: bool) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::track::background::background;
 
     /// Frames of a grey wall with a dark 4×4 square at `(x, y)` (its top-left corner).
     fn square_at(places: &[(usize, usize)], (w, h): (usize, usize)) -> SmallFrames {
@@ -268,6 +156,7 @@ mod tests {
             assert!((b[0].y - (y as f64 + 1.5)).abs() < 1e-9);
             // The opening by a cross rounds off the square's four corners.
             assert_eq!(b[0].area, 12.0);
+            assert!((b[0].elongation - 1.0).abs() < 1e-9, "{b:?}");
         }
     }
 
@@ -298,5 +187,36 @@ mod tests {
         let frames = square_at(&[(3, 3); 5], (20, 12));
         let bg = background(&frames);
         assert!(blobs(&frames, 2, &bg).is_empty());
+    }
+
+    /// A bar 4 px wide and 20 long, tilted 30° down from the picture's x, moving across a
+    /// grey wall: its blob's axis is its tilt, and it is far longer than wide.
+    #[test]
+    fn a_bar_s_blob_lies_along_its_tilt() {
+        let (w, h) = (60usize, 40usize);
+        let tilt = 30f64.to_radians();
+        let mut pixels = Vec::new();
+        for k in 0..6 {
+            let (cx, cy) = (15.0 + 6.0 * k as f64, 20.0);
+            pixels.extend((0..w * h).map(|i| {
+                let (x, y) = ((i % w) as f64 - cx, (i / w) as f64 - cy);
+                let along = x * tilt.cos() + y * tilt.sin();
+                let across = -x * tilt.sin() + y * tilt.cos();
+                if along.abs() <= 10.0 && across.abs() <= 2.0 {
+                    30
+                } else {
+                    200
+                }
+            }));
+        }
+        let frames = SmallFrames {
+            pixels,
+            size: (w, h),
+        };
+        let bg = background(&frames);
+        let b = blobs(&frames, 2, &bg);
+        assert_eq!(b.len(), 1, "{b:?}");
+        assert!((b[0].axis - tilt).abs() < 0.03, "{b:?}");
+        assert!(b[0].elongation > 10.0, "{b:?}");
     }
 }

@@ -221,7 +221,7 @@ mod tests {
     use super::*;
 
     fn blob(x: f64, y: f64) -> Blob {
-        Blob { area: 10.0, x, y }
+        Blob::round(10.0, x, y)
     }
 
     #[test]
@@ -229,11 +229,7 @@ mod tests {
         let piece = |frames: std::ops::Range<usize>, x0: f64, area: f64| Tracklet {
             frames: frames.clone().collect(),
             blobs: frames
-                .map(|k| Blob {
-                    area,
-                    x: x0 + (k % 10) as f64,
-                    y: 5.0,
-                })
+                .map(|k| Blob::round(area, x0 + (k % 10) as f64, 5.0))
                 .collect(),
         };
         let all = [

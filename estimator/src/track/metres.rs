@@ -157,6 +157,7 @@ pub(crate) mod tests {
                 frames: 20,
                 threshold: 10.0,
                 on_plane: Vec::new(),
+                reading: crate::track::Reading::Centroids,
             },
             laws: vec![span],
             chosen: Some(law),

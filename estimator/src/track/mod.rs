@@ -6,6 +6,7 @@
 //! nothing: seconds on a recording, and an answer to set beside the latent's.
 
 mod angles;
+pub mod background;
 pub mod blobs;
 mod choose;
 mod fit;
@@ -15,6 +16,7 @@ pub mod link;
 pub(crate) mod metres;
 mod plane;
 mod reading;
+mod rod;
 mod route;
 pub mod segment;
 pub mod template;
@@ -23,6 +25,7 @@ pub use guiding::{GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 pub use route::{LawSpan, TrackRoute};
 
 use physvid_shared::video::{small_chroma, small_frames, VideoError, VideoInfo};
+pub use reading::Reading;
 use reading::{readings, Clock};
 use serde::Serialize;
 use std::path::Path;
@@ -53,6 +56,8 @@ pub struct Track {
     /// The position along the motion's own axis (the principal direction of the path), pixels
     /// from its mean (the plane's pixels where one is given: `on_plane`).
     pub along: Vec<f64>,
+    /// How the positions were read from the thing followed.
+    pub reading: Reading,
     /// The axis (a unit vector in the picture, y down).
     pub axis: (f64, f64),
     /// The track's noise along the axis (pixels, `segment::noise`).
@@ -141,8 +146,9 @@ const LEAST_EXTENT: f64 = 2.0;
 /// Follows the object of `input` (trimmed to `span`) and fits each law where it holds: of the
 /// [`TRIED`] longest-lived things that move, the one a law explains the most motion of; of
 /// the readings of that same thing (its blobs, its picture's matches, linked one way or
-/// another), the one whose law holds the longest; `None` where nothing lives long enough to
-/// follow.
+/// another), the one whose law holds the longest, and of those alike, the reading by its
+/// rod's axes (a shaking camera moves the centroids, not the axes: `rod`); `None` where
+/// nothing lives long enough to follow.
 pub fn follow(
     input: &Path,
     info: &VideoInfo,
@@ -150,20 +156,27 @@ pub fn follow(
     fps: Option<f64>,
 ) -> Result<Option<TrackRoute>, VideoError> {
     let all = candidates(input, info, span, fps)?;
+    Ok(chosen(&all).cloned())
+}
+
+/// Of the readings `all`, the object's (`follow`).
+fn chosen(all: &[TrackRoute]) -> Option<&TrackRoute> {
     let by = |a: &&TrackRoute, b: &&TrackRoute| {
         a.explained()
             .total_cmp(&b.explained())
             .then(a.track.t.len().cmp(&b.track.t.len()))
     };
-    let Some(most) = all.iter().max_by(by) else {
-        return Ok(None);
-    };
+    let most = all.iter().max_by(by)?;
     let longest = all
         .iter()
         .filter(|c| c.explained() > 0.0 && most.same_thing(c))
-        .max_by(|a, b| a.held_s().total_cmp(&b.held_s()).then(by(a, b)))
+        .max_by(|a, b| {
+            let rod = |c: &TrackRoute| c.track.reading == Reading::Rod;
+            let held = a.held_s().total_cmp(&b.held_s());
+            held.then(rod(a).cmp(&rod(b))).then(by(a, b))
+        })
         .unwrap_or(most);
-    Ok(Some(longest.clone()))
+    Some(longest)
 }
 
 /// [`follow`] on the video file `input`, probed first (the Python package's `track`).

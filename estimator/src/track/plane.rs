@@ -128,6 +128,7 @@ mod tests {
                 frames: 36,
                 threshold: 10.0,
                 on_plane: Vec::new(),
+                reading: crate::track::Reading::Centroids,
             },
             chosen: fitted.chosen,
             laws: fitted.laws,

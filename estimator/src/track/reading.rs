@@ -5,9 +5,12 @@
 //! each reading: its axis, its noise and each law's span (`fit`).
 
 use super::template::{self, Match};
-use super::{blobs, fit, link, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED};
+use super::{
+    background, blobs, fit, link, rod, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED,
+};
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
+use serde::Serialize;
 
 /// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
 /// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
@@ -15,7 +18,7 @@ use rayon::prelude::*;
 /// matches.
 pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let n = frames.len();
-    let bg = blobs::background(frames);
+    let bg = background::background(frames);
     let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, &bg)).collect();
     let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
     // The thing that moves the most, its pieces hidden from each other joined, tried too.
@@ -28,17 +31,38 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
         .map(|t| {
             let all = centroids(t);
             let whole = whole(&all);
+            let rod = rod::rod(whole.as_deref().unwrap_or(&all), t);
             let size = t.usual_area().sqrt();
-            [Some(all), whole, Some(template::refine(frames, t))]
-                .into_iter()
-                .flatten()
-                .filter_map(|sightings| route_of(&sightings, size, clock, n, bg.threshold))
-                .collect::<Vec<_>>()
+            [
+                (Reading::Centroids, Some(all)),
+                (Reading::Whole, whole),
+                (Reading::Rod, rod),
+                (Reading::Matches, Some(template::refine(frames, t))),
+            ]
+            .into_iter()
+            .filter_map(|(reading, sightings)| {
+                route_of(&sightings?, reading, size, clock, n, bg.threshold)
+            })
+            .collect::<Vec<_>>()
         })
         .collect::<Vec<_>>()
         .into_iter()
         .flatten()
         .collect()
+}
+
+/// How a track's positions were read from the thing followed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Reading {
+    /// Its blobs' centroids.
+    Centroids,
+    /// The centroids of its whole blobs alone (`whole`).
+    Whole,
+    /// Its whole blobs' long axes about the pivot they meet at (`rod`).
+    Rod,
+    /// Its picture's matches with a patch of it (`template`).
+    Matches,
 }
 
 /// The frames' times, their scale to the displayed picture and its size.
@@ -94,10 +118,11 @@ fn whole(sightings: &[(usize, Match)]) -> Option<Vec<(usize, Match)>> {
     (kept.len() < sightings.len()).then_some(kept)
 }
 
-/// The route of one reading of a tracklet (`centroids`, or `template`'s matches): the axis, the
-/// noise and each law's span.
+/// The route of one `reading` of a tracklet (`centroids`, `whole`, `rod` or `template`'s
+/// matches): the axis, the noise and each law's span.
 pub(super) fn route_of(
     matches: &[(usize, Match)],
+    reading: Reading,
     size: f64,
     clock: &Clock,
     n: usize,
@@ -129,6 +154,7 @@ pub(super) fn route_of(
             frames: n,
             threshold,
             on_plane: Vec::new(),
+            reading,
         },
         chosen: fitted.chosen,
         laws: fitted.laws,
@@ -177,7 +203,11 @@ mod tests {
             picture: (80, 60),
             reach: 20.0,
         };
-        let held = |s: &[(usize, Match)]| route_of(s, 10.0, &clock, 160, 10.0).unwrap().held_s();
+        let held = |s: &[(usize, Match)]| {
+            route_of(s, Reading::Centroids, 10.0, &clock, 160, 10.0)
+                .unwrap()
+                .held_s()
+        };
         assert!(held(&kept) > 7.5, "{}", held(&kept));
         assert!(held(&all) < 6.5, "{}", held(&all));
     }

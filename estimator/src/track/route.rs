@@ -2,6 +2,7 @@
 //! explains and how long it holds, and the frame and times of its span.
 
 use super::laws::{TrackLaw, Value};
+use super::Reading;
 use super::Track;
 use crate::calibration::{Plane, Stick};
 use crate::digits::{sig, significant};
@@ -181,11 +182,15 @@ impl TrackRoute {
     pub fn line(&self) -> String {
         match self.chosen_span() {
             Some(l) => format!(
-                "track: {} over {:.2}–{:.2} s ({} samples, {:.2} px rms, noise {:.2} px): {}",
+                "track: {} over {:.2}–{:.2} s ({} samples{}, {:.2} px rms, noise {:.2} px): {}",
                 l.law.name(),
                 l.first_s,
                 l.last_s,
                 l.samples,
+                match self.track.reading {
+                    Reading::Rod => ", read by its rod's axes",
+                    _ => "",
+                },
                 l.rms_px,
                 self.track.noise,
                 l.values
@@ -249,6 +254,7 @@ pub(crate) mod tests {
             frames: n,
             threshold: 10.0,
             on_plane: Vec::new(),
+            reading: crate::track::Reading::Centroids,
         };
         let span = LawSpan {
             law: TrackLaw::Oscillation,

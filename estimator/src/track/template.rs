@@ -214,11 +214,7 @@ mod tests {
             frames: (0..12).collect(),
             blobs: places
                 .iter()
-                .map(|&(x, y)| Blob {
-                    area: 9.0,
-                    x: x + 2.0,
-                    y,
-                })
+                .map(|&(x, y)| Blob::round(9.0, x + 2.0, y))
                 .collect(),
         };
         let found = refine(&frames, &tracklet);
