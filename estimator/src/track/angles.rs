@@ -68,13 +68,7 @@ mod tests {
                 (k, Match { x, y, score: 1.0 })
             })
             .collect();
-        let clock = Clock {
-            t: &t,
-            file: &t,
-            scale: 1.0,
-            picture: (400, 400),
-            reach: 100.0,
-        };
+        let clock = Clock::shown(&t, (400, 400), 100.0);
         let route = route_of(&matches, Reading::Centroids, 10.0, &clock, t.len(), 10.0).unwrap();
         let l = route
             .laws

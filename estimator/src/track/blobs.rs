@@ -40,7 +40,9 @@ impl Blob {
 
 /// The blobs of frame `k` against `bg`: pixels beyond the threshold in the object's sense (the
 /// frame taken at the common level), opened by a 3×3 cross (a speck or a one-pixel line goes),
-/// 8-connected, at least [`LEAST_AREA`] pixels.
+/// 8-connected, at least [`LEAST_AREA`] pixels; each blob's long axis that of the pixels beyond
+/// the threshold connected to it before the opening (a thin rod or string the opening took
+/// still turns with it).
 pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
     let (w, h) = frames.size;
     let level = bg.level[k] as f64;
@@ -50,43 +52,69 @@ pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
         .zip(&bg.median)
         .map(|(a, b)| (bg.polarity * (*a as f64 - level - *b as f64)).max(0.0))
         .collect();
-    let on: Vec<bool> = diff.iter().map(|&d| d > bg.threshold).collect();
-    let on = dilate(&erode(&on, w, h), w, h);
+    let beyond: Vec<bool> = diff.iter().map(|&d| d > bg.threshold).collect();
+    let on = dilate(&erode(&beyond, w, h), w, h);
     let (labels, count) = components(&on, w, h);
-    // Each blob's pixels, weight and its moments: x, y, x², y², xy.
-    let mut sums = vec![(0usize, 0.0, [0.0; 5]); count];
-    for (i, l) in labels.iter().enumerate() {
-        if let Some(l) = l {
-            let s = &mut sums[*l];
-            let d = diff[i];
-            let (x, y) = ((i % w) as f64, (i / w) as f64);
-            s.0 += 1;
-            s.1 += d;
-            for (m, v) in s.2.iter_mut().zip([x, y, x * x, y * y, x * y]) {
-                *m += d * v;
+    let (reached, reach_count) = components(&beyond, w, h);
+    // Each blob's pixels and moments, and those of the region it lies in before the opening
+    // (the opening only takes pixels away, so a blob lies in one).
+    let mut blob = vec![(0usize, Moments::default()); count];
+    let mut region = vec![Moments::default(); reach_count];
+    let mut within = vec![0; count];
+    for i in 0..w * h {
+        let (x, y, d) = ((i % w) as f64, (i / w) as f64, diff[i]);
+        if let Some(r) = reached[i] {
+            region[r].add(x, y, d);
+            if let Some(l) = labels[i] {
+                blob[l].0 += 1;
+                blob[l].1.add(x, y, d);
+                within[l] = r;
             }
         }
     }
-    sums.into_iter()
-        .filter(|s| s.0 >= LEAST_AREA && s.1 > 0.0)
-        .map(|(area, wsum, m)| {
-            let (x, y) = (m[0] / wsum, m[1] / wsum);
-            let (xx, yy, xy) = (
-                m[2] / wsum - x * x,
-                m[3] / wsum - y * y,
-                m[4] / wsum - x * y,
-            );
-            // The second moments' eigenvalues: along and across the long axis.
-            let (mean, half) = ((xx + yy) / 2.0, ((xx - yy) / 2.0).hypot(xy));
+    blob.into_iter()
+        .zip(within)
+        .filter(|(b, _)| b.0 >= LEAST_AREA && b.1.weight > 0.0)
+        .map(|((area, m), r)| {
+            let (axis, elongation) = region[r].axis();
             Blob {
                 area: area as f64,
-                x,
-                y,
-                axis: 0.5 * (2.0 * xy).atan2(xx - yy),
-                elongation: (mean + half) / (mean - half).max(1e-9),
+                x: m.sums[0] / m.weight,
+                y: m.sums[1] / m.weight,
+                axis,
+                elongation,
             }
         })
         .collect()
+}
+
+/// A region's difference-weighted sums: the weight, and of x, y, x², y², xy.
+#[derive(Debug, Clone, Copy, Default)]
+struct Moments {
+    weight: f64,
+    sums: [f64; 5],
+}
+
+impl Moments {
+    fn add(&mut self, x: f64, y: f64, d: f64) {
+        self.weight += d;
+        for (m, v) in self.sums.iter_mut().zip([x, y, x * x, y * y, x * y]) {
+            *m += d * v;
+        }
+    }
+
+    /// The long axis (radians from x towards y) and the ratio of the second moments along and
+    /// across it (the central moments' eigenvalues).
+    fn axis(&self) -> (f64, f64) {
+        let m = |j: usize| self.sums[j] / self.weight.max(f64::MIN_POSITIVE);
+        let (x, y) = (m(0), m(1));
+        let (xx, yy, xy) = (m(2) - x * x, m(3) - y * y, m(4) - x * y);
+        let (mean, half) = ((xx + yy) / 2.0, ((xx - yy) / 2.0).hypot(xy));
+        (
+            0.5 * (2.0 * xy).atan2(xx - yy),
+            (mean + half) / (mean - half).max(1e-9),
+        )
+    }
 }
 
 /// The 3×3 cross's erosion (a pixel stays on where it and its four neighbours are on).

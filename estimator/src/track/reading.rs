@@ -75,6 +75,21 @@ pub(super) struct Clock<'a> {
     pub reach: f64,
 }
 
+#[cfg(test)]
+impl<'a> Clock<'a> {
+    /// The clock of frames at times `t` of the file's own timeline too, read at the displayed
+    /// picture's size (`picture`), the object moving at most `reach` pixels a frame.
+    pub fn shown(t: &'a [f64], picture: (usize, usize), reach: f64) -> Clock<'a> {
+        Clock {
+            t,
+            file: t,
+            scale: 1.0,
+            picture,
+            reach,
+        }
+    }
+}
+
 /// A tracklet's sightings read as its blobs' centroids, their quality the blob's size against
 /// its usual size.
 fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
@@ -196,13 +211,7 @@ mod tests {
         // The law holds over the whole track where the merged blobs are gaps, and stops at
         // them where they are kept.
         let t: Vec<f64> = (0..160).map(|k| k as f64 / 20.0).collect();
-        let clock = Clock {
-            t: &t,
-            file: &t,
-            scale: 1.0,
-            picture: (80, 60),
-            reach: 20.0,
-        };
+        let clock = Clock::shown(&t, (80, 60), 20.0);
         let held = |s: &[(usize, Match)]| {
             route_of(s, Reading::Centroids, 10.0, &clock, 160, 10.0)
                 .unwrap()

@@ -207,13 +207,7 @@ mod tests {
     #[test]
     fn a_shaken_pendulum_is_read_by_its_rod() {
         let (frames, t) = shaken_pendulum();
-        let clock = Clock {
-            t: &t,
-            file: &t,
-            scale: 1.0,
-            picture: (64, 64),
-            reach: 12.8,
-        };
+        let clock = Clock::shown(&t, (64, 64), 12.8);
         let all = readings(&frames, &clock);
         let route = chosen(&all).unwrap();
         assert_eq!(route.track.reading, Reading::Rod);
