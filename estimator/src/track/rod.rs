@@ -1,8 +1,9 @@
 //! The swing read by its rod: where the thing followed is a long blob (a rod, or a string with
 //! its bob) moving on an arc below a pivot, each sighting's angle about the pivot is its blob's
 //! long axis, which a shaking camera does not turn (it moves the whole picture, the centroid
-//! with it, by pixels), and the sighting is put on the path's circle at that angle. A reading
-//! of its own beside the centroids': the law that holds longer chooses between them.
+//! with it, by pixels); the pivot is where the axes meet, and each sighting is put on the
+//! circle about it at its axis's angle. A reading of its own beside the centroids': the law
+//! that holds longer chooses between them, and of readings alike, this one (`track::chosen`).
 
 use super::blobs::Blob;
 use super::link::Tracklet;
