@@ -14,6 +14,7 @@ mod guiding;
 pub mod laws;
 pub mod link;
 pub(crate) mod metres;
+mod patch;
 mod plane;
 mod reading;
 mod rod;

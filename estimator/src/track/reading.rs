@@ -1,12 +1,13 @@
 //! One picture's readings of the things that move: the tracklets linked from its blobs (and
 //! the pieces of the one that moves the most, hidden from each other, rejoined), each read as
 //! its blobs' centroids, as those of its whole blobs alone (a blob cut by the threshold or
-//! merged with clutter a gap) and as its picture's matches (`template`), and the route of
-//! each reading: its axis, its noise and each law's span (`fit`).
+//! merged with clutter a gap) and as its picture's matches (`template`; the object's carried
+//! on past its tracklet's ends), and the route of each reading: its axis, its noise and each
+//! law's span (`fit`).
 
 use super::template::{self, Match};
 use super::{
-    background, blobs, fit, link, rod, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED,
+    background, blobs, chosen, fit, link, rod, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED,
 };
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
@@ -14,8 +15,9 @@ use serde::Serialize;
 
 /// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
 /// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
-/// as its blobs' centroids, as those of its whole blobs alone (`whole`) and as its picture's
-/// matches.
+/// as its blobs' centroids, as those of its whole blobs alone (`whole`), by its rod's axes
+/// (`rod`) and as its picture's matches; and the matches of the thing whose reading `chosen`
+/// keeps carried on past its tracklet's ends (`template::beyond`).
 pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let n = frames.len();
     let bg = background::background(frames);
@@ -26,7 +28,7 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let tried: Vec<&link::Tracklet> = tracklets.iter().take(TRIED).chain(joined.iter()).collect();
     // Each tracklet's readings and their routes on the pool's threads (most of a track's time:
     // the matches and the laws' fits), in the order tried.
-    tried
+    let routes: Vec<Vec<TrackRoute>> = tried
         .par_iter()
         .map(|t| {
             let all = centroids(t);
@@ -43,12 +45,33 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
             .filter_map(|(reading, sightings)| {
                 route_of(&sightings?, reading, size, clock, n, bg.threshold)
             })
-            .collect::<Vec<_>>()
+            .collect()
         })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .flatten()
-        .collect()
+        .collect();
+    // Which tracklet each reading is of.
+    let of: Vec<usize> = (0..routes.len())
+        .flat_map(|i| std::iter::repeat_n(i, routes[i].len()))
+        .collect();
+    let mut all: Vec<TrackRoute> = routes.into_iter().flatten().collect();
+    // The object's picture matched on past its tracklet's ends (`template::beyond`), a
+    // reading beside the others: the whole recording's fits for one tracklet, not for all.
+    let object = chosen(&all).and_then(|c| all.iter().position(|o| std::ptr::eq(o, c)));
+    if let Some(tracklet) = object.map(|i| tried[of[i]]) {
+        let within = template::refine(frames, tracklet);
+        let beyond = template::beyond(frames, tracklet, &within);
+        if beyond.len() > within.len() {
+            let size = tracklet.usual_area().sqrt();
+            all.extend(route_of(
+                &beyond,
+                Reading::Matches,
+                size,
+                clock,
+                n,
+                bg.threshold,
+            ));
+        }
+    }
+    all
 }
 
 /// How a track's positions were read from the thing followed.

@@ -1,109 +1,70 @@
 //! The object's position refined by its picture: a patch cut around its blob in the frame where
-//! the blob has its usual size, matched by normalised cross-correlation in every frame of the
-//! tracklet's time near where the blob (or the last match) puts it, to a fraction of a pixel
-//! (a parabola through the peak and its neighbours). A spring's coils or a hand merged into the
-//! blob pull its centroid; they change the match's score, not its place.
+//! the blob has its usual size, matched (`patch`) in every frame of the tracklet's time near
+//! where the blob (or the last match) puts it, and, for the object, on past the tracklet's ends
+//! about where its last matches carry it (`beyond`: its blob fades where it moves less than its
+//! size about where it rests). A spring's coils or a hand merged into the blob pull its
+//! centroid; they change the match's score, not its place.
 
 use super::link::Tracklet;
+use super::patch::{best_match, Patch};
+pub use super::patch::{Match, LEAST_SCORE};
 use physvid_shared::video::SmallFrames;
-
-/// A match below this correlation is no sighting (hidden, blurred, turned away).
-pub const LEAST_SCORE: f64 = 0.6;
 
 /// The patch is at most this many pixels either side of its centre (a larger object is matched
 /// by its middle), and the search at most this far from the guess.
 const LARGEST_HALF: usize = 12;
 const FURTHEST: usize = 24;
 
-/// One frame's match: the patch's centre (pixels of the frames read) and its correlation.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Match {
-    pub x: f64,
-    pub y: f64,
-    pub score: f64,
+/// Past a tracklet's ends the matches go on until this many frames in a row show none (as a
+/// tracklet may miss frames: `link`'s gap).
+const ONWARD_GAP: usize = 3;
+
+/// What matches one tracklet's object: its patch, the search's reach about a guess within the
+/// tracklet, and about where the last matches carry it beyond.
+struct Matcher {
+    patch: Patch,
+    reach: usize,
+    near: usize,
 }
 
-/// The zero-mean patch and its norm.
-struct Patch {
-    values: Vec<f64>,
-    norm: f64,
-    half: usize,
-}
-
-impl Patch {
-    fn cut(
-        frame: &[u8],
-        (w, h): (usize, usize),
-        (cx, cy): (usize, usize),
-        half: usize,
-    ) -> Option<Patch> {
-        if cx < half || cy < half || cx + half >= w || cy + half >= h {
-            return None;
-        }
-        let side = 2 * half + 1;
-        let mut values = Vec::with_capacity(side * side);
-        for y in cy - half..=cy + half {
-            for x in cx - half..=cx + half {
-                values.push(frame[y * w + x] as f64);
-            }
-        }
-        let mean = values.iter().sum::<f64>() / values.len() as f64;
-        values.iter_mut().for_each(|v| *v -= mean);
-        let norm = values.iter().map(|v| v * v).sum::<f64>().sqrt();
-        (norm > 0.0).then_some(Patch { values, norm, half })
-    }
-
-    /// The correlation of this patch with `frame` centred at (cx, cy) (inside).
-    fn score(&self, frame: &[u8], w: usize, (cx, cy): (usize, usize)) -> f64 {
-        let half = self.half;
-        let side = 2 * half + 1;
-        let (mut sum, mut sum_sq, mut cross) = (0.0, 0.0, 0.0);
-        for (r, y) in (cy - half..=cy + half).enumerate() {
-            let row = &frame[y * w + cx - half..y * w + cx + half + 1];
-            let t = &self.values[r * side..(r + 1) * side];
-            for (p, q) in row.iter().zip(t) {
-                let p = *p as f64;
-                sum += p;
-                sum_sq += p * p;
-                cross += p * q;
-            }
-        }
-        let n = (side * side) as f64;
-        let var = sum_sq - sum * sum / n;
-        if var <= 0.0 {
-            return 0.0;
-        }
-        // The template has zero mean, so the frame's mean drops out of the cross term.
-        cross / (self.norm * var.sqrt())
+impl Matcher {
+    fn of(frames: &SmallFrames, tracklet: &Tracklet) -> Option<Matcher> {
+        let (w, h) = frames.size;
+        let usual = tracklet.usual_area();
+        let half = ((usual.sqrt() / 2.0).ceil() as usize + 2).clamp(3, LARGEST_HALF);
+        // The fastest step seen between consecutive sightings widens the search.
+        let fastest = tracklet
+            .frames
+            .windows(2)
+            .zip(tracklet.blobs.windows(2))
+            .map(|(f, b)| (b[1].x - b[0].x).hypot(b[1].y - b[0].y) / (f[1] - f[0]) as f64)
+            .fold(0.0, f64::max);
+        let reach = ((1.5 * fastest).ceil() as usize + 2).min(FURTHEST);
+        // Beyond the tracklet a quarter of the fastest step about where the last two matches
+        // carry it (an oscillation's step changes by (2π/N)² of its swing a frame, N frames a
+        // period).
+        let near = ((fastest / 4.0).ceil() as usize + 2).min(reach);
+        // The reference: the sighting whose size is nearest the usual one, with room for the
+        // patch.
+        let mut order: Vec<usize> = (0..tracklet.blobs.len()).collect();
+        order.sort_by(|&a, &b| {
+            (tracklet.blobs[a].area - usual)
+                .abs()
+                .total_cmp(&(tracklet.blobs[b].area - usual).abs())
+        });
+        let patch = order.iter().find_map(|&i| {
+            let b = tracklet.blobs[i];
+            let at = (b.x.round() as usize, b.y.round() as usize);
+            Patch::cut(frames.frame(tracklet.frames[i]), (w, h), at, half)
+        })?;
+        Some(Matcher { patch, reach, near })
     }
 }
 
 /// The matches of `tracklet`'s object in each frame from its first to its last (None where it
-/// is not seen), the blobs moving at most `step` pixels a frame.
+/// is not seen), each searched about its blob or the last match.
 pub fn refine(frames: &SmallFrames, tracklet: &Tracklet) -> Vec<(usize, Match)> {
-    let (w, h) = frames.size;
-    let usual = tracklet.usual_area();
-    let half = ((usual.sqrt() / 2.0).ceil() as usize + 2).clamp(3, LARGEST_HALF);
-    // The fastest step seen between consecutive sightings widens the search.
-    let fastest = tracklet
-        .frames
-        .windows(2)
-        .zip(tracklet.blobs.windows(2))
-        .map(|(f, b)| (b[1].x - b[0].x).hypot(b[1].y - b[0].y) / (f[1] - f[0]) as f64)
-        .fold(0.0, f64::max);
-    let reach = ((1.5 * fastest).ceil() as usize + 2).min(FURTHEST);
-    // The reference: the sighting whose size is nearest the usual one, with room for the patch.
-    let mut order: Vec<usize> = (0..tracklet.blobs.len()).collect();
-    order.sort_by(|&a, &b| {
-        (tracklet.blobs[a].area - usual)
-            .abs()
-            .total_cmp(&(tracklet.blobs[b].area - usual).abs())
-    });
-    let Some(patch) = order.iter().find_map(|&i| {
-        let b = tracklet.blobs[i];
-        let at = (b.x.round() as usize, b.y.round() as usize);
-        Patch::cut(frames.frame(tracklet.frames[i]), (w, h), at, half)
-    }) else {
+    let Some(m) = Matcher::of(frames, tracklet) else {
         return Vec::new();
     };
     let first = tracklet.frames[0];
@@ -123,56 +84,75 @@ pub fn refine(frames: &SmallFrames, tracklet: &Tracklet) -> Vec<(usize, Match)> 
             }
             break;
         }
-        let Some((gx, gy)) = guess else { continue };
-        let frame = frames.frame(k);
-        let lo = |g: f64| (g.round() as isize - reach as isize).max(half as isize) as usize;
-        let (x0, y0) = (lo(gx), lo(gy));
-        let x1 = ((gx.round() as usize) + reach).min(w - half - 1);
-        let y1 = ((gy.round() as usize) + reach).min(h - half - 1);
-        if x0 > x1 || y0 > y1 {
-            continue;
+        if let Some(hit) = guess.and_then(|g| best_match(frames, &m.patch, g, m.reach, k)) {
+            previous = Some((hit.x, hit.y));
+            found.push((k, hit));
         }
-        let (sw, sh) = (x1 - x0 + 1, y1 - y0 + 1);
-        let scores: Vec<f64> = (0..sw * sh)
-            .map(|i| patch.score(frame, w, (x0 + i % sw, y0 + i / sw)))
-            .collect();
-        let (best, score) = scores
-            .iter()
-            .copied()
-            .enumerate()
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .expect("a search window has a place");
-        if score < LEAST_SCORE {
-            continue;
-        }
-        let (bx, by) = (best % sw, best / sw);
-        let vertex = |a: f64, b: f64, c: f64| {
-            let d = a - 2.0 * b + c;
-            if d < 0.0 {
-                (0.5 * (a - c) / d).clamp(-0.5, 0.5)
-            } else {
-                0.0
-            }
-        };
-        let dx = if bx > 0 && bx + 1 < sw {
-            vertex(scores[best - 1], score, scores[best + 1])
-        } else {
-            0.0
-        };
-        let dy = if by > 0 && by + 1 < sh {
-            vertex(scores[best - sw], score, scores[best + sw])
-        } else {
-            0.0
-        };
-        let m = Match {
-            x: (x0 + bx) as f64 + dx,
-            y: (y0 + by) as f64 + dy,
-            score,
-        };
-        previous = Some((m.x, m.y));
-        found.push((k, m));
     }
     found
+}
+
+/// `tracklet`'s matches `within` it (`refine`) carried on past its ends while its patch is
+/// seen: its blob fades where the object moves less than its own size about where it rests,
+/// since the median background holds it there. Each search is about where the last two
+/// matches carry it; the matches stop [`ONWARD_GAP`] frames after the last.
+pub fn beyond(
+    frames: &SmallFrames,
+    tracklet: &Tracklet,
+    within: &[(usize, Match)],
+) -> Vec<(usize, Match)> {
+    let (Some(m), Some(&(first, _)), Some(&(last, _))) =
+        (Matcher::of(frames, tracklet), within.first(), within.last())
+    else {
+        return within.to_vec();
+    };
+    let carried = |k: usize, guess: (f64, f64)| best_match(frames, &m.patch, guess, m.near, k);
+    let ahead = onward(within, last + 1..frames.len(), &carried);
+    let rev: Vec<(usize, Match)> = within.iter().rev().copied().collect();
+    let mut all = onward(&rev, (0..first).rev(), &carried);
+    all.reverse();
+    all.extend_from_slice(within);
+    all.extend(ahead);
+    all
+}
+
+/// The matches after the last of `found` (its order the frames' `ks`), each searched about
+/// where its last two matches carry it, until [`ONWARD_GAP`] frames in a row show none.
+fn onward(
+    found: &[(usize, Match)],
+    ks: impl Iterator<Item = usize>,
+    within: &dyn Fn(usize, (f64, f64)) -> Option<Match>,
+) -> Vec<(usize, Match)> {
+    let mut seen: Vec<(usize, Match)> = found.iter().rev().take(2).rev().copied().collect();
+    if seen.is_empty() {
+        return Vec::new();
+    }
+    let (mut added, mut missed) = (Vec::new(), 0);
+    for k in ks {
+        let (f, m) = seen[seen.len() - 1];
+        let guess = match seen.len() {
+            1 => (m.x, m.y),
+            _ => {
+                let (g, p) = seen[0];
+                let s = (k as f64 - f as f64) / (f as f64 - g as f64);
+                (m.x + s * (m.x - p.x), m.y + s * (m.y - p.y))
+            }
+        };
+        match within(k, guess) {
+            Some(m) => {
+                missed = 0;
+                seen = vec![seen[seen.len() - 1], (k, m)];
+                added.push((k, m));
+            }
+            None => {
+                missed += 1;
+                if missed > ONWARD_GAP {
+                    break;
+                }
+            }
+        }
+    }
+    added
 }
 
 #[cfg(test)]
@@ -180,16 +160,11 @@ mod tests {
     use super::*;
     use crate::track::blobs::Blob;
 
-    /// A bright 5×5 cross-shaped mark on a textured wall, moving by fractions of a pixel, drawn
-    /// by area sampling; its blob's centroid is put 2 px off to stand for a hand beside it.
-    #[test]
-    fn the_match_finds_the_mark_to_a_tenth_of_a_pixel_whatever_pulls_its_blob() {
-        let (w, h) = (48, 32);
-        let places: Vec<(f64, f64)> = (0..12)
-            .map(|k| (14.0 + 1.37 * k as f64, 15.0 + 0.41 * k as f64))
-            .collect();
+    /// A bright 5×5 cross-shaped mark at each of `places` on a textured wall, drawn by area
+    /// sampling, one frame a place.
+    fn drawn(places: &[(f64, f64)], (w, h): (usize, usize)) -> SmallFrames {
         let mut pixels = Vec::new();
-        for &(px, py) in &places {
+        for &(px, py) in places {
             for y in 0..h {
                 for x in 0..w {
                     let mut cover = 0.0;
@@ -206,10 +181,20 @@ mod tests {
                 }
             }
         }
-        let frames = SmallFrames {
+        SmallFrames {
             pixels,
             size: (w, h),
-        };
+        }
+    }
+
+    /// The mark moving by fractions of a pixel; its blob's centroid is put 2 px off to stand
+    /// for a hand beside it.
+    #[test]
+    fn the_match_finds_the_mark_to_a_tenth_of_a_pixel_whatever_pulls_its_blob() {
+        let places: Vec<(f64, f64)> = (0..12)
+            .map(|k| (14.0 + 1.37 * k as f64, 15.0 + 0.41 * k as f64))
+            .collect();
+        let frames = drawn(&places, (48, 32));
         let tracklet = Tracklet {
             frames: (0..12).collect(),
             blobs: places
@@ -227,5 +212,49 @@ mod tests {
             assert!((m.y - places[*k].1 - y0).abs() < 0.15, "frame {k}: {m:?}");
             assert!(m.score > LEAST_SCORE, "frame {k}: {m:?}");
         }
+    }
+
+    /// A mark swinging ±6 px, 16 frames a period, for 80 frames, its blob seen only over
+    /// frames 30–45 (elsewhere, say, too near where it rests to differ from the background):
+    /// beyond the tracklet the matches follow it over every frame, both ways, to a fifth of a
+    /// pixel (the wall's texture biases a match by up to 0.15 px, within the tracklet alike);
+    /// within it they are the tracklet's own.
+    #[test]
+    fn beyond_its_tracklet_the_mark_is_followed_over_the_whole_recording() {
+        let places: Vec<(f64, f64)> = (0..80)
+            .map(|k| {
+                let phase = std::f64::consts::TAU * k as f64 / 16.0;
+                (24.0 + 6.0 * phase.cos(), 16.0 + 0.5 * phase.sin())
+            })
+            .collect();
+        let frames = drawn(&places, (48, 32));
+        let seen = 30..46;
+        let tracklet = Tracklet {
+            frames: seen.clone().collect(),
+            blobs: seen
+                .clone()
+                .map(|k| Blob::round(9.0, places[k].0, places[k].1))
+                .collect(),
+        };
+        let within = refine(&frames, &tracklet);
+        assert_eq!(within.len(), seen.len());
+        let all = beyond(&frames, &tracklet, &within);
+        assert_eq!(all.len(), 80);
+        assert!(all.iter().enumerate().all(|(i, (k, _))| *k == i));
+        assert_eq!(&all[30..46], &within[..]);
+        let (x0, y0) = (all[30].1.x - places[30].0, all[30].1.y - places[30].1);
+        for (k, m) in &all {
+            let off = (m.x - places[*k].0 - x0).hypot(m.y - places[*k].1 - y0);
+            assert!(off < 0.2, "frame {k}: {m:?}");
+        }
+        // Where the mark leaves the picture the matches stop: frames of wall alone after 80.
+        let mut wall = frames.pixels.clone();
+        let blank = drawn(&[(-20.0, -20.0)], (48, 32)).pixels;
+        (0..10).for_each(|_| wall.extend_from_slice(&blank));
+        let longer = SmallFrames {
+            pixels: wall,
+            size: (48, 32),
+        };
+        assert_eq!(beyond(&longer, &tracklet, &within).len(), 80);
     }
 }

@@ -81,8 +81,15 @@ pub fn decode(
             ),
         ));
     }
-    if let Some(filter) = info.filter() {
-        cmd.args(["-vf", &filter]);
+    // The crop cut by ffmpeg (on the displayed picture, exactly: `exact` keeps an odd corner
+    // where a subsampled chroma would round it), so that the pipe carries only the frames'
+    // part kept: a tenth of a 1080p frame for an object's path.
+    let whole = crop.x == 0 && crop.y == 0 && crop.w == info.width && crop.h == info.height;
+    let cropped =
+        (!whole).then(|| format!("crop={}:{}:{}:{}:exact=1", crop.w, crop.h, crop.x, crop.y));
+    let filters: Vec<String> = info.filter().into_iter().chain(cropped).collect();
+    if !filters.is_empty() {
+        cmd.args(["-vf", &filters.join(",")]);
     }
     cmd.args(EVERY_FRAME)
         .args(["-f", "rawvideo", "-pix_fmt", "gray", "-"]);
@@ -114,9 +121,10 @@ pub fn decode(
             .filter(|(_, l)| !l.contains("non monotonically increasing dts to muxer"))
             .collect::<Vec<_>>()
     });
-    let frame_bytes = info.width * info.height;
+    let frame_bytes = crop.w * crop.h;
     let mut buf = vec![0u8; frame_bytes];
-    let mut resizer = FrameResizer::new(info.width, crop, opts.size);
+    let piped = Crop { x: 0, y: 0, ..crop };
+    let mut resizer = FrameResizer::new(crop.w, piped, opts.size);
     let mut frames = Vec::new();
     let mut count = 0usize;
     let mut partial = false;
