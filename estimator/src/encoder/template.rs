@@ -74,7 +74,7 @@ impl Template {
                 return None;
             }
             let reach = d.amax(0, false).view([1, 1, h, w]);
-            let spread = reach.avg_pool2d([side, side], [1, 1], [0, 0], false, true, None::<i64>);
+            let spread = box_mean(&reach, side);
             let top = spread.max().double_value(&[]);
             Some(Template {
                 patch: (patch / norm).view([1, 1, side, side]),
@@ -96,10 +96,8 @@ impl Template {
         let f = v.size()[0];
         let n = (side * side) as f64;
         let dot = v.conv2d(&self.patch, None::<Tensor>, [1, 1], [0, 0], [1, 1], 1);
-        let pool =
-            |t: &Tensor| t.avg_pool2d([side, side], [1, 1], [0, 0], false, true, None::<i64>);
-        let mean = pool(&v);
-        let var = (pool(&v.square()) - mean.square()).clamp_min(0.0) * n;
+        let mean = box_mean(&v, side);
+        let var = (box_mean(&v.square(), side) - mean.square()).clamp_min(0.0) * n;
         let spread = var.sqrt();
         let allowed = spread.ge(self.contrast).to_kind(Kind::Float) * &self.allowed;
         let score = dot / spread.clamp_min(self.contrast);
@@ -125,6 +123,14 @@ impl Template {
             .collect();
         Tensor::from_slice(&out).view([-1, 2]).to_device(x.device())
     }
+}
+
+/// The mean of every `side`×`side` square of `t` [N, 1, H, W] (no padding), as a column's
+/// mean then a row's: the same mean as one square pooling, at 2·side additions an output
+/// instead of side² (the square pooling took half of a hand-held spring's run).
+fn box_mean(t: &Tensor, side: i64) -> Tensor {
+    t.avg_pool2d([side, 1], [1, 1], [0, 0], false, true, None::<i64>)
+        .avg_pool2d([1, side], [1, 1], [0, 0], false, true, None::<i64>)
 }
 
 /// A template as the centroid encoder's front end uses it on standardised clips: the mean
