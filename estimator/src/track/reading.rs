@@ -27,40 +27,43 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     let joined = link::rejoined(&tracklets, 0);
     let tried: Vec<&link::Tracklet> = tracklets.iter().take(TRIED).chain(joined.iter()).collect();
     // Each tracklet's readings and their routes on the pool's threads (most of a track's time:
-    // the matches and the laws' fits), in the order tried.
-    let routes: Vec<Vec<TrackRoute>> = tried
+    // the matches and the laws' fits), in the order tried, with its matches.
+    let routes: Vec<(Vec<TrackRoute>, Sightings)> = tried
         .par_iter()
         .map(|t| {
             let all = centroids(t);
             let whole = whole(&all);
             let rod = rod::rod(whole.as_deref().unwrap_or(&all), t);
+            let matches = template::refine(frames, t);
             let size = t.usual_area().sqrt();
-            [
+            let routes = [
                 (Reading::Centroids, Some(all)),
                 (Reading::Whole, whole),
                 (Reading::Rod, rod),
-                (Reading::Matches, Some(template::refine(frames, t))),
+                (Reading::Matches, Some(matches.clone())),
             ]
             .into_iter()
             .filter_map(|(reading, sightings)| {
                 route_of(&sightings?, reading, size, clock, n, bg.threshold)
             })
-            .collect()
+            .collect();
+            (routes, matches)
         })
         .collect();
     // Which tracklet each reading is of.
     let of: Vec<usize> = (0..routes.len())
-        .flat_map(|i| std::iter::repeat_n(i, routes[i].len()))
+        .flat_map(|i| std::iter::repeat_n(i, routes[i].0.len()))
         .collect();
+    let (routes, matches): (Vec<Vec<TrackRoute>>, Vec<_>) = routes.into_iter().unzip();
     let mut all: Vec<TrackRoute> = routes.into_iter().flatten().collect();
     // The object's picture matched on past its tracklet's ends (`template::beyond`), a
     // reading beside the others: the whole recording's fits for one tracklet, not for all.
     let object = chosen(&all).and_then(|c| all.iter().position(|o| std::ptr::eq(o, c)));
-    if let Some(tracklet) = object.map(|i| tried[of[i]]) {
-        let within = template::refine(frames, tracklet);
-        let beyond = template::beyond(frames, tracklet, &within);
+    if let Some(k) = object.map(|i| of[i]) {
+        let within = &matches[k];
+        let beyond = template::beyond(frames, tried[k], within);
         if beyond.len() > within.len() {
-            let size = tracklet.usual_area().sqrt();
+            let size = tried[k].usual_area().sqrt();
             all.extend(route_of(
                 &beyond,
                 Reading::Matches,
@@ -73,6 +76,9 @@ pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
     }
     all
 }
+
+/// A reading's sightings: each frame's index and the object's place in it.
+type Sightings = Vec<(usize, Match)>;
 
 /// How a track's positions were read from the thing followed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

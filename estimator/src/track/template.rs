@@ -216,9 +216,9 @@ mod tests {
 
     /// A mark swinging ±6 px, 16 frames a period, for 80 frames, its blob seen only over
     /// frames 30–45 (elsewhere, say, too near where it rests to differ from the background):
-    /// beyond the tracklet the matches follow it over every frame, both ways, to a fifth of a
-    /// pixel (the wall's texture biases a match by up to 0.15 px, within the tracklet alike);
-    /// within it they are the tracklet's own.
+    /// beyond the tracklet the matches follow it over every frame, both ways, as closely as
+    /// within it (where the wall's texture biases a match by a fraction of a pixel); within it
+    /// they are the tracklet's own.
     #[test]
     fn beyond_its_tracklet_the_mark_is_followed_over_the_whole_recording() {
         let places: Vec<(f64, f64)> = (0..80)
@@ -243,10 +243,12 @@ mod tests {
         assert!(all.iter().enumerate().all(|(i, (k, _))| *k == i));
         assert_eq!(&all[30..46], &within[..]);
         let (x0, y0) = (all[30].1.x - places[30].0, all[30].1.y - places[30].1);
-        for (k, m) in &all {
-            let off = (m.x - places[*k].0 - x0).hypot(m.y - places[*k].1 - y0);
-            assert!(off < 0.2, "frame {k}: {m:?}");
-        }
+        let off =
+            |(k, m): &(usize, Match)| (m.x - places[*k].0 - x0).hypot(m.y - places[*k].1 - y0);
+        let worst = |s: &[(usize, Match)]| s.iter().map(off).fold(0.0, f64::max);
+        // Sub-pixel within the tracklet, and no worse beyond it than within.
+        assert!(worst(&within) < 0.25, "{}", worst(&within));
+        assert!(worst(&all) <= worst(&within) + 1e-6, "{}", worst(&all));
         // Where the mark leaves the picture the matches stop: frames of wall alone after 80.
         let mut wall = frames.pixels.clone();
         let blank = drawn(&[(-20.0, -20.0)], (48, 32)).pixels;
