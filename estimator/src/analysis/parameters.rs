@@ -33,8 +33,10 @@ pub struct ParameterResult {
 
 /// One value as each route measured it (the track's error the larger of its fit's and half
 /// its halves' difference; the latent's `None` where it has none), and whether they agree (the
-/// value is then both weighed by their errors, else the track's).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// value is then both weighed by their errors, else the track's). `unlike` names another value
+/// of the same answer on which they disagree: the latent followed another motion than the
+/// track, so the track's is reported here too, though this one's two agree.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RouteValues {
     pub latent: f64,
     pub latent_error: Option<f64>,
@@ -42,6 +44,8 @@ pub struct RouteValues {
     pub track_error: f64,
     #[serde(default = "agreed")]
     pub agree: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unlike: Option<String>,
 }
 
 /// Reports written before `agree` was: every value combined agreed.
@@ -53,7 +57,7 @@ impl ParameterResult {
     /// Where the value is both routes' or the track's: each one's, in a phrase ("both routes,
     /// the latent's 0.117 ± 0.03 and the track's 0.076 ± 0.0015, weighed by their errors").
     pub fn routes_phrase(&self) -> Option<String> {
-        let r = self.routes?;
+        let r = self.routes.as_ref()?;
         let latent = match r.latent_error {
             Some(e) => format!("{} ± {}", sig(r.latent), significant(e)),
             None => format!("{} (no standard error)", sig(r.latent)),
@@ -71,12 +75,16 @@ impl ParameterResult {
             ),
             None => String::new(),
         };
-        Some(match r.agree {
-            true => format!(
+        Some(match (r.agree, &r.unlike) {
+            (true, Some(other)) => format!(
+                "the track's {track}; the latent's {latent} not weighed in: its {other} \
+                 disagrees with the track's (the routes check), so it followed another motion"
+            ),
+            (true, None) => format!(
                 "both routes, the latent's {latent} and the track's {track}, weighed by their \
                  errors{widened}"
             ),
-            false => format!(
+            (false, _) => format!(
                 "the track's {track}; the latent's {latent} disagrees with it (the routes check)"
             ),
         })
@@ -131,8 +139,9 @@ mod tests {
             track: 0.0769,
             track_error: 0.0042,
             agree: true,
+            unlike: None,
         };
-        p.routes = Some(r);
+        p.routes = Some(r.clone());
         let both = p.routes_phrase().unwrap();
         assert!(
             both.starts_with("both routes, the latent's 0.0609000 ± 0.0059"),
@@ -144,14 +153,22 @@ mod tests {
         );
         // Within one joint error: no widening.
         r.latent = 0.0760;
-        p.routes = Some(r);
+        p.routes = Some(r.clone());
         assert!(p
             .routes_phrase()
             .unwrap()
             .ends_with("weighed by their errors"));
+        // Another value of the answer disagrees: this one is the track's, and says why.
+        r.unlike = Some("gamma0".into());
+        p.routes = Some(r.clone());
+        assert!(p
+            .routes_phrase()
+            .unwrap()
+            .contains("not weighed in: its gamma0 disagrees"));
+        r.unlike = None;
         r.agree = false;
         r.latent_error = None;
-        p.routes = Some(r);
+        p.routes = Some(r.clone());
         assert_eq!(
             p.routes_phrase().unwrap(),
             "the track's 0.0769000 ± 0.0042; the latent's 0.0760000 (no standard error) \

@@ -6,6 +6,8 @@
 //! S = √(χ²/(N − 1)), here the number of joint errors apart); where they disagree, the track's:
 //! it is read off the object's own path with no encoder between the picture and the law, and
 //! the latent's is the second opinion (`verdict::routes` names the disagreement: doubtful).
+//! Where they disagree on one value, every value is the track's (`unlike`): a latent at another
+//! rate followed another motion, and its damping is no second measurement of this one's.
 //! Each route's own value is kept beside it (`ParameterResult::routes`), and a value the model
 //! derives from one that changed (the pendulum's length from g/L) is carried with it.
 //! The track's error is the larger of its fit's and half the difference of its span's halves
@@ -58,6 +60,7 @@ fn combined(p: &ParameterResult, v: &Value, e: f64) -> Option<ParameterResult> {
             track: v.value,
             track_error: e,
             agree: apart <= limit,
+            unlike: None,
         }),
         ..p.clone()
     })
@@ -72,19 +75,22 @@ pub fn combine(run: &mut Run, route: &TrackRoute) -> bool {
     };
     let mut params = run.final_values.clone();
     let names = run.config.model.parameter_names();
-    let mut changed = Vec::new();
-    for p in run.parameters.iter_mut() {
+    let mut made: Vec<(usize, ParameterResult)> = Vec::new();
+    for (k, p) in run.parameters.iter().enumerate() {
         let Some(v) = span.values.iter().find(|v| v.name == p.name) else {
             continue;
         };
         let error = span.error_of(v.name).unwrap_or(v.error);
-        if let Some(c) = combined(p, v, error) {
-            if let Some(i) = names.iter().position(|n| *n == p.name) {
-                params[i] = c.estimate;
-            }
-            changed.push(p.name.clone());
-            *p = c;
+        made.extend(combined(p, v, error).map(|c| (k, c)));
+    }
+    unlike(&mut made, span.rate().map(|v| v.name));
+    let mut changed = Vec::new();
+    for (k, c) in made {
+        if let Some(i) = names.iter().position(|n| *n == c.name) {
+            params[i] = c.estimate;
         }
+        changed.push(c.name.clone());
+        run.parameters[k] = c;
     }
     if !changed.is_empty() {
         let (model, cal) = (run.config.model, &run.calibration);
@@ -92,6 +98,31 @@ pub fn combine(run: &mut Run, route: &TrackRoute) -> bool {
         carry(model, cal, [was, &params], &mut run.parameters, &changed);
     }
     !changed.is_empty()
+}
+
+/// Where the routes disagree on the rate (`rate`: γ0, g/L), every value the track's: a latent
+/// at another rate followed another motion (a harmonic, a detail), and its damping, however
+/// close, is no second measurement of this one's. Each value so kept names the rate
+/// (`RouteValues::unlike`). A damping alone apart leaves the rate weighed: the same motion,
+/// its decay read less well by one route.
+fn unlike(made: &mut [(usize, ParameterResult)], rate: Option<&str>) {
+    let apart = made
+        .iter()
+        .find(|(_, c)| Some(c.name.as_str()) == rate)
+        .filter(|(_, c)| c.routes.as_ref().is_some_and(|r| !r.agree))
+        .map(|(_, c)| c.name.clone());
+    let Some(other) = apart else {
+        return;
+    };
+    for (_, c) in made.iter_mut() {
+        let Some(r) = c.routes.as_mut().filter(|r| r.agree) else {
+            continue;
+        };
+        r.unlike = Some(other.clone());
+        c.estimate = r.track;
+        c.standard_error = Some(r.track_error);
+        c.relative_error = c.truth.filter(|t| *t != 0.0).map(|t| (r.track - t) / t);
+    }
 }
 
 /// Each value of `parameters` not in `changed` that `model` derives from its block's
@@ -200,6 +231,43 @@ mod tests {
         // A track's value that is no measurement changes nothing.
         assert!(combined(&latent(0.08, 0.01), &track(0.076), f64::NAN).is_none());
         assert!(combined(&latent(0.08, 0.01), &track(f64::NAN), 0.001).is_none());
+    }
+
+    #[test]
+    fn where_the_rate_disagrees_every_value_is_the_tracks() {
+        // k506's latent at a quarter of the track's γ0 (a motion at half its frequency), its
+        // γ1 1.4 joint errors from the track's: the γ1 reported is the track's, not weighed.
+        let mut rate = latent(62.55, 0.24);
+        rate.name = "gamma0".into();
+        let mut made = vec![
+            (0, combined(&rate, &track(253.1), 1.7).unwrap()),
+            (
+                1,
+                combined(&latent(-0.020, 0.032), &track(0.243), 0.19).unwrap(),
+            ),
+        ];
+        assert!(made[1].1.routes.as_ref().unwrap().agree);
+        // The rate agrees (here γ1 stands for it), another value apart: weighed, as before.
+        let mut apart = made.clone();
+        let before: Vec<f64> = apart.iter().map(|(_, c)| c.estimate).collect();
+        unlike(&mut apart, Some("gamma1"));
+        assert_eq!(
+            apart.iter().map(|(_, c)| c.estimate).collect::<Vec<_>>(),
+            before
+        );
+        assert!(apart
+            .iter()
+            .all(|(_, c)| c.routes.as_ref().unwrap().unlike.is_none()));
+        unlike(&mut made, Some("gamma0"));
+        let damping = &made[1].1;
+        assert_eq!(
+            (damping.estimate, damping.standard_error),
+            (0.243, Some(0.19))
+        );
+        let r = damping.routes.as_ref().unwrap();
+        assert_eq!((r.agree, r.unlike.as_deref()), (true, Some("gamma0")));
+        assert!((damping.relative_error.unwrap() - (0.243 / 0.08 - 1.0)).abs() < 1e-12);
+        assert_eq!(made[0].1.routes.as_ref().unwrap().unlike, None);
     }
 
     #[test]
