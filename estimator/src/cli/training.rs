@@ -32,7 +32,8 @@ pub struct TrainingArgs {
     pub lr_phys: f64,
     /// Train only from --init (the paper's behaviour). By default starts estimated from the
     /// frames (principal components) are probed beside it and the best one kept, and an
-    /// oscillation whose latent folds the picture is trained again from half its frequency.
+    /// oscillation whose latent folds the picture is trained again from half its frequency;
+    /// where the object's track guides the run (see --model), from the track's answer alone.
     #[arg(long)]
     pub single_start: bool,
     /// Training loss; `mse` is the appendix's ablation, whose latent collapses.

@@ -24,7 +24,8 @@ pub use reading::second_route;
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
 /// no model files, no `--start`/`--end`, no `--init`) and the track oscillates clearly
 /// (`TrackRoute::guiding`): the request for the latent route on the oscillator over the track's
-/// span, started from the track's answer, with the warning that says so. The latent moves off
+/// span, started from the track's answer alone (`--single-start`), with the warning that says
+/// so. The latent moves off
 /// that start where its frames say otherwise, so the verdict still compares two measurements
 /// (`verdict::routes`); one that learns nothing is caught by the training, motion and law checks.
 pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
@@ -57,7 +58,11 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         }
         Some(_) => String::new(),
     };
-    // Started from the track's answer (the oscillator's values by the same names).
+    // Started from the track's answer alone (the oscillator's values by the same names): the
+    // starts read off the frames and a retry at half the frequency are the unguided run's
+    // ways to a rate the track here measures (a latent that learned a slow drift had fitted
+    // better at a quarter of γ0, and its probe won).
+    g.training.single_start = true;
     g.init = span
         .values
         .iter()
@@ -84,7 +89,7 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     }
     let why = format!(
         "the object's track {} over {:.2}–{:.2} s of the file ({:.1} periods): the latent \
-         route trained the {name} there{framed}, started from the track's answer{calibrated} \
+         route trained the {name} there{framed}, started from the track's answer alone{calibrated} \
          (give --model or --start to choose yourself)",
         span.law.verb(),
         first,
