@@ -77,12 +77,22 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
         err.contains("the latent route trained the damped-oscillator there"),
         "{err}"
     );
-    // Started from the track's answer: one of the starts probed is the track's γ0.
-    assert!(err.contains("started from the track's answer"), "{err}");
-    let starts = report["starts"].as_array().unwrap();
+    // Started from the track's answer alone: the one start is the track's γ0 (no start read
+    // off the frames beside it), and no retry at half the frequency.
     assert!(
-        starts.iter().any(|s| s["initial"][0].as_f64() == Some(g0)),
+        err.contains("started from the track's answer alone"),
+        "{err}"
+    );
+    let starts = report["starts"].as_array().unwrap();
+    assert_eq!(starts.len(), 1, "{starts:?}");
+    assert_eq!(
+        starts[0]["initial"][0].as_f64(),
+        Some(g0),
         "{starts:?} against the track's {g0}"
+    );
+    assert!(
+        report["config"]["single_start"].as_bool().unwrap(),
+        "{report}"
     );
     assert!(report["model_choice"].is_null());
     // The answer: both routes weighed by their errors where they agree; else the track's, and
