@@ -33,9 +33,9 @@ pub struct ParameterResult {
 
 /// One value as each route measured it (the track's error the larger of its fit's and half
 /// its halves' difference; the latent's `None` where it has none), and whether they agree (the
-/// value is then both weighed by their errors, else the track's). `unlike` names another value
-/// of the same answer on which they disagree: the latent followed another motion than the
-/// track, so the track's is reported here too, though this one's two agree.
+/// value is then both weighed by their errors, else the track's). `unlike` names the rate (γ0,
+/// g/L) of the same answer where they disagree on it: the latent followed another motion than
+/// the track, so the track's is reported here too, though this value's two agree.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RouteValues {
     pub latent: f64,

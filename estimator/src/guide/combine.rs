@@ -6,8 +6,8 @@
 //! S = √(χ²/(N − 1)), here the number of joint errors apart); where they disagree, the track's:
 //! it is read off the object's own path with no encoder between the picture and the law, and
 //! the latent's is the second opinion (`verdict::routes` names the disagreement: doubtful).
-//! Where they disagree on one value, every value is the track's (`unlike`): a latent at another
-//! rate followed another motion, and its damping is no second measurement of this one's.
+//! Where they disagree on the rate (γ0, g/L), every value is the track's (`unlike`): a latent at
+//! another rate followed another motion, and its damping is no second measurement of this one's.
 //! Each route's own value is kept beside it (`ParameterResult::routes`), and a value the model
 //! derives from one that changed (the pendulum's length from g/L) is carried with it.
 //! The track's error is the larger of its fit's and half the difference of its span's halves
@@ -104,7 +104,8 @@ pub fn combine(run: &mut Run, route: &TrackRoute) -> bool {
 /// at another rate followed another motion (a harmonic, a detail), and its damping, however
 /// close, is no second measurement of this one's. Each value so kept names the rate
 /// (`RouteValues::unlike`). A damping alone apart leaves the rate weighed: the same motion,
-/// its decay read less well by one route.
+/// its decay read less well by one route. (A latent value with no standard error within 2 % of
+/// the track's, which `combined` leaves standing, is not among `made` and stays.)
 fn unlike(made: &mut [(usize, ParameterResult)], rate: Option<&str>) {
     let apart = made
         .iter()

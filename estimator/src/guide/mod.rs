@@ -25,9 +25,9 @@ pub use reading::second_route;
 /// no model files, no `--start`/`--end`, no `--init`) and the track oscillates clearly
 /// (`TrackRoute::guiding`): the request for the latent route on the oscillator over the track's
 /// span, started from the track's answer alone (`--single-start`), with the warning that says
-/// so. The latent moves off
-/// that start where its frames say otherwise, so the verdict still compares two measurements
-/// (`verdict::routes`); one that learns nothing is caught by the training, motion and law checks.
+/// so. The latent moves off that start where its frames say otherwise, so the verdict still
+/// compares two measurements (`verdict::routes`); one that learns nothing is caught by the
+/// training, motion and law checks.
 pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     let r = &req.load.recording;
     let free = chooses
