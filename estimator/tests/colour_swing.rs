@@ -6,7 +6,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{read_report, stderr, Estimate};
+use util::{guided_run, track_law};
 
 const FPS: u32 = 30;
 const FRAMES: usize = 120;
@@ -70,22 +70,10 @@ fn a_ball_as_bright_as_its_wall_is_followed_by_its_colour_and_its_swing_guides_t
     }
     let tmp = tempfile::tempdir().unwrap();
     let v = film(tmp.path());
-    let out = tmp.path().join("run");
-    let o = Estimate::new(&v)
-        .args(["--epochs", "20", "--threads", "1", "--seed", "1"])
-        .out(&out)
-        .output();
-    let err = stderr(&o);
-    assert!(matches!(o.status.code(), Some(0 | 4)), "{err}");
-    let report = read_report(&out);
+    let (_, err, report) = guided_run(&v, &tmp.path().join("run"));
     let track = &report["track"];
     assert_eq!(track["chosen"], "swing", "{track}");
-    let law = track["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == "swing")
-        .unwrap();
+    let law = track_law(&report, "swing");
     let value = |name: &str| {
         law["values"]
             .as_array()

@@ -8,7 +8,9 @@
 mod util;
 
 use std::path::Path;
-use util::{encode_lossless, estimate_of, need_ffmpeg, read_report, real_video, stderr, Estimate};
+use util::{
+    encode_lossless, estimate_of, need_ffmpeg, read_report, real_video, stderr, track_law, Estimate,
+};
 
 fn estimate(args: &[&str], out: &Path) -> (serde_json::Value, String) {
     let o = Estimate::bare().args(args).out(out).estimated();
@@ -70,14 +72,7 @@ fn an_arm_that_holds_the_object_at_the_start_is_left_out() {
 
 /// The track's γ0 (report.json `track`, its chosen law's).
 fn track_rate(r: &serde_json::Value) -> f64 {
-    let t = &r["track"];
-    let chosen = t["chosen"].as_str().unwrap_or("none");
-    let law = t["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == chosen)
-        .unwrap_or_else(|| panic!("no chosen law: {t}"));
+    let law = track_law(r, r["track"]["chosen"].as_str().unwrap_or("none"));
     let v = law["values"].as_array().unwrap();
     v.iter().find(|v| v["name"] == "gamma0").unwrap()["value"]
         .as_f64()
@@ -115,12 +110,7 @@ fn a_spring_pulled_down_and_let_go_by_hand_is_read_from_its_release() {
     // and 35.4) differ by more than five standard errors, but the track's own halves agree
     // (35.71 and 35.74) and its whole γ0 is the latent's: the law holds alike, read with no
     // encoder, so the halves' gap is the encoder's and not held against the answer.
-    let halves = &r["track"]["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == "oscillation")
-        .unwrap()["halves"];
+    let halves = &track_law(&r, "oscillation")["halves"];
     assert_eq!(halves.as_array().map(Vec::len), Some(2), "{err}");
     assert_eq!(r["verdict"]["grade"], "ok", "{}", r["verdict"]);
 }
@@ -160,13 +150,8 @@ fn a_spring_held_by_hand_is_read_once_the_hand_has_left() {
         "{}: {latent}: {err}",
         r["model"]
     );
-    let track_error = r["track"]["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == r["track"]["chosen"])
-        .and_then(|l| l["values"].as_array().unwrap().first().cloned())
-        .unwrap()["error"]
+    let chosen = r["track"]["chosen"].as_str().unwrap_or("none");
+    let track_error = track_law(&r, chosen)["values"][0]["error"]
         .as_f64()
         .unwrap();
     let latent_error = r["parameters"]

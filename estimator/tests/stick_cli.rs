@@ -6,7 +6,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{browser, read_report, stderr, Estimate};
+use util::{browser, read_report, stderr, track_law, Estimate};
 
 const FPS: u32 = 30;
 const FRAMES: usize = 40;
@@ -57,12 +57,7 @@ fn a_stick_reads_the_toss_in_metres_and_calibrates_the_latent_by_it() {
     let track = &report["track"];
     assert_eq!(track["chosen"], "constant-acceleration", "{track}");
     assert_eq!(track["stick"]["metres"], 10.0);
-    let law = &track["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == "constant-acceleration")
-        .unwrap();
+    let law = track_law(&report, "constant-acceleration");
     let si = &law["si"][0];
     assert_eq!(
         (&si["name"], &si["unit"]),

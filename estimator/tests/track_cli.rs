@@ -6,7 +6,9 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{encode_lossless, read_report, stderr, stdout, write_frames_of, Estimate};
+use util::{
+    encode_lossless, guided_run, read_report, stderr, stdout, track_law, write_frames_of, Estimate,
+};
 
 const FPS: u32 = 30;
 /// The let-go, in frames and seconds.
@@ -43,22 +45,10 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
     }
     let tmp = tempfile::tempdir().unwrap();
     let v = video(tmp.path());
-    let out = tmp.path().join("run");
-    let o = Estimate::new(&v)
-        .args(["--epochs", "20", "--threads", "1", "--seed", "1"])
-        .out(&out)
-        .output();
-    let err = stderr(&o);
-    assert!(matches!(o.status.code(), Some(0 | 4)), "{err}");
-    let report = read_report(&out);
+    let (o, err, report) = guided_run(&v, &tmp.path().join("run"));
     let track = &report["track"];
     assert_eq!(track["chosen"], "oscillation", "{track}");
-    let law = track["laws"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|l| l["law"] == "oscillation")
-        .unwrap();
+    let law = track_law(&report, "oscillation");
     let first = law["first_s"].as_f64().unwrap();
     assert!((1.9..=2.3).contains(&first), "the span starts at {first} s");
     let g0 = law["values"][0]["value"].as_f64().unwrap();

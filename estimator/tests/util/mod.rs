@@ -79,6 +79,30 @@ pub fn parameter<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_jso
         .unwrap_or_else(|| panic!("no {name} in {report}"))
 }
 
+/// The law `name` among a report's track laws (`track.laws`).
+pub fn track_law<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
+    report["track"]["laws"]
+        .as_array()
+        .expect("track laws array")
+        .iter()
+        .find(|l| l["law"] == name)
+        .unwrap_or_else(|| panic!("no {name} law in {}", report["track"]))
+}
+
+/// `estimate VIDEO --epochs 20 --threads 1 --seed 1` into `out`, the model left to the tool
+/// (the track's to guide), which must end with an estimate (exit 0 or 4): its output, stderr
+/// and report.
+pub fn guided_run(video: &Path, out: &Path) -> (std::process::Output, String, serde_json::Value) {
+    let o = Estimate::new(video)
+        .args(["--epochs", "20", "--threads", "1", "--seed", "1"])
+        .out(out)
+        .output();
+    let err = stderr(&o);
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{err}");
+    let report = read_report(out);
+    (o, err, report)
+}
+
 /// The estimate of parameter `name` in a report.
 pub fn estimate_of(report: &serde_json::Value, name: &str) -> f64 {
     parameter(report, name)["estimate"]
