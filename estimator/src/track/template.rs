@@ -116,12 +116,13 @@ pub fn beyond(
     all
 }
 
-/// The matches after the last of `found` (its order the frames' `ks`), each searched about
-/// where its last two matches carry it, until [`ONWARD_GAP`] frames in a row show none.
+/// The matches after the last of `found` (its order the frames' `ks`), each sought by `seek`
+/// in its frame about where its last two matches carry it, until [`ONWARD_GAP`] frames in a
+/// row show none.
 fn onward(
     found: &[(usize, Match)],
     ks: impl Iterator<Item = usize>,
-    within: &dyn Fn(usize, (f64, f64)) -> Option<Match>,
+    seek: &dyn Fn(usize, (f64, f64)) -> Option<Match>,
 ) -> Vec<(usize, Match)> {
     let mut seen: Vec<(usize, Match)> = found.iter().rev().take(2).rev().copied().collect();
     if seen.is_empty() {
@@ -138,7 +139,7 @@ fn onward(
                 (m.x + s * (m.x - p.x), m.y + s * (m.y - p.y))
             }
         };
-        match within(k, guess) {
+        match seek(k, guess) {
             Some(m) => {
                 missed = 0;
                 seen = vec![seen[seen.len() - 1], (k, m)];
