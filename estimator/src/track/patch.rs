@@ -49,17 +49,18 @@ impl Patch {
     fn score(&self, frame: &[u8], w: usize, (cx, cy): (usize, usize)) -> f64 {
         let half = self.half;
         let side = 2 * half + 1;
-        let (mut sum, mut sum_sq, mut cross) = (0.0, 0.0, 0.0);
+        // The pixels' sums in integers (exact, as the f64 sums of bytes are).
+        let (mut sum, mut sum_sq, mut cross) = (0u64, 0u64, 0.0);
         for (r, y) in (cy - half..=cy + half).enumerate() {
             let row = &frame[y * w + cx - half..y * w + cx + half + 1];
             let t = &self.values[r * side..(r + 1) * side];
+            sum += row.iter().map(|&p| p as u64).sum::<u64>();
+            sum_sq += row.iter().map(|&p| (p as u64) * (p as u64)).sum::<u64>();
             for (p, q) in row.iter().zip(t) {
-                let p = *p as f64;
-                sum += p;
-                sum_sq += p * p;
-                cross += p * q;
+                cross += *p as f64 * q;
             }
         }
+        let (sum, sum_sq) = (sum as f64, sum_sq as f64);
         let n = (side * side) as f64;
         let var = sum_sq - sum * sum / n;
         if var <= 0.0 {

@@ -16,15 +16,15 @@ fn basis(t: &[f64], z: f64, w: f64) -> Vec<Vec<f64>> {
 }
 
 /// The undamped angular frequency on a log grid from half a cycle in `span` to the samples'
-/// Nyquist frequency (`step` apart) that leaves the least residual.
-fn grid_frequency(span: f64, step: f64, residual: &dyn Fn(f64, f64) -> Option<Vec<f64>>) -> f64 {
+/// Nyquist frequency (`step` apart) that leaves the least residual of `u` on c + a cos ωt +
+/// b sin ωt at times `t`.
+fn grid_frequency(t: &[f64], u: &[f64], span: f64, step: f64) -> f64 {
     let (lo, hi) = (std::f64::consts::PI / span, std::f64::consts::PI / step);
     const GRID: usize = 400;
     let mut best = (f64::INFINITY, lo);
     for i in 0..GRID {
         let w = lo * (hi / lo).powf(i as f64 / (GRID - 1) as f64);
-        if let Some(r) = residual(0.0, w) {
-            let s = sum_sq(&r);
+        if let Some(s) = undamped_residual(t, u, w) {
             if s < best.0 {
                 best = (s, w);
             }
@@ -32,6 +32,58 @@ fn grid_frequency(span: f64, step: f64, residual: &dyn Fn(f64, f64) -> Option<Ve
     }
     best.1
 }
+
+/// The residual sum of squares of `u` (at times `t`) on c + a cos ωt + b sin ωt, from the
+/// normal equations' sums with no column kept: the grid's thousands of fits. cos ωt and sin ωt
+/// are carried from sample to sample by the rotation through ω times the step between them
+/// (one sine and cosine per distinct step), anew from the time itself every
+/// [`ROTATION_RUN`] samples so that rounding cannot build up.
+fn undamped_residual(t: &[f64], u: &[f64], w: f64) -> Option<f64> {
+    let n = t.len() as f64;
+    let mean = u.iter().sum::<f64>() / n;
+    let (mut sc, mut ss, mut scc, mut scs, mut sss) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut suc, mut sus, mut suu) = (0.0, 0.0, 0.0);
+    let (mut c, mut s) = (1.0, 0.0);
+    // The rotations of the last few distinct steps (a container's clock rounds a frame's step
+    // two ways, a gap is a multiple of it).
+    let mut rotations = [(f64::NAN, (0.0, 1.0)); 4];
+    let mut next = 0;
+    for (k, (&tk, &uk)) in t.iter().zip(u).enumerate() {
+        if k % ROTATION_RUN == 0 {
+            (s, c) = (w * tk).sin_cos();
+        } else {
+            // Steps that rounding alone tells apart share a rotation.
+            let d = tk - t[k - 1];
+            let same = |r: &&(f64, (f64, f64))| (r.0 - d).abs() <= 1e-12 * d.abs();
+            let rot = match rotations.iter().find(same) {
+                Some(r) => r.1,
+                None => {
+                    let r = (w * d).sin_cos();
+                    rotations[next] = (d, r);
+                    next = (next + 1) % rotations.len();
+                    r
+                }
+            };
+            (s, c) = (s * rot.1 + c * rot.0, c * rot.1 - s * rot.0);
+        }
+        let v = uk - mean;
+        sc += c;
+        ss += s;
+        scc += c * c;
+        scs += c * s;
+        sss += s * s;
+        suc += v * c;
+        sus += v * s;
+        suu += v * v;
+    }
+    let m = [n, sc, ss, sc, scc, scs, ss, scs, sss];
+    let b = [0.0, suc, sus];
+    let coef = solve(&m, &b, 3)?;
+    Some((suu - coef.iter().zip(&b).map(|(x, y)| x * y).sum::<f64>()).max(0.0))
+}
+
+/// Samples carried by rotation before cos ωt and sin ωt are taken from the time anew.
+const ROTATION_RUN: usize = 32;
 
 /// The damped oscillation fitted to `u` at times `t`, from (ζ, ω) = `start` or else from the
 /// best undamped ω of a grid.
@@ -50,7 +102,7 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
         return None;
     }
     let residual = |z: f64, w: f64| linear(&basis(&t, z, w), u).map(|(_, r)| r);
-    let start = start.unwrap_or_else(|| [0.0, grid_frequency(span, step, &residual)]);
+    let start = start.unwrap_or_else(|| [0.0, grid_frequency(&t, u, span, step)]);
     // Levenberg–Marquardt on (ζ, ω).
     let mut p = start;
     let mut r = residual(p[0], p[1])?;
@@ -173,6 +225,29 @@ fn amplitude(a: f64, b: f64, [va, vb, vab]: [f64; 3]) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grid's residual from sums and carried rotations is the one the kept columns give,
+    /// on times with gaps and a jittered step (a variable frame rate).
+    #[test]
+    fn the_grids_residual_is_the_columns_residual() {
+        let t: Vec<f64> = (0..300)
+            .filter(|i| i % 37 != 5 && i % 53 != 9)
+            .map(|i| i as f64 / 29.97 + 1e-4 * ((i * 7919) % 13) as f64)
+            .collect();
+        let u: Vec<f64> = t
+            .iter()
+            .map(|&s| 240.0 + 35.0 * (5.3 * s + 0.4).cos() + 0.2 * (71.3 * s).sin())
+            .collect();
+        for w in [0.4, 2.0, 5.3, 9.9, 60.0] {
+            let fast = undamped_residual(&t, &u, w).unwrap();
+            let (_, r) = linear(&basis(&t, 0.0, w), &u).unwrap();
+            let slow = sum_sq(&r);
+            assert!(
+                (fast - slow).abs() <= 1e-8 * slow.max(1.0),
+                "{w}: {fast} {slow}"
+            );
+        }
+    }
 
     #[test]
     fn a_damped_oscillation_gives_back_its_gamma0_and_gamma1() {

@@ -125,7 +125,15 @@ pub(super) fn swing(
     let level = small.curve.iter().sum::<f64>() / n as f64;
     let a0 = small.curve[0];
     let v0 = (small.curve[1] - small.curve[0]) / (ts[1] - ts[0]).max(1e-9);
+    // A swing faster than the samples' Nyquist frequency is not seen in them (as the
+    // oscillation's): the fit is not let past it.
+    let mut steps: Vec<f64> = ts.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let nyquist = PI / steps[steps.len() / 2];
     let residual = |p: &[f64]| -> Option<Vec<f64>> {
+        if p[0] > nyquist * nyquist {
+            return None;
+        }
         let th = integrate(&ts, [p[0], p[1], p[2], p[3], p[4]]);
         th.iter()
             .zip(&theta)
