@@ -54,8 +54,9 @@ impl Patch {
         for (r, y) in (cy - half..=cy + half).enumerate() {
             let row = &frame[y * w + cx - half..y * w + cx + half + 1];
             let t = &self.values[r * side..(r + 1) * side];
-            sum += row.iter().map(|&p| p as u64).sum::<u64>();
-            sum_sq += row.iter().map(|&p| (p as u64) * (p as u64)).sum::<u64>();
+            // A row's sums fit in 32 bits (255² × 66 000 < 2³²: no picture is that wide).
+            sum += row.iter().map(|&p| p as u32).sum::<u32>() as u64;
+            sum_sq += row.iter().map(|&p| (p as u32) * (p as u32)).sum::<u32>() as u64;
             for (p, q) in row.iter().zip(t) {
                 cross += *p as f64 * q;
             }
