@@ -7,7 +7,7 @@
 //! frames kept (a decay, a drain). The falls and slides from rest keep their own (the descent
 //! alone, found in the frames).
 
-use crate::data::RecordingRequest;
+use crate::data::{shared_survey, RecordingRequest};
 use crate::error::EstimateError;
 use physvid_shared::cli::approx;
 use physvid_shared::video::{self, is_recording};
@@ -54,7 +54,8 @@ pub fn common_cut(
     let (stride, why) = match flags.stride {
         Some(s) => (s, "--stride".to_string()),
         None => {
-            let survey = video::survey(input, &info, (flags.start, flags.end), true)?;
+            // Kept for the candidates' framing (`data::shared_survey`).
+            let survey = shared_survey(input, &info, (flags.start, flags.end), true, true)?;
             // Where a hand takes the picture at an end, the free motion is what is kept.
             let kept = survey.free.map_or(kept, |f| f.last + 1 - f.first);
             stride_for(survey.period_frames, frames, kept, &seconds)

@@ -73,11 +73,13 @@ fn auto_shape(region: Option<Crop>, frame: (usize, usize)) -> (usize, usize) {
 }
 
 /// The crop for `flags`, how it was chosen, the survey when one was made, and the encoder's
-/// frame size.
+/// frame size; with `keep` (a model choice's candidate) the survey is shared with the other
+/// candidates (`reuse::survey`).
 pub fn frame(
     input: &Path,
     info: Option<&VideoInfo>,
     flags: &RecordingRequest,
+    keep: bool,
 ) -> Result<Framed, EstimateError> {
     let size_for = |w: usize, h: usize| flags.size.unwrap_or(default_size(w as f64 / h as f64));
     let frame_size = info.map_or(flags.size.unwrap_or(DEFAULT_SIZE), |i| {
@@ -104,7 +106,7 @@ pub fn frame(
         },
         (Some(Framing::Full), _) => whole("whole frame (--crop full)"),
         (_, Some(i)) => {
-            let s = video::survey(input, i, (flags.start, flags.end), false)?;
+            let s = super::reuse::survey(input, i, (flags.start, flags.end), false, keep)?;
             let frame = (i.width, i.height);
             let (w, h) = auto_shape(s.crop, frame);
             let size = size_for(w, h);

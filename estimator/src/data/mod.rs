@@ -32,6 +32,7 @@ use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;
 use physvid_shared::cli::num;
 use physvid_shared::DatasetMeta;
+pub use reuse::survey as shared_survey;
 use std::collections::BTreeMap;
 use summary::RecordingSummary;
 use tch::{Device, Kind, Tensor};

@@ -104,7 +104,7 @@ pub fn load_recording(
         how: framing,
         survey,
         size,
-    } = framing::frame(input, info.as_ref(), framed_by)?;
+    } = framing::frame(input, info.as_ref(), framed_by, keep)?;
     let survey_s = started.elapsed().as_secs_f64();
     let mut opts = VideoOptions {
         fps: Some(fps),
