@@ -183,6 +183,14 @@ pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
     Some(inv)
 }
 
+/// The median step between the samples' times `t` (at least two): the Nyquist frequency π/step
+/// bounds what a law may oscillate at.
+pub(super) fn median_step(t: &[f64]) -> f64 {
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    steps[steps.len() / 2]
+}
+
 pub(super) fn sum_sq(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }

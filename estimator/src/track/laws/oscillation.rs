@@ -2,7 +2,7 @@
 //! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each;
 //! γ0, γ1 and the amplitude at the span's start.
 
-use super::{covariance, linear, sum_sq, Fitted, Value};
+use super::{covariance, linear, median_step, sum_sq, Fitted, Value};
 use physvid_shared::linalg::solve;
 
 /// The oscillation's columns at decay `z` and angular frequency `w`.
@@ -95,9 +95,7 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
     let t0 = t[0];
     let t: Vec<f64> = t.iter().map(|s| s - t0).collect();
     let span = t[n - 1];
-    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
-    steps.sort_by(f64::total_cmp);
-    let step = steps[steps.len() / 2];
+    let step = median_step(&t);
     if span <= 0.0 || step <= 0.0 {
         return None;
     }

@@ -5,7 +5,7 @@
 //! its value `rest` (degrees).
 
 use super::oscillation::oscillation;
-use super::{covariance, jacobian, least_squares, linear, sum_sq, Fitted, Value};
+use super::{covariance, jacobian, least_squares, linear, median_step, sum_sq, Fitted, Value};
 use std::f64::consts::{PI, TAU};
 
 /// A path whose angle about its pivot spans less than this (radians: 20°) is read along a line:
@@ -127,9 +127,7 @@ pub(super) fn swing(
     let v0 = (small.curve[1] - small.curve[0]) / (ts[1] - ts[0]).max(1e-9);
     // A swing faster than the samples' Nyquist frequency is not seen in them (as the
     // oscillation's): the fit is not let past it.
-    let mut steps: Vec<f64> = ts.windows(2).map(|w| w[1] - w[0]).collect();
-    steps.sort_by(f64::total_cmp);
-    let nyquist = PI / steps[steps.len() / 2];
+    let nyquist = PI / median_step(&ts);
     let residual = |p: &[f64]| -> Option<Vec<f64>> {
         if p[0] > nyquist * nyquist {
             return None;
