@@ -197,10 +197,9 @@ fn answers_of(
                 )
                 .collect::<Vec<_>>()
                 .join(", ");
-            let mut reasons: Vec<&str> = run.verdict.reasons.iter().map(|r| r.check).collect();
-            reasons.dedup();
             let grade = Some(run.verdict.grade);
-            vec![(run.model.clone(), grade, answer, reasons.join(", "), true)]
+            let reasons = table::checks_named(&run.verdict);
+            vec![(run.model.clone(), grade, answer, reasons, true)]
         }
     };
     for (model, grade, answer, checks, chosen) in tried {

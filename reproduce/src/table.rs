@@ -5,11 +5,24 @@ use physvid_shared::write_atomic;
 use std::path::{Path, PathBuf};
 
 /// The "checks with reasons" cell of a verdict: the checks that gave a reason, worst first,
-/// one name for a check's consecutive reasons.
+/// one name for a check's consecutive reasons; a note that holds nothing against the answer
+/// (graded ok: `Reason::unless`) named "(note)".
 pub fn checks(v: &estimator::verdict::Verdict) -> Cell {
-    let mut names: Vec<&str> = v.reasons.iter().map(|r| r.check).collect();
+    Cell::text(checks_named(v))
+}
+
+/// [`checks`]' words.
+pub fn checks_named(v: &estimator::verdict::Verdict) -> String {
+    let mut names: Vec<String> = v
+        .reasons
+        .iter()
+        .map(|r| match r.grade {
+            estimator::verdict::Grade::Ok => format!("{} (note)", r.check),
+            _ => r.check.to_string(),
+        })
+        .collect();
     names.dedup();
-    Cell::text(names.join(", "))
+    names.join(", ")
 }
 
 /// The detection and false-alarm rates in a sentence about `what`: how many answers were
@@ -175,6 +188,18 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_note_is_named_as_one_beside_the_checks_that_doubt() {
+        use estimator::verdict::{Grade, Reason, Verdict};
+        let v = Verdict::of(vec![
+            Reason::new("law", Grade::Doubtful, "10 %").unless(Some("the track agrees".into())),
+            Reason::new("uncertainty", Grade::Doubtful, "γ1"),
+            Reason::new("routes", Grade::Doubtful, "γ1 apart"),
+            Reason::new("routes", Grade::Doubtful, "γ0 apart"),
+        ]);
+        assert_eq!(checks_named(&v), "uncertainty, routes, law (note)");
+    }
 
     #[test]
     fn markdown_and_csv_hold_the_same_rows() {

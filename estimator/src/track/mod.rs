@@ -23,6 +23,9 @@ pub mod segment;
 pub mod template;
 
 pub use guiding::{GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
+/// A route with one law for other modules' tests.
+#[cfg(test)]
+pub(crate) use route::tests::route as test_route;
 pub use route::{LawSpan, TrackRoute};
 
 use physvid_shared::video::{small_chroma, small_frames, VideoError, VideoInfo};

@@ -14,10 +14,9 @@
 //! halves that disagree are its encoder's gain over the motion's range, not the law's, and are
 //! not held against the answer.
 
-use super::{routes, Check, Grade, Reason};
-use crate::analysis::parameters::ParameterResult;
+use super::routes::corroborates;
+use super::{Check, Grade, Reason};
 use crate::analysis::Run;
-use crate::track::laws::Value;
 use physvid_shared::cli::approx;
 
 pub struct Halves;
@@ -102,32 +101,6 @@ impl Check for Halves {
         }
         out
     }
-}
-
-/// Whether the track corroborates the latent's rate `p` where the latent's own halves disagree:
-/// it guides the run (`TrackRoute::guiding`), its rate refitted on the span's earlier and later
-/// half agrees by the consistency check's own rule (the law holds alike over the span, read
-/// with no encoder between the picture and it), and its whole rate agrees with `p`'s. The
-/// latent's halves then differ by its encoder's gain over the motion's range, not by the law,
-/// and its answer is the one an independent measurement gives.
-pub(super) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
-    let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
-        return false;
-    };
-    let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
-    let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
-        return false;
-    };
-    let (Some(a), Some(b)) = (rate(first), rate(second)) else {
-        return false;
-    };
-    let (measured, limit) = routes::separation(p, &g);
-    // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
-    crate::track::RATE_NAMES.contains(&p.name.as_str())
-        && a.error.is_finite()
-        && b.error.is_finite()
-        && apart([a.value, b.value], [a.error, b.error]).is_none()
-        && measured <= limit
 }
 
 /// How many standard errors halves `values` with `errors` lie apart, and the limit they

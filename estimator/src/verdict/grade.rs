@@ -71,6 +71,16 @@ impl Reason {
         self.limit = Some(limit);
         self
     }
+
+    /// This reason as a note (`Grade::Ok`) where `answered` says why what it found is not held
+    /// against the answer (the words appended to its detail); as it is otherwise.
+    pub fn unless(mut self, answered: Option<String>) -> Reason {
+        if let Some(why) = answered {
+            self.grade = Grade::Ok;
+            self.detail = format!("{}; {why}", self.detail);
+        }
+        self
+    }
 }
 
 /// A check's name. Named so that serde's derive reads it with `check_name` instead of
@@ -147,5 +157,23 @@ mod tests {
         let unknown = r#"{"grade":"ok","reasons":[{"check":"nonesuch","grade":"ok","detail":""}]}"#;
         let e = serde_json::from_str::<Verdict>(unknown).unwrap_err();
         assert!(e.to_string().contains("nonesuch"), "{e}");
+    }
+
+    #[test]
+    fn a_reason_answered_is_a_note_that_says_why() {
+        let doubt = || Reason::new("law", Grade::Doubtful, "10 % unexplained").measured(0.1, 0.05);
+        let kept = doubt().unless(None);
+        assert_eq!(
+            (kept.grade, kept.detail.as_str()),
+            (Grade::Doubtful, "10 % unexplained")
+        );
+        let note = doubt().unless(Some("the track measures the same rate".into()));
+        assert_eq!(note.grade, Grade::Ok);
+        assert_eq!(
+            note.detail,
+            "10 % unexplained; the track measures the same rate"
+        );
+        assert_eq!((note.value, note.limit), (Some(0.1), Some(0.05)));
+        assert_eq!(Verdict::of(vec![note]).grade, Grade::Ok);
     }
 }

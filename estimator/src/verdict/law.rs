@@ -1,9 +1,10 @@
 //! The law fits: the rollout must explain the latent's motion within clips. A latent that
 //! follows something the law does not describe (frames out of order, flicker, a static scene's
 //! noise, a different law) leaves residuals as large as the motion itself, or a misfit that is
-//! smooth in time rather than noise.
+//! smooth in time rather than noise. Where the object's track corroborates the rate
+//! (`routes::corroborates`), a doubtful fit is the encoder's noise, not the law's: a note.
 
-use super::{Check, Grade, Reason};
+use super::{routes, Check, Grade, Reason};
 use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
@@ -46,8 +47,8 @@ impl Check for LawFits {
             )
             .measured(u, UNRELIABLE_UNEXPLAINED)];
         }
-        if u >= DOUBTFUL_UNEXPLAINED {
-            return vec![Reason::new(
+        let doubt = if u >= DOUBTFUL_UNEXPLAINED {
+            Reason::new(
                 self.name(),
                 Grade::Doubtful,
                 format!(
@@ -55,10 +56,9 @@ impl Check for LawFits {
                      the validation clips: noisy frames, a distracting motion, or another model"
                 ),
             )
-            .measured(u, DOUBTFUL_UNEXPLAINED)];
-        }
-        if u >= STRUCTURED_UNEXPLAINED && law.residual_autocorrelation >= STRUCTURED {
-            return vec![Reason::new(
+            .measured(u, DOUBTFUL_UNEXPLAINED)
+        } else if u >= STRUCTURED_UNEXPLAINED && law.residual_autocorrelation >= STRUCTURED {
+            Reason::new(
                 self.name(),
                 Grade::Doubtful,
                 format!(
@@ -68,8 +68,10 @@ impl Check for LawFits {
                     approx(law.residual_autocorrelation)
                 ),
             )
-            .measured(law.residual_autocorrelation, STRUCTURED)];
-        }
-        Vec::new()
+            .measured(law.residual_autocorrelation, STRUCTURED)
+        } else {
+            return Vec::new();
+        };
+        vec![doubt.unless(routes::corroborated(r))]
     }
 }

@@ -1,9 +1,11 @@
 //! The latent follows what moves: the principal components of the frames (what changes in the
 //! picture) must be largely a function of the latent. A latent that explains almost none of
 //! them follows a detail (a leaf among branches, one pixel's flicker) rather than the motion
-//! the law describes, and the law fitted to it says nothing about the scene.
+//! the law describes, and the law fitted to it says nothing about the scene. Where the object's
+//! track corroborates the rate (`routes::corroborates`), a share at the doubtful tier is what
+//! the latent rightly leaves to the rest of the picture (a shaking camera, a hand): a note.
 
-use super::{Check, Grade, Reason};
+use super::{routes, Check, Grade, Reason};
 use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
@@ -36,7 +38,7 @@ impl Check for FollowsMotion {
         let Some(grade) = graded(e) else {
             return Vec::new();
         };
-        vec![Reason::new(
+        let reason = Reason::new(
             self.name(),
             grade,
             format!(
@@ -47,7 +49,12 @@ impl Check for FollowsMotion {
                 approx(100.0 * e.max(0.0))
             ),
         )
-        .measured(e, DOUBTFUL_BELOW)]
+        .measured(e, DOUBTFUL_BELOW);
+        // A latent that follows almost nothing of the picture is no second measurement.
+        match grade {
+            Grade::Doubtful => vec![reason.unless(routes::corroborated(r))],
+            _ => vec![reason],
+        }
     }
 }
 

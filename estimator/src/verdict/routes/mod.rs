@@ -7,7 +7,9 @@
 //! names both (the answer is then the track's: `guide::combine`); a latent value without a
 //! standard error is held to the 2 % that separates a right answer from a wrong one. A constant
 //! acceleration in metres (by a stick or on a plane) is compared alike; by one stick, a track
-//! whose own halves disagree names perspective and `--plane`.
+//! whose own halves disagree names perspective and `--plane`. Where they agree and the track's
+//! own halves do too, the track corroborates the rate (`corroborated`): what the latent's own
+//! evidence finds at the doubtful tier is its encoder's, and the checks say so in a note.
 
 use super::{Check, Grade, Reason};
 use crate::analysis::parameters::ParameterResult;
@@ -17,7 +19,9 @@ use crate::track::{GUIDING_PERIODS, RATE_NAMES};
 use physvid_shared::cli::approx;
 
 mod acceleration;
+mod corroborated;
 use acceleration::accelerations;
+pub(super) use corroborated::{corroborates, note as corroborated};
 
 pub struct Routes;
 

@@ -1,0 +1,116 @@
+//! Whether the object's track corroborates the latent's rate: it guides the run, its own halves
+//! agree, and its whole rate is the latent's within the routes' limit. The law and the rate are
+//! then measured twice, once with no encoder between the picture and the law; what the latent's
+//! own evidence finds against it at the doubtful tier (its halves' gains, a noisy law fit, a
+//! share of the picture it leaves to a shaking camera or a hand) is its encoder's, not the
+//! answer's, and the checks that find it say so in a note (`Grade::Ok`) instead of doubting.
+
+use super::separation;
+use crate::analysis::parameters::ParameterResult;
+use crate::analysis::Run;
+use crate::track::laws::Value;
+use crate::track::{TrackRoute, RATE_NAMES};
+use crate::verdict::consistency::apart;
+use physvid_shared::cli::approx;
+
+/// Whether the track corroborates the latent's rate `p`: it guides the run
+/// (`TrackRoute::guiding`), its rate refitted on the span's earlier and later half agrees by the
+/// consistency check's own rule (the law holds alike over the span, read with no encoder
+/// between the picture and it), and its whole rate agrees with `p`'s (`separation`). The
+/// latent's answer is then the one an independent measurement gives.
+pub(in crate::verdict) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
+    r.track.as_ref().is_some_and(|t| corroborated_by(t, p))
+}
+
+/// [`corroborates`] by the track `route`.
+fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> bool {
+    let Some(span) = route.guiding() else {
+        return false;
+    };
+    let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
+    let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
+        return false;
+    };
+    let (Some(a), Some(b)) = (rate(first), rate(second)) else {
+        return false;
+    };
+    let (measured, limit) = separation(p, &g);
+    // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
+    RATE_NAMES.contains(&p.name.as_str())
+        && a.error.is_finite()
+        && b.error.is_finite()
+        && apart([a.value, b.value], [a.error, b.error]).is_none()
+        && measured <= limit
+}
+
+/// Where the track corroborates `r`'s rate (`corroborates`), the words a check's note adds to
+/// what it found in the latent: why that is not held against the answer.
+pub(in crate::verdict) fn note(r: &Run) -> Option<String> {
+    let p = r
+        .parameters
+        .iter()
+        .find(|p| RATE_NAMES.contains(&p.name.as_str()))?;
+    let g = r
+        .track
+        .as_ref()?
+        .guiding()?
+        .values
+        .iter()
+        .find(|v| v.name == p.name)?;
+    corroborates(r, p).then(|| {
+        format!(
+            "not held against the answer: the object's track, read with no encoder, measures \
+             the same {} ({} ± {} against the latent's {}) and its halves agree, so the law \
+             and the rate are not in question, only how closely the encoder reads the motion",
+            p.name,
+            approx(g.value),
+            approx(g.error),
+            approx(p.estimate)
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::track::laws::TrackLaw;
+    use crate::track::test_route as route;
+
+    fn gamma0(value: f64, error: f64) -> Value {
+        Value {
+            name: "gamma0",
+            value,
+            error,
+            unit: "1/s^2",
+        }
+    }
+
+    #[test]
+    fn the_track_corroborates_a_rate_it_measures_alike_where_its_halves_agree() {
+        // The shaken rod and bob's (shake-3): the track 4.0014 ± 0.00017 over 2.5 periods, its
+        // halves alike; the latent's 4.0037 ± 0.023.
+        let (mut route, mut span) = route();
+        span.law = TrackLaw::AngularOscillation;
+        span.values = vec![gamma0(4.0014, 0.00017)];
+        span.halves = vec![vec![gamma0(4.0013, 0.0003)], vec![gamma0(4.0016, 0.0003)]];
+        route.laws = vec![span];
+        route.chosen = Some(TrackLaw::AngularOscillation);
+        let latent = |estimate| ParameterResult::si("gamma0", estimate, "1/s^2", Some(0.023));
+        assert!(corroborated_by(&route, &latent(4.0037)));
+        // More than three joint errors away: two measurements that disagree.
+        assert!(!corroborated_by(&route, &latent(4.0014 + 3.1 * 0.023)));
+        // Not the rate: the damping is weighed by the routes check, not corroborated.
+        let damping = ParameterResult::si("gamma1", 0.08, "1/s", Some(0.01));
+        assert!(!corroborated_by(&route, &damping));
+        // The track's halves 5 % apart at 10 errors: the law does not hold alike on it.
+        route.laws[0].halves = vec![vec![gamma0(3.9, 0.01)], vec![gamma0(4.1, 0.01)]];
+        assert!(!corroborated_by(&route, &latent(4.0037)));
+        // Halves without errors cannot be weighed.
+        route.laws[0].halves = vec![vec![gamma0(4.0, f64::NAN)], vec![gamma0(4.0, 0.1)]];
+        assert!(!corroborated_by(&route, &latent(4.0037)));
+        // A track that does not guide (under two periods) corroborates nothing.
+        route.laws[0].halves = vec![vec![gamma0(4.0013, 0.0003)], vec![gamma0(4.0016, 0.0003)]];
+        route.laws[0].periods = Some(1.9);
+        assert!(!corroborated_by(&route, &latent(4.0037)));
+    }
+}
