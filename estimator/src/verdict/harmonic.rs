@@ -2,9 +2,11 @@
 //! twice the motion's frequency, and the law fits it there as well as the motion at its own.
 //! Such a latent folds a coordinate of the picture (see `evidence::fold`): one side of the
 //! swing and the other give the same latent, so the picture's coordinate is not a function of
-//! the latent while the latent is one of it.
+//! the latent while the latent is one of it. Where the object's track corroborates the rate
+//! (`routes::corroborates`), the rates are not the fold's four times the motion's: a fold at the
+//! doubtful tier is then a note.
 
-use super::{Check, Grade, Reason};
+use super::{routes, Check, Grade, Reason};
 use crate::analysis::Run;
 use physvid_shared::cli::approx;
 
@@ -38,7 +40,7 @@ impl Check for Harmonic {
             "it does not follow the motion one to one (an even function of it?): crop to the \
              object's path (--crop) and check the model"
         };
-        vec![Reason::new(
+        let reason = Reason::new(
             self.name(),
             grade,
             format!(
@@ -48,6 +50,10 @@ impl Check for Harmonic {
                 approx(100.0 * f.folded_share),
             ),
         )
-        .measured(f.folded_share, FOLDED)]
+        .measured(f.folded_share, FOLDED);
+        match grade {
+            Grade::Doubtful => vec![reason.unless(routes::corroborated(r))],
+            _ => vec![reason],
+        }
     }
 }
