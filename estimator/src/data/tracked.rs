@@ -3,7 +3,7 @@
 //! line where the path's own is another (a toss's path bends; its fall is along the
 //! acceleration); a toss's rise kept with its fall; the whole descent where the picture finds
 //! none. The track does the picture's work there: no colour, no share of the picture that
-//! moves.
+//! moves. The descent lasts at least as long as the track saw its law hold.
 
 use super::descent::Descent;
 use super::request::TrackedMotion;
@@ -91,6 +91,13 @@ pub fn descent(found: Option<Descent>, t: &TrackedMotion, g: &Geometry) -> Optio
         };
     }
     d = rising(d, t, g);
+    // The law holds on the track until its span's end: the free motion lasts at least that
+    // long, whatever else in the picture stops moving first or starts moving across it (a
+    // hanging mass that pulls a cart, then leaves the frame).
+    let held = (g.frame(t.span.1).floor().max(0.0) as usize).min(g.frames.saturating_sub(1));
+    if d.release < held as f64 {
+        d.last = d.last.max(held);
+    }
     let cos = (axis[0] * d.line.axis[0] + axis[1] * d.line.axis[1]).abs();
     if cos < SAME_LINE {
         d.line = Line { axis, bend: 0.0 };
@@ -181,5 +188,29 @@ mod tests {
         let d = descent(Some(picture), &across, &geometry()).unwrap();
         assert_eq!((d.line.axis, d.line.bend), ([1.0, 0.0], 0.0));
         assert_eq!(d.release, 10.0);
+    }
+
+    #[test]
+    fn the_descent_lasts_as_long_as_the_track_saw_its_law_hold() {
+        // The picture's descent ends at frame 20 (something else in the frame stops it); the
+        // track's law holds to 2.5 s, frame 45: kept to there. One that ends later keeps its end.
+        let picture = |last| Descent {
+            release: 10.0,
+            first: 8,
+            last,
+            travel: 0.5,
+            bend: None,
+            line: Line {
+                axis: [0.0, 1.0],
+                bend: 0.0,
+            },
+            crowded: 0.0,
+            colour: false,
+            rising: false,
+        };
+        let d = descent(Some(picture(20)), &toss(Some(1.3)), &geometry()).unwrap();
+        assert_eq!(d.last, 45);
+        let d = descent(Some(picture(55)), &toss(Some(1.3)), &geometry()).unwrap();
+        assert_eq!(d.last, 55);
     }
 }

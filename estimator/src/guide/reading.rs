@@ -1,5 +1,6 @@
 //! The object's own track read for a run (`second_route`): for a video file, on the scale of a
-//! stick or the plane of a rectangle where one is given, which are checked against it here.
+//! stick or the plane of a rectangle where one is given, which are checked against it here, or
+//! on the scale the `--reference` readings give its constant acceleration where neither is.
 
 use crate::config::Request;
 use crate::error::{input_error, EstimateError};
@@ -26,7 +27,8 @@ fn on_video(req: &Request) -> bool {
     load.frames.is_none() && load.input.is_file() && video::is_recording(&load.input)
 }
 
-/// The track of a video file, on the plane or the stick's scale where one is given.
+/// The track of a video file, on the plane or the stick's scale where one is given, else on
+/// the readings' (`TrackRoute::with_readings`).
 fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
     if !on_video(req) {
         return None;
@@ -38,7 +40,7 @@ fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
         Ok(route) => route.map(|r| match (req.calibration.plane, req.calibration.stick) {
             (Some(p), _) => r.on_plane(p),
             (None, Some(s)) => r.with_stick(s),
-            (None, None) => r,
+            (None, None) => r.with_readings(&req.calibration.times),
         }),
         Err(e) => {
             warnings.push(format!("the object's track could not be read: {e}"));

@@ -1,4 +1,5 @@
-//! The track in metres: a stick (`calibration::Stick`) scales its pixel lengths (a constant
+//! The track in metres: a stick (`calibration::Stick`), or where none is given the
+//! `--reference` readings along a constant acceleration (`with_readings`), scales its pixel lengths (a constant
 //! acceleration's px/s², an oscillation's amplitude) to SI, and gives the readings the latent
 //! route is calibrated by: the object's distance along its acceleration at each sample of the
 //! span where the law holds, in place of positions typed with `--reference`.
@@ -27,6 +28,63 @@ fn in_metres(v: &Value, per_metre: f64) -> Option<Value> {
 }
 
 impl TrackRoute {
+    /// The route with its pixel lengths also in metres by the `--reference` readings `times`
+    /// ((seconds of the file's timeline, metres)) where no stick or plane scales it: where its
+    /// chosen law is a constant acceleration that holds and at least two readings fall within
+    /// its span, the readings' least-squares line against the object's distance along the
+    /// acceleration there gives the pixels a metre (`by_readings`). The readings are the
+    /// latent's calibration too, so the two routes' accelerations are two measurements on one
+    /// scale. As it was otherwise.
+    pub fn with_readings(mut self, times: &[(f64, f64)]) -> TrackRoute {
+        if self.per_metre().is_some() {
+            return self;
+        }
+        let Some(l) = self.accelerating() else {
+            return self;
+        };
+        let at = self.along_at(l, (l.first..l.first + l.samples).collect(), 1.0);
+        let (Some(first), Some(last)) = (at.first(), at.last()) else {
+            return self;
+        };
+        let inside: Vec<(f64, f64)> = times
+            .iter()
+            .filter(|(t, _)| (first.0..=last.0).contains(t))
+            .filter_map(|&(t, value)| {
+                // Through the three fitted samples about it: the law's parabola itself.
+                let k = at.windows(2).position(|w| (w[0].0..=w[1].0).contains(&t))?;
+                let k = k.min(at.len().checked_sub(3)?);
+                let p = &at[k..k + 3];
+                let px = (0..3)
+                    .map(|i| {
+                        let others = (0..3).filter(|&j| j != i);
+                        p[i].1
+                            * others
+                                .map(|j| (t - p[j].0) / (p[i].0 - p[j].0))
+                                .product::<f64>()
+                    })
+                    .sum::<f64>();
+                px.is_finite().then_some((px, value))
+            })
+            .collect();
+        if inside.len() < 2 {
+            return self;
+        }
+        // value = c + b·px by least squares: b metres a pixel.
+        let n = inside.len() as f64;
+        let (mx, my) = inside
+            .iter()
+            .fold((0.0, 0.0), |(x, y), p| (x + p.0 / n, y + p.1 / n));
+        let (sxy, sxx) = inside.iter().fold((0.0, 0.0), |(xy, xx), p| {
+            (xy + (p.0 - mx) * (p.1 - my), xx + (p.0 - mx).powi(2))
+        });
+        let b = sxy / sxx;
+        if !(b.is_finite() && b != 0.0) {
+            return self;
+        }
+        self.by_readings = Some(1.0 / b.abs());
+        self.in_metres(1.0 / b.abs())
+    }
+
     /// The route read on the scale of `stick`: every law's pixel lengths also in metres
     /// (`LawSpan::si`).
     pub fn with_stick(mut self, stick: Stick) -> TrackRoute {
@@ -91,10 +149,15 @@ impl TrackRoute {
     }
 
     fn readings_at(&self, l: &LawSpan, samples: Vec<usize>) -> Vec<(f64, f64)> {
-        let (Some(per_metre), Some(d)) = (
-            self.per_metre(),
-            l.values.iter().find(|v| v.name == "direction"),
-        ) else {
+        match self.per_metre() {
+            Some(per_metre) => self.along_at(l, samples, per_metre),
+            None => Vec::new(),
+        }
+    }
+
+    /// The samples' distances along `l`'s acceleration from its first, at `per_metre`.
+    fn along_at(&self, l: &LawSpan, samples: Vec<usize>, per_metre: f64) -> Vec<(f64, f64)> {
+        let Some(d) = l.values.iter().find(|v| v.name == "direction") else {
             return Vec::new();
         };
         let (dx, dy) = (d.value.to_radians().cos(), d.value.to_radians().sin());
@@ -163,6 +226,7 @@ pub(crate) mod tests {
             chosen: Some(law),
             stick: None,
             plane: None,
+            by_readings: None,
         }
     }
 
@@ -196,5 +260,32 @@ pub(crate) mod tests {
         let d = r.distance_at(l, mid).unwrap();
         assert!((d - (every[3].1 + every[4].1) / 2.0).abs() < 1e-12);
         assert_eq!(r.distance_at(l, 0.9), None);
+    }
+
+    #[test]
+    fn readings_within_the_span_scale_its_acceleration_where_no_stick_does() {
+        // The toss at 200 px a metre: its heights below the apex (1.375 s of the file's
+        // timeline, y 171.875 px) at three times of the span, typed as --reference readings.
+        let height = |file_s: f64| {
+            let s = file_s - 1.0;
+            (200.0 - 150.0 * s + 200.0 * s * s - 171.875) / 200.0
+        };
+        let typed: Vec<(f64, f64)> = [1.2, 1.375, 1.6].iter().map(|&t| (t, height(t))).collect();
+        let r = tossed().with_readings(&typed);
+        let per_metre = r.by_readings.expect("scaled");
+        assert!((per_metre - 200.0).abs() < 1e-6, "{per_metre}");
+        let a = &r.accelerating().unwrap().si[0];
+        assert_eq!((a.name, a.unit), ("acceleration", "m/s^2"));
+        assert!((a.value - 2.0).abs() < 1e-6, "{a:?}");
+        // The latent route is not calibrated by the track: the stick's readings stay none.
+        assert_eq!(r.per_metre(), None);
+        // One reading within the span (the other before it) fixes no scale.
+        let r = tossed().with_readings(&[(0.5, 0.0), (1.2, height(1.2))]);
+        assert!(r.by_readings.is_none() && r.accelerating().unwrap().si.is_empty());
+        // A stick's scale stands.
+        let stick = Stick::parse("0,0:0,100=1").unwrap();
+        let r = tossed().with_stick(stick).with_readings(&typed);
+        assert_eq!(r.by_readings, None);
+        assert!((r.accelerating().unwrap().si[0].value - 4.0).abs() < 1e-9);
     }
 }

@@ -134,6 +134,7 @@ mod tests {
             laws: fitted.laws,
             stick: None,
             plane: None,
+            by_readings: None,
         };
         let corners = [(0.0, 0.0), (4.0, 0.0), (4.0, 6.0), (0.0, 6.0)].map(tilted);
         let plane = Plane {

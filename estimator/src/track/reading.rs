@@ -204,6 +204,7 @@ pub(super) fn route_of(
         laws: fitted.laws,
         stick: None,
         plane: None,
+        by_readings: None,
     })
 }
 

@@ -66,6 +66,12 @@ pub struct TrackRoute {
     /// The rectangle in the plane of the motion the track is read on (`--plane`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub plane: Option<Plane>,
+    /// Pixels a metre along a constant acceleration's line that the `--reference` readings
+    /// give where neither of the above does (`with_readings`): the track's acceleration in
+    /// metres beside the latent's, for the routes check; the latent is calibrated by the
+    /// readings themselves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub by_readings: Option<f64>,
 }
 
 /// The frame the latent route is trained on where the track guides it (`frame_of`): the
@@ -276,6 +282,7 @@ pub(crate) mod tests {
             chosen: Some(TrackLaw::Oscillation),
             stick: None,
             plane: None,
+            by_readings: None,
         };
         (route, span)
     }

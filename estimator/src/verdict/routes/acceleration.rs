@@ -1,5 +1,5 @@
-//! The routes compared where the track accelerates at a constant rate in metres (by a stick
-//! or on a plane): the latent's acceleration in SI against the track's, a plane's perspective
+//! The routes compared where the track accelerates at a constant rate in metres (by a stick,
+//! on a plane, or by the `--reference` readings along its line): the latent's acceleration in SI against the track's, a plane's perspective
 //! named, and by one stick, a track whose own halves disagree.
 
 use super::{separation, APART, ERRORS};
@@ -25,10 +25,10 @@ pub(super) fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
     let Some((route, l)) = r.track.as_ref().and_then(|t| Some((t, t.accelerating()?))) else {
         return Vec::new();
     };
-    let by = if route.plane.is_some() {
-        "on the plane"
-    } else {
-        "by the stick"
+    let by = match (route.plane, route.stick) {
+        (Some(_), _) => "on the plane",
+        (None, Some(_)) => "by the stick",
+        (None, None) => "by the --reference readings",
     };
     let perspective = route.perspective(l).filter(|c| *c > APART).map(|change| {
         Reason::new(
