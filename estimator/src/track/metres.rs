@@ -1,8 +1,9 @@
-//! The track in metres: a stick (`calibration::Stick`), or where none is given the
-//! `--reference` readings along a constant acceleration (`with_readings`), scales its pixel lengths (a constant
+//! The track in metres: a stick (`calibration::Stick`) scales its pixel lengths (a constant
 //! acceleration's px/s², an oscillation's amplitude) to SI, and gives the readings the latent
 //! route is calibrated by: the object's distance along its acceleration at each sample of the
-//! span where the law holds, in place of positions typed with `--reference`.
+//! span where the law holds, in place of positions typed with `--reference`. Where no stick is
+//! given, `--reference` readings along a constant acceleration scale it (`with_readings`) for
+//! the routes check alone.
 
 use super::laws::{TrackLaw, Value};
 use super::{LawSpan, TrackRoute};
