@@ -19,28 +19,28 @@ use physvid_shared::cli::approx;
 /// between the picture and it), and its whole rate agrees with `p`'s (`separation`). The
 /// latent's answer is then the one an independent measurement gives.
 pub(in crate::verdict) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
-    r.track.as_ref().is_some_and(|t| corroborated_by(t, p))
+    r.track
+        .as_ref()
+        .and_then(|t| corroborated_by(t, p))
+        .is_some()
 }
 
-/// [`corroborates`] by the track `route`.
-fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> bool {
-    let Some(span) = route.guiding() else {
-        return false;
-    };
+/// [`corroborates`] by the track `route`: its rate where it corroborates `p`.
+fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> Option<Value> {
+    let span = route.guiding()?;
     let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
     let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
-        return false;
+        return None;
     };
-    let (Some(a), Some(b)) = (rate(first), rate(second)) else {
-        return false;
-    };
+    let (a, b) = (rate(first)?, rate(second)?);
     let (measured, limit) = separation(p, &g);
     // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
-    RATE_NAMES.contains(&p.name.as_str())
+    (RATE_NAMES.contains(&p.name.as_str())
         && a.error.is_finite()
         && b.error.is_finite()
         && apart([a.value, b.value], [a.error, b.error]).is_none()
-        && measured <= limit
+        && measured <= limit)
+        .then_some(g)
 }
 
 /// Where the track corroborates `r`'s rate (`corroborates`), the words a check's note adds to
@@ -50,24 +50,16 @@ pub(in crate::verdict) fn note(r: &Run) -> Option<String> {
         .parameters
         .iter()
         .find(|p| RATE_NAMES.contains(&p.name.as_str()))?;
-    let g = r
-        .track
-        .as_ref()?
-        .guiding()?
-        .values
-        .iter()
-        .find(|v| v.name == p.name)?;
-    corroborates(r, p).then(|| {
-        format!(
-            "not held against the answer: the object's track, read with no encoder, measures \
-             the same {} ({} ± {} against the latent's {}) and its halves agree, so the law \
-             and the rate are not in question, only how closely the encoder reads the motion",
-            p.name,
-            approx(g.value),
-            approx(g.error),
-            approx(p.estimate)
-        )
-    })
+    let g = corroborated_by(r.track.as_ref()?, p)?;
+    Some(format!(
+        "not held against the answer: the object's track, read with no encoder, measures the \
+         same {} ({} ± {} against the latent's {}) and its halves agree, so the law and the \
+         rate are not in question, only how closely the encoder reads the motion",
+        p.name,
+        approx(g.value),
+        approx(g.error),
+        approx(p.estimate)
+    ))
 }
 
 #[cfg(test)]
@@ -96,21 +88,22 @@ mod tests {
         route.laws = vec![span];
         route.chosen = Some(TrackLaw::AngularOscillation);
         let latent = |estimate| ParameterResult::si("gamma0", estimate, "1/s^2", Some(0.023));
-        assert!(corroborated_by(&route, &latent(4.0037)));
+        let g = corroborated_by(&route, &latent(4.0037)).expect("corroborated");
+        assert_eq!((g.value, g.error), (4.0014, 0.00017));
         // More than three joint errors away: two measurements that disagree.
-        assert!(!corroborated_by(&route, &latent(4.0014 + 3.1 * 0.023)));
+        assert!(corroborated_by(&route, &latent(4.0014 + 3.1 * 0.023)).is_none());
         // Not the rate: the damping is weighed by the routes check, not corroborated.
         let damping = ParameterResult::si("gamma1", 0.08, "1/s", Some(0.01));
-        assert!(!corroborated_by(&route, &damping));
+        assert!(corroborated_by(&route, &damping).is_none());
         // The track's halves 5 % apart at 10 errors: the law does not hold alike on it.
         route.laws[0].halves = vec![vec![gamma0(3.9, 0.01)], vec![gamma0(4.1, 0.01)]];
-        assert!(!corroborated_by(&route, &latent(4.0037)));
+        assert!(corroborated_by(&route, &latent(4.0037)).is_none());
         // Halves without errors cannot be weighed.
         route.laws[0].halves = vec![vec![gamma0(4.0, f64::NAN)], vec![gamma0(4.0, 0.1)]];
-        assert!(!corroborated_by(&route, &latent(4.0037)));
+        assert!(corroborated_by(&route, &latent(4.0037)).is_none());
         // A track that does not guide (under two periods) corroborates nothing.
         route.laws[0].halves = vec![vec![gamma0(4.0013, 0.0003)], vec![gamma0(4.0016, 0.0003)]];
         route.laws[0].periods = Some(1.9);
-        assert!(!corroborated_by(&route, &latent(4.0037)));
+        assert!(corroborated_by(&route, &latent(4.0037)).is_none());
     }
 }
