@@ -386,8 +386,9 @@ _TRACK_COLUMNS = ("t", "file_s", "x", "y", "quality", "along")
 def _track_table(route: Dict[str, Any]):
     """report.json's ``track`` as a table: t (s of real time), file_s (the file's own time), x and
     y (pixels of the displayed frame), quality, along (the position along the motion's own axis,
-    pixels); the laws fitted, the law chosen, the axis, the noise and how the positions were read
-    (``reading``: centroids, whole, rod or matches) in ``attrs`` (a DataFrame) or under those keys
+    pixels; for a ``brightness`` reading, the grey level of the region whose light changes); the
+    laws fitted, the law chosen, the axis, the noise and how the positions were read
+    (``reading``: centroids, whole, rod, matches or brightness) in ``attrs`` (a DataFrame) or under those keys
     (a dict)."""
     t = route["track"]
     columns = {c: np.asarray(t[c], dtype=np.float64) for c in _TRACK_COLUMNS}
@@ -426,8 +427,9 @@ def track(
     ``estimate --start``; ``fps``: frames a second of real time, as ``--fps``), in seconds and
     without training: a pandas DataFrame (t, file_s, x, y, quality, along) where pandas is
     installed, else a dict of numpy arrays; the laws fitted where they hold (a damped
-    oscillation, a constant acceleration, a swing), the one chosen, the axis, the noise and how
-    the positions were read (``reading``: a rod's read by its axes) in ``attrs`` (or under those
+    oscillation, a constant acceleration, a swing; where nothing that moves follows a law, a
+    brightness's exponential decay), the one chosen, the axis, the noise and how the positions
+    were read (``reading``: a rod's read by its axes; ``brightness``: not a position) in ``attrs`` (or under those
     keys). None where nothing lives long enough to follow. Raises
     ``BadInputError`` for a file that is no video."""
     found = _core.track(str(Path(video)), start=start, end=end, fps=fps)

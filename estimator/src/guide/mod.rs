@@ -1,7 +1,7 @@
 //! The second route's part in a run: the object's own track read for a video file
-//! (`track::follow`), and the request it guides: where its oscillation is clear, the
-//! oscillator on the track's span (in place of a choice among every model on frames a hand
-//! may share); with a stick or a plane, its constant acceleration in metres; without either, a
+//! (`track::follow`), and the request it guides: where its oscillation (or a brightness's
+//! decay) is clear, the oscillator (the LED) on the track's span (in place of a choice among
+//! every model on frames a hand may share); with a stick or a plane, its constant acceleration in metres; without either, a
 //! release from rest it saw. `run` calls both before the estimation, and `settle` after it.
 
 use crate::choice;
@@ -22,9 +22,9 @@ pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
-/// no model files, no `--start`/`--end`, no `--init`) and the track oscillates clearly
-/// (`TrackRoute::guiding`): the request for the latent route on the oscillator over the track's
-/// span, started from the track's answer alone (`--single-start`), with the warning that says
+/// no model files, no `--start`/`--end`, no `--init`) and the track oscillates or decays clearly
+/// (`TrackRoute::guiding`): the request for the latent route on the law's model
+/// (`TrackRoute::guided_model`) over the track's span, started from the track's answer alone (`--single-start`), with the warning that says
 /// so. The latent moves off that start where its frames say otherwise, so the verdict still
 /// compares two measurements (`verdict::routes`); one that learns nothing is caught by the
 /// training, motion and law checks.
@@ -38,11 +38,7 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let span = route.guiding().filter(|_| free)?;
     // A swing's period depends on its amplitude: the pendulum, on the track's angles.
     let swings = span.law == TrackLaw::Swing;
-    let name = if swings {
-        "pendulum"
-    } else {
-        "damped-oscillator"
-    };
+    let name = route.guided_model()?;
     let model = ModelRef::by_name(name)?;
     let (first, last) = route.file_span(span);
     let mut g = req.clone();
@@ -54,10 +50,25 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         None => {
             let crop = route.frame_of(span);
             g.load.recording.crop = Some(Framing::Track(crop));
-            format!(",{}", path_words(crop))
+            match route.track.region {
+                Some(_) => format!(
+                    ", framed on the region whose light changes (--crop {},{},{},{})",
+                    crop.x, crop.y, crop.w, crop.h
+                ),
+                None => format!(",{}", path_words(crop)),
+            }
         }
         Some(_) => String::new(),
     };
+    // A decay's clip spans at least one e-fold, as an oscillation's a period (the LED's Table 5
+    // clip, a third of a second, sees a slow light barely change), where no --stride is given.
+    let rate = span.rate().map(|v| v.value).filter(|v| *v > 0.0);
+    if let (TrackLaw::Decay, None, Some(rate)) = (span.law, r.stride, rate) {
+        let frames = r.frames_per_clip.unwrap_or(model.table5_clip().0).max(2);
+        let step = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
+        let stride = (1.0 / rate / ((frames - 1) as f64 * step)).ceil().max(1.0);
+        g.load.recording.stride = Some(stride as usize);
+    }
     // Started from the track's answer alone (the oscillator's values by the same names): the
     // starts read off the frames and a retry at half the frequency are the unguided run's
     // ways to a rate the track here measures (a latent that learned a slow drift had fitted
@@ -87,14 +98,18 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         g.load.recording.measured_at = angles.iter().map(|a| a.0).collect();
         g.calibration.times = angles;
     }
+    let what = match route.track.reading {
+        crate::track::Reading::Brightness => "the brightness of what changes in place",
+        _ => "the object's track",
+    };
     let why = format!(
-        "the object's track {} over {:.2}–{:.2} s of the file ({:.1} periods): the latent \
-         route trained the {name} there{framed}, started from the track's answer alone{calibrated} \
-         (give --model or --start to choose yourself)",
+        "{what} {} over {:.2}–{:.2} s of the file ({}): the latent route trained the {name} \
+         there{framed}, started from the track's answer alone{calibrated} (give --model or \
+         --start to choose yourself)",
         span.law.verb(),
         first,
         last,
-        span.periods.unwrap_or(0.0)
+        span.extent_words()
     );
     Some((g, why))
 }

@@ -1,7 +1,8 @@
 //! `frame.jpg`: a frame of the recording (`video::still`'s JPEG) with the object's track drawn
-//! where it was seen (its chosen law's span in blue, the rest in white) and the stick or the
-//! plane given in orange: what a person checks at a glance (did the tool follow the thing I
-//! meant, does the stick lie along the length I meant), and the picture the docs show.
+//! where it was seen (its chosen law's span in blue, the rest in white; a brightness's region
+//! boxed in blue) and the stick or the plane given in orange: what a person checks at a glance
+//! (did the tool follow the thing I meant, does the stick lie along the length I meant), and
+//! the picture the docs show.
 
 use crate::track::TrackRoute;
 use plotters::prelude::*;
@@ -39,6 +40,14 @@ pub fn frame_jpeg(
             let colour = if span.contains(&i) { SPAN } else { WHITE };
             root.draw(&Circle::new(at((*p.0, *p.1)), wide + 1, colour.filled()))
                 .map_err(fail)?;
+        }
+        // A brightness: the box of the region whose light is read.
+        if let Some((x0, y0, x1, y1)) = t.region {
+            root.draw(&Rectangle::new(
+                [at((x0, y0)), at((x1, y1))],
+                SPAN.stroke_width(wide),
+            ))
+            .map_err(fail)?;
         }
         if let Some(s) = route.stick {
             let (a, b) = (at(s.from), at(s.to));

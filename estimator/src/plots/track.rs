@@ -1,5 +1,5 @@
-//! `track.png`: the object's own track (its position along its motion's axis against time, each
-//! sample shaded by its quality) with each law fitted where it holds, the chosen law's span
+//! `track.png`: the object's own track (its position along its motion's axis against time, or
+//! a brightness's grey level, each sample shaded by its quality) with each law fitted where it holds, the chosen law's span
 //! shaded: the second route's evidence, and what a person checks first on a recording.
 
 use super::{chart, legend, range, render_png, PANEL_HEIGHT};
@@ -13,13 +13,17 @@ pub fn track_png(route: &TrackRoute) -> Result<Vec<u8>, String> {
         let first = t.t.first().copied().unwrap_or(0.0);
         let last = t.t.last().copied().unwrap_or(1.0).max(first + 1e-3);
         let y = range(t.along.iter().copied());
-        let caption = "the object's track: position along its motion's axis, and the laws fitted";
-        let mut c = chart(
-            &root,
-            caption,
-            (first..last, "time (s)"),
-            (y.clone(), "pixels"),
-        )?;
+        let (caption, unit) = match t.region {
+            Some(_) => (
+                "the brightness of what changes in place, and the law fitted",
+                "grey level",
+            ),
+            None => (
+                "the object's track: position along its motion's axis, and the laws fitted",
+                "pixels",
+            ),
+        };
+        let mut c = chart(&root, caption, (first..last, "time (s)"), (y.clone(), unit))?;
         if let Some(l) = route.chosen_span() {
             let span = RGBColor(70, 130, 180).mix(0.18);
             c.draw_series(std::iter::once(Rectangle::new(

@@ -10,7 +10,10 @@ use rayon::prelude::*;
 /// least 12 samples), an acceleration's 10 samples.
 fn least_window(law: TrackLaw, n: usize) -> usize {
     match law {
-        TrackLaw::Oscillation | TrackLaw::Swing | TrackLaw::AngularOscillation => (n / 8).max(12),
+        TrackLaw::Oscillation
+        | TrackLaw::Swing
+        | TrackLaw::AngularOscillation
+        | TrackLaw::Decay => (n / 8).max(12),
         TrackLaw::ConstantAcceleration => 10,
     }
 }
@@ -30,10 +33,29 @@ pub(super) struct Fitted {
 pub(super) fn fit(t: &[f64], xy: &[(f64, f64)]) -> Fitted {
     let (x, y): (Vec<f64>, Vec<f64>) = xy.iter().copied().unzip();
     let (along, axis) = principal_axis(&x, &y);
+    spans(t, along, axis, xy, &TrackLaw::ALL)
+}
+
+/// The laws of an observable that is not a position (`TrackLaw::OF_LEVELS`: a brightness, in
+/// grey levels) with values `u` at times `t`, its place in the picture `at`.
+pub(super) fn levels(t: &[f64], u: Vec<f64>, at: (f64, f64)) -> Fitted {
+    let xy = vec![at; t.len()];
+    spans(t, u, (1.0, 0.0), &xy, &TrackLaw::OF_LEVELS)
+}
+
+/// Each of `laws` fitted where it holds on `along` (with positions `xy`) at times `t`, and the
+/// one chosen.
+fn spans(
+    t: &[f64],
+    along: Vec<f64>,
+    axis: (f64, f64),
+    xy: &[(f64, f64)],
+    laws: &[TrackLaw],
+) -> Fitted {
     let sigma = noise(&along).unwrap_or(segment::LEAST_NOISE);
     let samples = Samples { t, u: &along, xy };
-    // Each law on a thread of the pool (in the order of `TrackLaw::ALL`).
-    let laws = TrackLaw::ALL
+    // Each law on a thread of the pool (in the order of `laws`).
+    let laws = laws
         .par_iter()
         .filter_map(|&law| {
             let s = longest(&samples, law, least_window(law, t.len()), sigma)?;

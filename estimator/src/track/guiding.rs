@@ -1,39 +1,76 @@
 //! When the track's law guides the latent route (`guide::guided`) and judges its answer
-//! (`verdict::routes`): an oscillation or a swing that holds over several periods with its
-//! rate known to a percent.
+//! (`verdict::routes`): an oscillation or a swing that holds over several periods, or a
+//! brightness's decay over several e-folds, with its rate known to a percent.
 
 use super::laws::{TrackLaw, Value};
 use super::{LawSpan, TrackRoute};
 
-/// The names a rate² goes by among the laws' values (the oscillations' γ0, the swing's g/L)
-/// and the models' alike.
-pub const RATE_NAMES: [&str; 2] = ["gamma0", "g_over_l"];
+/// The names a rate goes by among the laws' values (the oscillations' γ0, the swing's g/L, a
+/// decay's γ) and the models' alike.
+pub const RATE_NAMES: [&str; 3] = ["gamma0", "g_over_l", "gamma"];
 
 /// The track's oscillation guides the latent where its span holds at least this many periods…
 pub const GUIDING_PERIODS: f64 = 2.0;
 /// …and its rate's (γ0's, g/L's) standard error is at most this share of it.
 pub const GUIDING_ERROR: f64 = 0.01;
+/// A decay guides where its span holds at least this many e-folds (what decays falls to
+/// e^−2, 14 %, of where it started), as an oscillation its two periods: the law seen to hold
+/// over most of its course, not over a stretch a line or a parabola would fit as well.
+pub const GUIDING_EFOLDS: f64 = 2.0;
 
 impl LawSpan {
-    /// Its rate² (`RATE_NAMES`), where it oscillates.
+    /// Its rate (`RATE_NAMES`), where it oscillates or decays.
     pub fn rate(&self) -> Option<&Value> {
         self.values.iter().find(|v| RATE_NAMES.contains(&v.name))
+    }
+
+    /// How much of its course the span holds: an oscillation's periods, a decay's e-folds
+    /// (its rate times the span's length); `None` for a law that has neither.
+    pub fn extent(&self) -> Option<(f64, &'static str)> {
+        match self.law {
+            TrackLaw::Decay => {
+                let g = self.rate()?;
+                Some((g.value * (self.last_s - self.first_s), "e-folds"))
+            }
+            _ => self.periods.map(|p| (p, "periods")),
+        }
+    }
+
+    /// Its extent (`extent`) in words, "2.1 periods".
+    pub fn extent_words(&self) -> String {
+        self.extent()
+            .map_or(String::new(), |(v, what)| format!("{v:.1} {what}"))
     }
 }
 
 impl TrackRoute {
-    /// The chosen law's span where it is an oscillation or a swing clear enough to set the
-    /// latent's law, span and start (`GUIDING_PERIODS`, `GUIDING_ERROR`).
+    /// The chosen law's span where it is an oscillation or a swing, or a decay, clear enough
+    /// to set the latent's law, span and start (`GUIDING_PERIODS`, `GUIDING_EFOLDS`,
+    /// `GUIDING_ERROR`).
     pub fn guiding(&self) -> Option<&LawSpan> {
         let l = self.chosen_span()?;
         let g = l.rate()?;
-        (matches!(
-            l.law,
-            TrackLaw::Oscillation | TrackLaw::AngularOscillation | TrackLaw::Swing
-        ) && l.holds
-            && l.periods.unwrap_or(0.0) >= GUIDING_PERIODS
+        let least = match l.law {
+            TrackLaw::Oscillation | TrackLaw::AngularOscillation | TrackLaw::Swing => {
+                GUIDING_PERIODS
+            }
+            TrackLaw::Decay => GUIDING_EFOLDS,
+            TrackLaw::ConstantAcceleration => return None,
+        };
+        (l.holds
+            && l.extent().map_or(0.0, |e| e.0) >= least
             && g.error <= GUIDING_ERROR * g.value.abs())
         .then_some(l)
+    }
+
+    /// The model the guiding law sets (`guiding`): the pendulum for a swing (its period
+    /// depends on its amplitude), the LED for a decay, else the damped oscillator.
+    pub fn guided_model(&self) -> Option<&'static str> {
+        Some(match self.guiding()?.law {
+            TrackLaw::Swing => "pendulum",
+            TrackLaw::Decay => "led",
+            _ => "damped-oscillator",
+        })
     }
 }
 
@@ -62,5 +99,28 @@ mod tests {
         route.laws[0].values = vec![g(0.05)];
         route.laws[0].periods = Some(1.9);
         assert!(route.guiding().is_none());
+    }
+
+    #[test]
+    fn a_decay_guides_the_led_over_two_e_folds() {
+        let (mut route, mut span) = route();
+        span.law = TrackLaw::Decay;
+        span.periods = None;
+        span.values = vec![crate::track::laws::Value {
+            name: "gamma",
+            value: 0.5,
+            error: 0.002,
+            unit: "1/s",
+        }];
+        // 0.5/s over 0.2–0.7 s: a quarter of an e-fold.
+        route.laws = vec![span.clone()];
+        route.chosen = Some(TrackLaw::Decay);
+        assert!(route.guiding().is_none());
+        route.laws[0].last_s = 5.0;
+        assert_eq!(
+            route.guiding().map(|l| l.extent_words()),
+            Some("2.4 e-folds".into())
+        );
+        assert_eq!(route.guided_model(), Some("led"));
     }
 }

@@ -221,6 +221,7 @@ pub(crate) mod tests {
                 frames: 20,
                 threshold: 10.0,
                 on_plane: Vec::new(),
+                region: None,
                 reading: crate::track::Reading::Centroids,
             },
             laws: vec![span],

@@ -2,8 +2,9 @@
 //! [`TRACK_SIDE`] pixels, what differs from its median background followed from frame to frame
 //! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
 //! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
-//! it holds (`segment`). It reads no model and trains
-//! nothing: seconds on a recording, and an answer to set beside the latent's.
+//! it holds (`segment`); where nothing that moves follows a law, the brightness of what changes
+//! in place (`light`). It reads no model and trains nothing: seconds on a recording, and an
+//! answer to set beside the latent's.
 
 mod angles;
 pub mod background;
@@ -12,6 +13,7 @@ mod choose;
 mod fit;
 mod guiding;
 pub mod laws;
+mod light;
 pub mod link;
 pub(crate) mod metres;
 mod patch;
@@ -79,6 +81,10 @@ pub struct Track {
     /// its pixels (`Plane::per_metre`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub on_plane: Vec<(f64, f64)>,
+    /// For a brightness (`Reading::Brightness`), the box of the region that changes (pixels of
+    /// the displayed frame: left, top, right, bottom), where its light is read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<(f64, f64, f64, f64)>,
 }
 
 impl Track {
@@ -196,7 +202,8 @@ pub fn follow_file(
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
 /// where it holds; where no law explains any of them, the same of the frames' colour
-/// (`small_chroma`): what `follow` chooses among.
+/// (`small_chroma`), and where none explains those either, the brightness of what changes in
+/// place (`light`): what `follow` chooses among.
 pub fn candidates(
     input: &Path,
     info: &VideoInfo,
@@ -233,6 +240,12 @@ pub fn candidates(
         if chroma.len() == n && chroma.size == frames.size {
             all.extend(readings(&chroma, &clock));
         }
+    }
+    // Where nothing that moves follows a law, what changes in place: the brightness of the
+    // region that changes (an LED dimming), one number a frame.
+    if !all.iter().any(|c| c.explained() > 0.0) {
+        let bg = background::background(&frames);
+        all.extend(light::brightness(&frames, &clock, &bg));
     }
     Ok(all)
 }

@@ -128,6 +128,7 @@ mod tests {
                 frames: 36,
                 threshold: 10.0,
                 on_plane: Vec::new(),
+                region: None,
                 reading: crate::track::Reading::Centroids,
             },
             chosen: fitted.chosen,

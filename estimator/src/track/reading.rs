@@ -92,6 +92,8 @@ pub enum Reading {
     Rod,
     /// Its picture's matches with a patch of it (`template`).
     Matches,
+    /// Not a position: the brightness of the region that changes (`light`), in grey levels.
+    Brightness,
 }
 
 /// The frames' times, their scale to the displayed picture and its size.
@@ -198,6 +200,7 @@ pub(super) fn route_of(
             frames: n,
             threshold,
             on_plane: Vec::new(),
+            region: None,
             reading,
         },
         chosen: fitted.chosen,

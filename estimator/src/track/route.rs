@@ -98,9 +98,10 @@ impl TrackRoute {
         let t = &self.track;
         match l.law {
             TrackLaw::ConstantAcceleration => spread(&t.x[span.clone()]) + spread(&t.y[span]),
-            TrackLaw::Oscillation | TrackLaw::Swing | TrackLaw::AngularOscillation => {
-                spread(&t.along[span])
-            }
+            TrackLaw::Oscillation
+            | TrackLaw::Swing
+            | TrackLaw::AngularOscillation
+            | TrackLaw::Decay => spread(&t.along[span]),
         }
     }
 
@@ -163,19 +164,30 @@ impl TrackRoute {
     /// The rectangle of the displayed frame the object keeps to over the span `l`: its path's
     /// box widened on each side by [`FRAME_SIZES`] of the object's size, or by [`FRAME_SHARE`]
     /// of the frame's short side where that is more (the blob is the part of the object that
-    /// differs in its sense: a card or a string beside it may not).
+    /// differs in its sense: a card or a string beside it may not); a brightness's region
+    /// (`Track::region`) widened by that share alone.
     pub fn frame_of(&self, l: &LawSpan) -> Crop {
         let t = &self.track;
         let (width, height) = t.picture;
-        let margin = (FRAME_SIZES * t.size).max(FRAME_SHARE * width.min(height) as f64);
-        let side = |(lo, hi): (f64, f64), limit: usize| {
+        let share = FRAME_SHARE * width.min(height) as f64;
+        // A brightness: the region whose light is read, widened by the frame's share alone
+        // (the region is the whole of what changes).
+        let ((x0, x1), (y0, y1), margin) = match t.region {
+            Some((x0, y0, x1, y1)) => ((x0, x1), (y0, y1), share),
+            None => (
+                bounds(&t.x, l),
+                bounds(&t.y, l),
+                (FRAME_SIZES * t.size).max(share),
+            ),
+        };
+        let side = |lo: f64, hi: f64, limit: usize| {
             let limit = limit.max(1) as f64;
             let a = (lo - margin).floor().clamp(0.0, limit - 1.0);
             let b = (hi + margin).ceil().clamp(a + 1.0, limit);
             (a as usize, (b - a) as usize)
         };
-        let (x, w) = side(bounds(&t.x, l), width);
-        let (y, h) = side(bounds(&t.y, l), height);
+        let (x, w) = side(x0, x1, width);
+        let (y, h) = side(y0, y1, height);
         Crop { x, y, w, h }
     }
 
@@ -186,15 +198,17 @@ impl TrackRoute {
 
     /// One line for the terminal.
     pub fn line(&self) -> String {
+        let unit = self.unit();
         match self.chosen_span() {
             Some(l) => format!(
-                "track: {} over {:.2}–{:.2} s ({} samples{}, {:.2} px rms, noise {:.2} px): {}",
+                "track: {} over {:.2}–{:.2} s ({} samples{}, {:.2} {unit} rms, noise {:.2} {unit}): {}",
                 l.law.name(),
                 l.first_s,
                 l.last_s,
                 l.samples,
                 match self.track.reading {
                     Reading::Rod => ", read by its rod's axes",
+                    Reading::Brightness => ", the brightness of what changes in place",
                     _ => "",
                 },
                 l.rms_px,
@@ -210,11 +224,20 @@ impl TrackRoute {
                     .join(", ")
             ),
             None => format!(
-                "track: followed over {} of {} frames; no law explains it within its noise ({:.2} px)",
+                "track: followed over {} of {} frames; no law explains it within its noise ({:.2} {unit})",
                 self.track.t.len(),
                 self.track.frames,
                 self.track.noise
             ),
+        }
+    }
+
+    /// The unit of what the track reads along (`along`, its noise, a law's residuals): pixels,
+    /// or grey levels for a brightness.
+    pub fn unit(&self) -> &'static str {
+        match self.track.reading {
+            Reading::Brightness => "grey",
+            _ => "px",
         }
     }
 }
@@ -260,6 +283,7 @@ pub(crate) mod tests {
             frames: n,
             threshold: 10.0,
             on_plane: Vec::new(),
+            region: None,
             reading: crate::track::Reading::Centroids,
         };
         let span = LawSpan {

@@ -67,7 +67,7 @@ impl Samples<'_> {
             v.map(|x| (x - m) * (x - m)).sum::<f64>() / n
         }
         match law {
-            TrackLaw::Oscillation => var(self.u[a..b].iter().copied()),
+            TrackLaw::Oscillation | TrackLaw::Decay => var(self.u[a..b].iter().copied()),
             // The arc's: the path's whole spread (x's and y's).
             TrackLaw::Swing | TrackLaw::AngularOscillation => {
                 let xy = &self.xy[a..b];
@@ -183,7 +183,10 @@ fn explains(
     let len = b - a;
     // The acceleration's residuals are x's then y's.
     let channels = match law {
-        TrackLaw::Oscillation | TrackLaw::Swing | TrackLaw::AngularOscillation => 1,
+        TrackLaw::Oscillation
+        | TrackLaw::Swing
+        | TrackLaw::AngularOscillation
+        | TrackLaw::Decay => 1,
         TrackLaw::ConstantAcceleration => 2,
     };
     (0..channels).all(|c| {

@@ -5,15 +5,18 @@
 //! constant acceleration in the picture's plane, p0 + v0 t + a t²/2 in x and y (a fall, a toss,
 //! a roll, the release's velocity free), and a swing about a pivot (`swing`): its angle as the
 //! pendulum at any amplitude, or as the damped oscillator (a restoring turn that grows with the
-//! angle).
+//! angle); and for a quantity that is not a position (a brightness), an exponential decay
+//! (`decay`).
 //! Standard errors from the Jacobian, widened for residuals that follow one another (their
 //! lag-one correlation).
 
 mod acceleration;
+mod decay;
 mod oscillation;
 pub mod swing;
 
 use acceleration::acceleration;
+use decay::decay;
 use oscillation::oscillation;
 use physvid_shared::linalg::solve;
 use serde::Serialize;
@@ -27,6 +30,9 @@ pub enum TrackLaw {
     ConstantAcceleration,
     Swing,
     AngularOscillation,
+    /// A level that decays exponentially: fitted to an observable that is not a position (a
+    /// light's brightness, `Reading::Brightness`), and only to one.
+    Decay,
 }
 
 impl TrackLaw {
@@ -37,12 +43,16 @@ impl TrackLaw {
         TrackLaw::AngularOscillation,
     ];
 
+    /// The laws of an observable that is not a position.
+    pub const OF_LEVELS: [TrackLaw; 1] = [TrackLaw::Decay];
+
     pub fn name(self) -> &'static str {
         match self {
             TrackLaw::Oscillation => "oscillation",
             TrackLaw::ConstantAcceleration => "constant acceleration",
             TrackLaw::Swing => "swing",
             TrackLaw::AngularOscillation => "angular oscillation",
+            TrackLaw::Decay => "exponential decay",
         }
     }
 
@@ -53,6 +63,7 @@ impl TrackLaw {
             TrackLaw::ConstantAcceleration => "accelerates at a constant rate",
             TrackLaw::Swing => "swings",
             TrackLaw::AngularOscillation => "oscillates about a pivot",
+            TrackLaw::Decay => "decays",
         }
     }
 
@@ -63,6 +74,7 @@ impl TrackLaw {
             TrackLaw::Oscillation => 5,
             TrackLaw::ConstantAcceleration => 6,
             TrackLaw::Swing | TrackLaw::AngularOscillation => 8,
+            TrackLaw::Decay => 3,
         }
     }
 
@@ -81,6 +93,7 @@ impl TrackLaw {
             TrackLaw::ConstantAcceleration => acceleration(t, xy),
             TrackLaw::Swing => swing(t, u, xy, near.map(|f| f.shape)),
             TrackLaw::AngularOscillation => angular(t, u, xy, near.map(|f| f.shape)),
+            TrackLaw::Decay => decay(t, u, near.map(|f| f.shape)),
         }
     }
 }
@@ -101,6 +114,7 @@ impl Value {
             "gamma0" => "γ0",
             "gamma1" => "γ1",
             "g_over_l" => "g/L",
+            "gamma" => "γ",
             other => other,
         }
     }

@@ -28,7 +28,12 @@ pub(in crate::verdict) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
 /// [`corroborates`] by the track `route`: its rate where it corroborates `p`.
 fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> Option<Value> {
     let span = route.guiding()?;
-    let rate = |values: &[Value]| values.iter().find(|v| v.name == "gamma0").cloned();
+    let rate = |values: &[Value]| {
+        values
+            .iter()
+            .find(|v| RATE_NAMES.contains(&v.name))
+            .cloned()
+    };
     let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
         return None;
     };

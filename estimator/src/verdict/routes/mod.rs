@@ -1,7 +1,8 @@
 //! The two routes compared: where the object's own track (`track`) oscillates clearly
 //! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate and damping
 //! are measurements of the same γ0 and γ1 (or g/L and damping) the latent's answer gives, with
-//! no encoder between the picture and the law. An answer whose model does not oscillate, or
+//! no encoder between the picture and the law; a brightness's decay over several e-folds, of
+//! the LED's γ. An answer whose model does not oscillate, or
 //! one of whose values lies away from the track's by more than both errors allow (two
 //! measurements of one number that disagree: one of them is wrong), is doubtful, and the reason
 //! names both (the answer is then the track's: `guide::combine`); a latent value without a
@@ -14,7 +15,7 @@
 use super::{Check, Grade, Reason};
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
-use crate::track::laws::Value;
+use crate::track::laws::{TrackLaw, Value};
 use crate::track::{GUIDING_PERIODS, RATE_NAMES};
 use physvid_shared::cli::approx;
 
@@ -56,17 +57,23 @@ impl Check for Routes {
         let Some(g) = span.rate() else {
             return Vec::new();
         };
+        let (extent, what) = span.extent().unwrap_or((0.0, "periods"));
         let track = format!(
-            "the object's track {} over {}–{} s ({} periods) with {} {} ± {} 1/s^2",
+            "the {} {} over {}–{} s ({} {what}) with {} {} ± {} {}",
+            match span.law {
+                TrackLaw::Decay => "brightness of what changes in place",
+                _ => "object's track",
+            },
             span.law.verb(),
             approx(span.first_s),
             approx(span.last_s),
-            approx(periods),
+            approx(extent),
             g.symbol(),
             approx(g.value),
-            approx(g.error)
+            approx(g.error),
+            g.unit
         );
-        if !r.config.model.oscillates(&r.final_values) {
+        if span.law != TrackLaw::Decay && !r.config.model.oscillates(&r.final_values) {
             return vec![Reason::new(
                 self.name(),
                 Grade::Doubtful,
@@ -125,7 +132,7 @@ fn differs(
             "the answer weighs both, the track's error widened to {} by its span's halves",
             approx(weighed)
         ),
-        false => "the answer is the track's, read off the object's path with no encoder".into(),
+        false => "the answer is the track's, read with no encoder".into(),
     };
     let of_track = match RATE_NAMES.contains(&v.name) {
         true => String::new(),
