@@ -124,30 +124,24 @@ pub(super) fn brightness(
     let at = ((cx + 0.5) * scale, (cy + 0.5) * scale);
     let t = clock.t.to_vec();
     let fitted = fit::levels(&t, u, at);
-    Some(TrackRoute {
-        track: Track {
-            x: vec![at.0; n],
-            y: vec![at.1; n],
-            quality: vec![1.0; n],
-            file_s: clock.file.to_vec(),
-            along: fitted.along,
-            axis: fitted.axis,
-            noise: fitted.noise,
-            size: (inside as f64).sqrt() * scale,
-            picture: clock.picture,
-            frames: n,
-            threshold: bg.threshold,
-            on_plane: Vec::new(),
-            region: Some((lo.0 * scale, lo.1 * scale, hi.0 * scale, hi.1 * scale)),
-            reading: Reading::Brightness,
-            t,
-        },
-        chosen: fitted.chosen,
-        laws: fitted.laws,
-        stick: None,
-        plane: None,
-        by_readings: None,
-    })
+    let track = Track {
+        x: vec![at.0; n],
+        y: vec![at.1; n],
+        quality: vec![1.0; n],
+        file_s: clock.file.to_vec(),
+        along: fitted.along,
+        axis: fitted.axis,
+        noise: fitted.noise,
+        size: (inside as f64).sqrt() * scale,
+        picture: clock.picture,
+        frames: n,
+        threshold: bg.threshold,
+        on_plane: Vec::new(),
+        region: Some((lo.0 * scale, lo.1 * scale, hi.0 * scale, hi.1 * scale)),
+        reading: Reading::Brightness,
+        t,
+    };
+    Some(TrackRoute::read(track, fitted.laws, fitted.chosen))
 }
 
 #[cfg(test)]

@@ -185,30 +185,24 @@ pub(super) fn route_of(
     let quality = matches.iter().map(|(_, m)| m.score).collect();
     let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
     let fitted = fit::fit(&t, &xy);
-    Some(TrackRoute {
-        track: Track {
-            t,
-            x,
-            y,
-            quality,
-            file_s,
-            along: fitted.along,
-            axis: fitted.axis,
-            noise: fitted.noise,
-            size: size * scale,
-            picture: clock.picture,
-            frames: n,
-            threshold,
-            on_plane: Vec::new(),
-            region: None,
-            reading,
-        },
-        chosen: fitted.chosen,
-        laws: fitted.laws,
-        stick: None,
-        plane: None,
-        by_readings: None,
-    })
+    let track = Track {
+        t,
+        x,
+        y,
+        quality,
+        file_s,
+        along: fitted.along,
+        axis: fitted.axis,
+        noise: fitted.noise,
+        size: size * scale,
+        picture: clock.picture,
+        frames: n,
+        threshold,
+        on_plane: Vec::new(),
+        region: None,
+        reading,
+    };
+    Some(TrackRoute::read(track, fitted.laws, fitted.chosen))
 }
 
 #[cfg(test)]

@@ -81,6 +81,19 @@ pub const FRAME_SIZES: f64 = 4.0;
 pub const FRAME_SHARE: f64 = 0.1;
 
 impl TrackRoute {
+    /// The route of `track` with its laws' spans and the law chosen, read in the picture's own
+    /// pixels (no stick, plane or readings yet: `metres`, `plane`).
+    pub(super) fn read(track: Track, laws: Vec<LawSpan>, chosen: Option<TrackLaw>) -> TrackRoute {
+        TrackRoute {
+            track,
+            laws,
+            chosen,
+            stick: None,
+            plane: None,
+            by_readings: None,
+        }
+    }
+
     /// How much motion the chosen law explains: its span's samples times their variance
     /// (pixels²) in what the law is fitted to: along the axis for an oscillation or a swing, in
     /// the picture's plane (x and y) for an acceleration, fitted in both (a toss's bent path

@@ -3,7 +3,7 @@
 //! out) by variable projection: γ searched (a log grid, then Levenberg–Marquardt), c and a
 //! solved for at each.
 
-use super::{covariance, least_squares, linear, median_step, sum_sq, Fitted, Value};
+use super::{covariance, from_first, least_squares, linear, sum_sq, Fitted, Value};
 
 /// The decay's columns at rate `g`: the level and the decaying part.
 fn basis(t: &[f64], g: f64) -> Vec<Vec<f64>> {
@@ -20,17 +20,7 @@ const GRID: usize = 200;
 /// of a log grid between a tenth of an e-fold over the span and one a sample step. `None` where
 /// nothing decays (a rate at the grid's ends, a level that rises or stays).
 pub(super) fn decay(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fitted> {
-    let n = t.len();
-    if n < 6 {
-        return None;
-    }
-    let t0 = t[0];
-    let t: Vec<f64> = t.iter().map(|s| s - t0).collect();
-    let span = t[n - 1];
-    let step = median_step(&t);
-    if span <= 0.0 || step <= 0.0 {
-        return None;
-    }
+    let (t, span, step) = from_first(t, 6)?;
     let (lo, hi) = (0.1 / span, 1.0 / step);
     let residual = |g: f64| linear(&basis(&t, g), u).map(|(_, r)| r);
     let g0 = match start {

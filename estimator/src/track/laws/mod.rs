@@ -197,6 +197,18 @@ pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
     Some(inv)
 }
 
+/// The times `t` counted from their first, their span and their median step, where there are
+/// at least `least` of them and they advance.
+pub(super) fn from_first(t: &[f64], least: usize) -> Option<(Vec<f64>, f64, f64)> {
+    if t.len() < least.max(2) {
+        return None;
+    }
+    let t: Vec<f64> = t.iter().map(|s| s - t[0]).collect();
+    let span = t[t.len() - 1];
+    let step = median_step(&t);
+    (span > 0.0 && step > 0.0).then_some((t, span, step))
+}
+
 /// The median step between the samples' times `t` (at least two): the Nyquist frequency π/step
 /// bounds what a law may oscillate at.
 pub(super) fn median_step(t: &[f64]) -> f64 {

@@ -2,7 +2,7 @@
 //! searched (a grid of ω, then Levenberg–Marquardt on both), c, a and b solved for at each;
 //! γ0, γ1 and the amplitude at the span's start.
 
-use super::{covariance, linear, median_step, sum_sq, Fitted, Value};
+use super::{covariance, from_first, linear, sum_sq, Fitted, Value};
 use physvid_shared::linalg::solve;
 
 /// The oscillation's columns at decay `z` and angular frequency `w`.
@@ -89,16 +89,7 @@ const ROTATION_RUN: usize = 32;
 /// best undamped ω of a grid.
 pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fitted> {
     let n = t.len();
-    if n < 8 {
-        return None;
-    }
-    let t0 = t[0];
-    let t: Vec<f64> = t.iter().map(|s| s - t0).collect();
-    let span = t[n - 1];
-    let step = median_step(&t);
-    if span <= 0.0 || step <= 0.0 {
-        return None;
-    }
+    let (t, span, step) = from_first(t, 8)?;
     let residual = |z: f64, w: f64| linear(&basis(&t, z, w), u).map(|(_, r)| r);
     let start = start.unwrap_or_else(|| [0.0, grid_frequency(&t, u, span, step)]);
     // Levenberg–Marquardt on (ζ, ω).
