@@ -1,5 +1,5 @@
 //! An observable that is not a position, read the way a position is: where nothing that moves
-//! follows a law (an LED dimming as its capacitor drains, in place), the picture's brightness
+//! guides the latent (an LED dimming as its capacitor drains, in place), the picture's brightness
 //! over the region that changes, one number a frame, with the laws of a level fitted where they
 //! hold (`fit::levels`). A camera's exposure scales the whole picture at once (a phone's
 //! brightens it as the light dims): each frame is read against its own median first, the

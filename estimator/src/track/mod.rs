@@ -2,8 +2,8 @@
 //! [`TRACK_SIDE`] pixels, what differs from its median background followed from frame to frame
 //! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
 //! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
-//! it holds (`segment`); where nothing that moves follows a law, the brightness of what changes
-//! in place (`light`). It reads no model and trains nothing: seconds on a recording, and an
+//! it holds (`segment`); where nothing that moves guides the latent, the brightness of what
+//! changes in place (`light`), kept where its decay guides or nothing that moves has a law. It reads no model and trains nothing: seconds on a recording, and an
 //! answer to set beside the latent's.
 
 mod angles;
@@ -169,8 +169,13 @@ pub fn follow(
     Ok(chosen(&all).cloned())
 }
 
-/// Of the readings `all`, the object's (`follow`).
+/// Of the readings `all`, the object's (`follow`); a brightness whose decay guides the latent
+/// before any reading of a thing that moves (`candidates` reads it only where none guides).
 fn chosen(all: &[TrackRoute]) -> Option<&TrackRoute> {
+    let light = |c: &&TrackRoute| c.track.reading == Reading::Brightness && c.guiding().is_some();
+    if let Some(l) = all.iter().find(light) {
+        return Some(l);
+    }
     let by = |a: &&TrackRoute, b: &&TrackRoute| {
         a.explained()
             .total_cmp(&b.explained())
@@ -241,11 +246,15 @@ pub fn candidates(
             all.extend(readings(&chroma, &clock));
         }
     }
-    // Where nothing that moves follows a law, what changes in place: the brightness of the
-    // region that changes (an LED dimming), one number a frame.
-    if !all.iter().any(|c| c.explained() > 0.0) {
+    // Where nothing that moves guides the latent (no clear oscillation or swing), what changes
+    // in place: the brightness of the region that changes (an LED dimming), one number a frame;
+    // kept where nothing that moves follows a law, or where its decay guides (a hand that
+    // flipped the switch moved by a law of its own for a second).
+    let lawless = !all.iter().any(|c| c.explained() > 0.0);
+    if lawless || !all.iter().any(|c| c.guiding().is_some()) {
         let bg = background::background(&frames);
-        all.extend(light::brightness(&frames, &clock, &bg));
+        let light = light::brightness(&frames, &clock, &bg);
+        all.extend(light.filter(|l| lawless || l.guiding().is_some()));
     }
     Ok(all)
 }
