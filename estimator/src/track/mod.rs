@@ -11,6 +11,7 @@ pub mod background;
 pub mod blobs;
 mod choose;
 mod fit;
+mod frame;
 mod guiding;
 pub mod laws;
 mod light;
