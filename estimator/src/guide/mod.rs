@@ -1,8 +1,9 @@
 //! The second route's part in a run: the object's own track read for a video file
 //! (`track::follow`), and the request it guides: where its oscillation (or a brightness's
 //! decay) is clear, the oscillator (the LED) on the track's span (in place of a choice among
-//! every model on frames a hand may share); with a stick or a plane, its constant acceleration in metres; without either, a
-//! release from rest it saw. `run` calls both before the estimation, and `settle` after it.
+//! every model on frames a hand may share); with a stick or a plane, its constant acceleration
+//! in metres; without either, a release from rest it saw. `run` calls both before the
+//! estimation, and `settle` after it.
 
 use crate::choice;
 use crate::config::Request;
@@ -24,10 +25,10 @@ pub use reading::second_route;
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
 /// no model files, no `--start`/`--end`, no `--init`) and the track oscillates or decays clearly
 /// (`TrackRoute::guiding`): the request for the latent route on the law's model
-/// (`TrackRoute::guided_model`) over the track's span, started from the track's answer alone (`--single-start`), with the warning that says
-/// so. The latent moves off that start where its frames say otherwise, so the verdict still
-/// compares two measurements (`verdict::routes`); one that learns nothing is caught by the
-/// training, motion and law checks.
+/// (`TrackRoute::guided_model`) over the track's span, started from the track's answer alone
+/// (`--single-start`), with the warning that says so. The latent moves off that start where its
+/// frames say otherwise, so the verdict still compares two measurements (`verdict::routes`); one
+/// that learns nothing is caught by the training, motion and law checks.
 pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Request, String)> {
     let r = &req.load.recording;
     let free = chooses

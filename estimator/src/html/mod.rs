@@ -284,7 +284,7 @@ pub fn report_page(report: &Report, figures: &[Figure], frame: Option<&Frame>) -
                 context! {
                     law => l.law.name(), chosen => Some(l.law) == r.chosen, holds => l.holds,
                     span => format!("{:.2}–{:.2} s ({} samples)", l.first_s, l.last_s, l.samples),
-                    rms => format!("{:.2} px", l.rms_px), answer => values.join(", "),
+                    rms => format!("{:.2} {}", l.rms_px, r.unit()), answer => values.join(", "),
                 }
             })
             .collect();

@@ -1,6 +1,7 @@
 //! `track.png`: the object's own track (its position along its motion's axis against time, or
-//! a brightness's grey level, each sample shaded by its quality) with each law fitted where it holds, the chosen law's span
-//! shaded: the second route's evidence, and what a person checks first on a recording.
+//! a brightness's grey level, each sample shaded by its quality) with each law fitted where it
+//! holds, the chosen law's span shaded: the second route's evidence, and what a person checks
+//! first on a recording.
 
 use super::{chart, legend, range, render_png, PANEL_HEIGHT};
 use crate::track::TrackRoute;

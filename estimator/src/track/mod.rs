@@ -3,8 +3,9 @@
 //! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
 //! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
 //! it holds (`segment`); where nothing that moves guides the latent, the brightness of what
-//! changes in place (`light`), kept where its decay guides or nothing that moves has a law. It reads no model and trains nothing: seconds on a recording, and an
-//! answer to set beside the latent's.
+//! changes in place (`light`), kept where its decay guides or nothing that moves has a law. It
+//! reads no model and trains nothing: seconds on a recording, and an answer to set beside the
+//! latent's.
 
 mod angles;
 pub mod background;
@@ -208,8 +209,8 @@ pub fn follow_file(
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
 /// where it holds; where no law explains any of them, the same of the frames' colour
-/// (`small_chroma`), and where none explains those either, the brightness of what changes in
-/// place (`light`): what `follow` chooses among.
+/// (`small_chroma`); where none guides, the brightness of what changes in place (`light`), kept
+/// where its decay guides or none has a law: what `follow` chooses among.
 pub fn candidates(
     input: &Path,
     info: &VideoInfo,

@@ -89,10 +89,11 @@ impl TrackRoute {
     }
 
     /// How much motion the chosen law explains: its span's samples times their variance
-    /// (pixels²) in what the law is fitted to: along the axis for an oscillation or a swing, in
-    /// the picture's plane (x and y) for an acceleration, fitted in both (a toss's bent path
-    /// read along one axis would favour a shorter span of it); 0 where no law was chosen. Of
-    /// several things followed, the object is the one a law explains the most motion of.
+    /// (pixels², a brightness's grey levels²) in what the law is fitted to: along the axis for an
+    /// oscillation or a swing, in the picture's plane (x and y) for an acceleration, fitted in
+    /// both (a toss's bent path read along one axis would favour a shorter span of it); 0 where
+    /// no law was chosen. Of several things followed, the object is the one a law explains the
+    /// most motion of.
     pub fn explained(&self) -> f64 {
         let Some(l) = self.chosen_span() else {
             return 0.0;
