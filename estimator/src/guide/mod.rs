@@ -99,14 +99,11 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         g.load.recording.measured_at = angles.iter().map(|a| a.0).collect();
         g.calibration.times = angles;
     }
-    let what = match route.track.reading {
-        crate::track::Reading::Brightness => "the brightness of what changes in place",
-        _ => "the object's track",
-    };
     let why = format!(
-        "{what} {} over {:.2}–{:.2} s of the file ({}): the latent route trained the {name} \
+        "{} {} over {:.2}–{:.2} s of the file ({}): the latent route trained the {name} \
          there{framed}, started from the track's answer alone{calibrated} (give --model or \
          --start to choose yourself)",
+        route.subject(),
         span.law.verb(),
         first,
         last,

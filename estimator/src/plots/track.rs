@@ -4,7 +4,7 @@
 //! first on a recording.
 
 use super::{chart, legend, range, render_png, PANEL_HEIGHT};
-use crate::track::TrackRoute;
+use crate::track::{Reading, TrackRoute};
 use plotters::prelude::*;
 
 /// The figure for `route`.
@@ -14,12 +14,12 @@ pub fn track_png(route: &TrackRoute) -> Result<Vec<u8>, String> {
         let first = t.t.first().copied().unwrap_or(0.0);
         let last = t.t.last().copied().unwrap_or(1.0).max(first + 1e-3);
         let y = range(t.along.iter().copied());
-        let (caption, unit) = match t.region {
-            Some(_) => (
+        let (caption, unit) = match t.reading {
+            Reading::Brightness => (
                 "the brightness of what changes in place, and the law fitted",
                 "grey level",
             ),
-            None => (
+            _ => (
                 "the object's track: position along its motion's axis, and the laws fitted",
                 "pixels",
             ),

@@ -18,10 +18,15 @@ pub const GUIDING_ERROR: f64 = 0.01;
 /// over most of its course, not over a stretch a line or a parabola would fit as well.
 pub const GUIDING_EFOLDS: f64 = 2.0;
 
+/// The rate (`RATE_NAMES`) among a law's `values`, where it oscillates or decays.
+pub fn rate_of(values: &[Value]) -> Option<&Value> {
+    values.iter().find(|v| RATE_NAMES.contains(&v.name))
+}
+
 impl LawSpan {
-    /// Its rate (`RATE_NAMES`), where it oscillates or decays.
+    /// Its rate (`rate_of`).
     pub fn rate(&self) -> Option<&Value> {
-        self.values.iter().find(|v| RATE_NAMES.contains(&v.name))
+        rate_of(&self.values)
     }
 
     /// How much of its course the span holds: an oscillation's periods, a decay's e-folds

@@ -26,7 +26,7 @@ mod route;
 pub mod segment;
 pub mod template;
 
-pub use guiding::{GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
+pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 /// A route with one law for other modules' tests.
 #[cfg(test)]
 pub(crate) use route::tests::route as test_route;
@@ -238,14 +238,15 @@ pub fn candidates(
         picture: (info.width, info.height),
         reach: (FASTEST * frame_s).min(0.5) * w.max(h) as f64,
     };
-    let mut all = readings(&frames, &clock);
+    let bg = background::background(&frames);
+    let mut all = readings(&frames, &bg, &clock);
     // Where no law explains what the grey shows, the same frames' colour: an object as
     // bright as the wall behind it differs there (read second: a ball's colour follows it
     // through its bounce too, whose arc outlasts the drop the grey kept).
     if !all.iter().any(|c| c.explained() > 0.0) {
         let chroma = small_chroma(input, info, span, TRACK_SIDE)?;
         if chroma.len() == n && chroma.size == frames.size {
-            all.extend(readings(&chroma, &clock));
+            all.extend(readings(&chroma, &background::background(&chroma), &clock));
         }
     }
     // Where nothing that moves guides the latent (no clear oscillation or swing), what changes
@@ -254,7 +255,6 @@ pub fn candidates(
     // flipped the switch moved by a law of its own for a second).
     let lawless = !all.iter().any(|c| c.explained() > 0.0);
     if lawless || !all.iter().any(|c| c.guiding().is_some()) {
-        let bg = background::background(&frames);
         let light = light::brightness(&frames, &clock, &bg);
         all.extend(light.filter(|l| lawless || l.guiding().is_some()));
     }

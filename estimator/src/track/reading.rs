@@ -13,15 +13,19 @@ use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// The routes of one picture of the recording (its grey or its chroma): the [`TRIED`]
+/// The routes of one picture of the recording (its grey or its chroma, over its background
+/// `bg`): the [`TRIED`]
 /// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
 /// as its blobs' centroids, as those of its whole blobs alone (`whole`), by its rod's axes
 /// (`rod`) and as its picture's matches; and the matches of the thing whose reading `chosen`
 /// keeps carried on past its tracklet's ends (`template::beyond`).
-pub(super) fn readings(frames: &SmallFrames, clock: &Clock) -> Vec<TrackRoute> {
+pub(super) fn readings(
+    frames: &SmallFrames,
+    bg: &background::Background,
+    clock: &Clock,
+) -> Vec<TrackRoute> {
     let n = frames.len();
-    let bg = background::background(frames);
-    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, &bg)).collect();
+    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, bg)).collect();
     let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
     // The thing that moves the most, its pieces hidden from each other joined, tried too.
     let joined = link::rejoined(&tracklets, 0);

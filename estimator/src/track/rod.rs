@@ -210,7 +210,11 @@ mod tests {
     fn a_shaken_pendulum_is_read_by_its_rod() {
         let (frames, t) = shaken_pendulum();
         let clock = Clock::shown(&t, (64, 64), 12.8);
-        let all = readings(&frames, &clock);
+        let all = readings(
+            &frames,
+            &crate::track::background::background(&frames),
+            &clock,
+        );
         let route = chosen(&all).unwrap();
         assert_eq!(route.track.reading, Reading::Rod);
         let l = route.chosen_span().unwrap();

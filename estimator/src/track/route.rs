@@ -199,6 +199,14 @@ impl TrackRoute {
         }
     }
 
+    /// What the track follows, for a sentence: the object's track, or a brightness.
+    pub fn subject(&self) -> &'static str {
+        match self.track.reading {
+            Reading::Brightness => "the brightness of what changes in place",
+            _ => "the object's track",
+        }
+    }
+
     /// The unit of what the track reads along (`along`, its noise, a law's residuals): pixels,
     /// or grey levels for a brightness.
     pub fn unit(&self) -> &'static str {

@@ -9,7 +9,7 @@ use super::separation;
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
-use crate::track::{TrackRoute, RATE_NAMES};
+use crate::track::{rate_of, TrackRoute, RATE_NAMES};
 use crate::verdict::consistency::apart;
 use physvid_shared::cli::approx;
 
@@ -28,12 +28,7 @@ pub(in crate::verdict) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
 /// [`corroborates`] by the track `route`: its rate where it corroborates `p`.
 fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> Option<Value> {
     let span = route.guiding()?;
-    let rate = |values: &[Value]| {
-        values
-            .iter()
-            .find(|v| RATE_NAMES.contains(&v.name))
-            .cloned()
-    };
+    let rate = |values: &[Value]| rate_of(values).cloned();
     let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
         return None;
     };

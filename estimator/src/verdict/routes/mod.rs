@@ -50,7 +50,7 @@ impl Check for Routes {
         "routes"
     }
     fn judge(&self, r: &Run) -> Vec<Reason> {
-        let Some(span) = r.track.as_ref().and_then(|t| t.guiding()) else {
+        let Some((route, span)) = r.track.as_ref().and_then(|t| Some((t, t.guiding()?))) else {
             return accelerations(self.name(), r);
         };
         let periods = span.periods.unwrap_or(0.0);
@@ -59,11 +59,8 @@ impl Check for Routes {
         };
         let (extent, what) = span.extent().unwrap_or((0.0, "periods"));
         let track = format!(
-            "the {} {} over {}–{} s ({} {what}) with {} {} ± {} {}",
-            match span.law {
-                TrackLaw::Decay => "brightness of what changes in place",
-                _ => "object's track",
-            },
+            "{} {} over {}–{} s ({} {what}) with {} {} ± {} {}",
+            route.subject(),
             span.law.verb(),
             approx(span.first_s),
             approx(span.last_s),
