@@ -388,8 +388,9 @@ def _track_table(route: Dict[str, Any]):
     y (pixels of the displayed frame), quality, along (the position along the motion's own axis,
     pixels; for a ``brightness`` reading, the grey level of the region whose light changes); the
     laws fitted, the law chosen, the axis, the noise and how the positions were read
-    (``reading``: centroids, whole, rod, matches or brightness) in ``attrs`` (a DataFrame) or under those keys
-    (a dict)."""
+    (``reading``: centroids, whole, rod, matches or brightness) and ``steadied`` (the largest shift
+    taken off where the frames were steadied against a camera's shake, else None) in ``attrs`` (a
+    DataFrame) or under those keys (a dict)."""
     t = route["track"]
     columns = {c: np.asarray(t[c], dtype=np.float64) for c in _TRACK_COLUMNS}
     about = {
@@ -398,6 +399,7 @@ def _track_table(route: Dict[str, Any]):
         "axis": t["axis"],
         "noise": t["noise"],
         "reading": t.get("reading"),
+        "steadied": t.get("steadied"),
     }
     try:
         import pandas as pd

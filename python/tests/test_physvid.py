@@ -143,6 +143,8 @@ def test_track_follows_the_object_and_fits_its_law(tmp_path):
     assert about["chosen"] == "oscillation", about["laws"]
     # A round disc has no axis to read it by: its centroids (or its matches) are read.
     assert about["reading"] in ("centroids", "whole", "matches"), about["reading"]
+    # A still camera's frames are read as shot.
+    assert about["steadied"] is None, about["steadied"]
     law = next(l for l in about["laws"] if l["law"] == "oscillation")
     g0 = next(v["value"] for v in law["values"] if v["name"] == "gamma0")
     assert abs(g0 / (4 * np.pi**2 + 0.0025) - 1) < 0.01, g0

@@ -53,7 +53,10 @@ pub fn num(v: f64) -> String {
 
 /// A computed number for a message, to four significant digits (1234, 0.1235, 1.235e-7).
 pub fn approx(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-3..1e5).contains(&v.abs()) {
+    if v == 0.0 {
+        return "0".to_string();
+    }
+    if v.is_finite() && !(1e-3..1e5).contains(&v.abs()) {
         format!("{v:.3e}")
     } else {
         let s = format!(
@@ -137,6 +140,7 @@ mod tests {
         assert_eq!(super::approx(0.67295), "0.673");
         assert_eq!(super::approx(3.17e-5), "3.170e-5");
         assert_eq!(super::approx(2.0), "2");
+        assert_eq!(super::approx(0.0), "0");
     }
 
     #[test]

@@ -138,6 +138,7 @@ pub(super) fn brightness(
         threshold: bg.threshold,
         on_plane: Vec::new(),
         region: Some((lo.0 * scale, lo.1 * scale, hi.0 * scale, hi.1 * scale)),
+        steadied: None,
         reading: Reading::Brightness,
         t,
     };

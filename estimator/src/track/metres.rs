@@ -222,6 +222,7 @@ pub(crate) mod tests {
                 threshold: 10.0,
                 on_plane: Vec::new(),
                 region: None,
+                steadied: None,
                 reading: crate::track::Reading::Centroids,
             },
             laws: vec![span],

@@ -3,7 +3,9 @@
 //! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
 //! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
 //! it holds (`segment`); where nothing that moves guides the latent, the brightness of what
-//! changes in place (`light`), kept where its decay guides or nothing that moves has a law. It
+//! changes in place (`light`; read again on frames steadied against a camera's shake,
+//! `steady`, where as shot its decay does not guide), kept where its decay guides or nothing
+//! that moves has a law. It
 //! reads no model and trains nothing: seconds on a recording, and an answer to set beside the
 //! latent's.
 
@@ -24,6 +26,7 @@ mod reading;
 mod rod;
 mod route;
 pub mod segment;
+mod steady;
 pub mod template;
 
 pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
@@ -32,7 +35,7 @@ pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 pub(crate) use route::tests::route as test_route;
 pub use route::{LawSpan, TrackRoute};
 
-use physvid_shared::video::{small_chroma, small_frames, VideoError, VideoInfo};
+use physvid_shared::video::{small_chroma, small_frames, SmallFrames, VideoError, VideoInfo};
 pub use reading::Reading;
 use reading::{readings, Clock};
 use serde::Serialize;
@@ -87,6 +90,11 @@ pub struct Track {
     /// the displayed frame: left, top, right, bottom), where its light is read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub region: Option<(f64, f64, f64, f64)>,
+    /// Where the frames were steadied against a camera's shake before this was read (`steady`),
+    /// the largest shift taken off (pixels of the displayed frame); the positions are then
+    /// those of the background's picture.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steadied: Option<f64>,
 }
 
 impl Track {
@@ -209,8 +217,9 @@ pub fn follow_file(
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
 /// where it holds; where no law explains any of them, the same of the frames' colour
-/// (`small_chroma`); where none guides, the brightness of what changes in place (`light`), kept
-/// where its decay guides or none has a law: what `follow` chooses among.
+/// (`small_chroma`); where none guides, the brightness of what changes in place (`light`, read
+/// again on frames steadied against the camera's shake where as shot its decay does not
+/// guide), kept where its decay guides or none has a law: what `follow` chooses among.
 pub fn candidates(
     input: &Path,
     info: &VideoInfo,
@@ -252,11 +261,39 @@ pub fn candidates(
     // Where nothing that moves guides the latent (no clear oscillation or swing), what changes
     // in place: the brightness of the region that changes (an LED dimming), one number a frame;
     // kept where nothing that moves follows a law, or where its decay guides (a hand that
-    // flipped the switch moved by a law of its own for a second).
+    // flipped the switch moved by a law of its own for a second). Where its decay does not
+    // guide, it is read again on the frames steadied against a camera's shake (a hand-held
+    // camera moves every edge of a still picture in place, and the region that changes is then
+    // theirs), kept where its decay guides there.
     let lawless = !all.iter().any(|c| c.explained() > 0.0);
     if lawless || !all.iter().any(|c| c.guiding().is_some()) {
-        let light = light::brightness(&frames, &clock, &bg);
+        let guides = |l: &Option<TrackRoute>| l.as_ref().is_some_and(|l| l.guiding().is_some());
+        let mut light = light::brightness(&frames, &clock, &bg);
+        if !guides(&light) {
+            let steadied = steadied_light(&frames, &bg, &clock);
+            if guides(&steadied) {
+                light = steadied;
+            }
+        }
         all.extend(light.filter(|l| lawless || l.guiding().is_some()));
     }
     Ok(all)
+}
+
+/// The brightness of what changes in place (`light`) on `frames` steadied against the
+/// camera's shake (`steady::steadied`, against the background's picture `bg`); none where the
+/// camera held still.
+fn steadied_light(
+    frames: &SmallFrames,
+    bg: &background::Background,
+    clock: &Clock,
+) -> Option<TrackRoute> {
+    let steady = steady::steadied(frames, &bg.median)?;
+    let mut light = light::brightness(
+        &steady.frames,
+        clock,
+        &background::background(&steady.frames),
+    )?;
+    light.track.steadied = Some(steady.largest * clock.scale);
+    Some(light)
 }

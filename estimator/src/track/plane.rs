@@ -129,6 +129,7 @@ mod tests {
                 threshold: 10.0,
                 on_plane: Vec::new(),
                 region: None,
+                steadied: None,
                 reading: crate::track::Reading::Centroids,
             },
             chosen: fitted.chosen,

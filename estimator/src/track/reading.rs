@@ -204,6 +204,7 @@ pub(super) fn route_of(
         threshold,
         on_plane: Vec::new(),
         region: None,
+        steadied: None,
         reading,
     };
     Some(TrackRoute::read(track, fitted.laws, fitted.chosen))

@@ -177,7 +177,11 @@ impl TrackRoute {
                     Reading::Rod => ", read by its rod's axes",
                     Reading::Brightness => ", the brightness of what changes in place",
                     _ => "",
-                },
+                }
+                .to_string()
+                    + &self.track.steadied.map_or(String::new(), |s| {
+                        format!(", on frames steadied against the camera's shake ({s:.1} px)")
+                    }),
                 l.rms_px,
                 self.track.noise,
                 l.values
@@ -250,6 +254,7 @@ pub(crate) mod tests {
             threshold: 10.0,
             on_plane: Vec::new(),
             region: None,
+            steadied: None,
             reading: crate::track::Reading::Centroids,
         };
         let span = LawSpan {
