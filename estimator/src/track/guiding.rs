@@ -64,8 +64,26 @@ impl TrackRoute {
         };
         (l.holds
             && l.extent().map_or(0.0, |e| e.0) >= least
-            && g.error <= GUIDING_ERROR * g.value.abs())
+            && g.error <= GUIDING_ERROR * g.value.abs()
+            && self.shown(l))
         .then_some(l)
+    }
+
+    /// Whether an oscillation's amplitude lies within the track's range over its span: near
+    /// the samples' Nyquist frequency a fit reaches amplitudes no sample shows (10¹⁵ px on a
+    /// shaken phone's frames, steadied).
+    fn shown(&self, l: &LawSpan) -> bool {
+        let amplitude = l.values.iter().find(|v| v.name == "amplitude");
+        let (TrackLaw::Oscillation, Some(a)) = (l.law, amplitude) else {
+            return true;
+        };
+        let along = &self.track.along[l.first..(l.first + l.samples).min(self.track.along.len())];
+        let (lo, hi) = along
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        a.value.abs() <= hi - lo
     }
 
     /// The model the guiding law sets (`guiding`): the pendulum for a swing (its period

@@ -2,10 +2,10 @@
 //! [`TRACK_SIDE`] pixels, what differs from its median background followed from frame to frame
 //! (`blobs`, `link`; in its grey, else in its colour's distance from grey), the longest-lived
 //! thing kept, its position along its motion's own axis, and each law of `laws` fitted where
-//! it holds (`segment`); where nothing that moves guides the latent, the brightness of what
-//! changes in place (`light`; read again on frames steadied against a camera's shake,
-//! `steady`, where as shot its decay does not guide), kept where its decay guides or nothing
-//! that moves has a law. It
+//! it holds (`segment`); where nothing guides the latent, the same read again on frames
+//! steadied against a camera's shake (`steady`), kept where it guides; and where nothing that
+//! moves guides, the brightness of what changes in place (`light`), kept where its decay guides
+//! or nothing that moves has a law. It
 //! reads no model and trains nothing: seconds on a recording, and an answer to set beside the
 //! latent's.
 
@@ -180,20 +180,30 @@ pub fn follow(
 }
 
 /// Of the readings `all`, the object's (`follow`); a brightness whose decay guides the latent
-/// before any reading of a thing that moves (`candidates` reads it only where none guides).
+/// before any reading of a thing that moves (`candidates` reads it only where none guides),
+/// and readings of steadied frames (kept only where they guide) before those as shot.
 fn chosen(all: &[TrackRoute]) -> Option<&TrackRoute> {
     let light = |c: &&TrackRoute| c.track.reading == Reading::Brightness && c.guiding().is_some();
     if let Some(l) = all.iter().find(light) {
         return Some(l);
     }
+    // Readings of steadied frames are kept only where they guide, and only where nothing read
+    // as shot does: they come first.
+    let steadied: Vec<&TrackRoute> = all.iter().filter(|c| c.track.steadied.is_some()).collect();
+    let all: Vec<&TrackRoute> = if steadied.is_empty() {
+        all.iter().collect()
+    } else {
+        steadied
+    };
     let by = |a: &&TrackRoute, b: &&TrackRoute| {
         a.explained()
             .total_cmp(&b.explained())
             .then(a.track.t.len().cmp(&b.track.t.len()))
     };
-    let most = all.iter().max_by(by)?;
+    let most = all.iter().copied().max_by(by)?;
     let longest = all
         .iter()
+        .copied()
         .filter(|c| c.explained() > 0.0 && most.same_thing(c))
         .max_by(|a, b| {
             let rod = |c: &TrackRoute| c.track.reading == Reading::Rod;
@@ -217,9 +227,10 @@ pub fn follow_file(
 /// Every reading tried as the object, in the order tried: the [`TRIED`] longest-lived things
 /// that move, each as its blobs' centroids and as its picture's matches, with each law fitted
 /// where it holds; where no law explains any of them, the same of the frames' colour
-/// (`small_chroma`); where none guides, the brightness of what changes in place (`light`, read
-/// again on frames steadied against the camera's shake where as shot its decay does not
-/// guide), kept where its decay guides or none has a law: what `follow` chooses among.
+/// (`small_chroma`); where none guides, the same on the frames steadied against the camera's
+/// shake (`Steady`), kept where they guide, and the brightness of what changes in place
+/// (`light`; on the steadied frames where as shot its decay does not guide), kept where its
+/// decay guides or none has a law: what `follow` chooses among.
 pub fn candidates(
     input: &Path,
     info: &VideoInfo,
@@ -258,6 +269,15 @@ pub fn candidates(
             all.extend(readings(&chroma, &background::background(&chroma), &clock));
         }
     }
+    // Where nothing guides, the same read on the frames steadied against a camera's shake (a
+    // hand-held camera moves every edge of a still picture, and the object with them), those
+    // readings kept that guide.
+    let steady = (!all.iter().any(|c| c.guiding().is_some()))
+        .then(|| Steady::of(&frames))
+        .flatten();
+    if let Some(s) = &steady {
+        all.extend(s.guiding(&clock));
+    }
     // Where nothing that moves guides the latent (no clear oscillation or swing), what changes
     // in place: the brightness of the region that changes (an LED dimming), one number a frame;
     // kept where nothing that moves follows a law, or where its decay guides (a hand that
@@ -270,7 +290,7 @@ pub fn candidates(
         let guides = |l: &Option<TrackRoute>| l.as_ref().is_some_and(|l| l.guiding().is_some());
         let mut light = light::brightness(&frames, &clock, &bg);
         if !guides(&light) {
-            let steadied = steadied_light(&frames, &bg, &clock);
+            let steadied = steady.as_ref().and_then(|s| s.brightness(&clock));
             if guides(&steadied) {
                 light = steadied;
             }
@@ -280,20 +300,44 @@ pub fn candidates(
     Ok(all)
 }
 
-/// The brightness of what changes in place (`light`) on `frames` steadied against the
-/// camera's shake (`steady::steadied`, against the background's picture `bg`); none where the
-/// camera held still.
-fn steadied_light(
-    frames: &SmallFrames,
-    bg: &background::Background,
-    clock: &Clock,
-) -> Option<TrackRoute> {
-    let steady = steady::steadied(frames, &bg.median)?;
-    let mut light = light::brightness(
-        &steady.frames,
-        clock,
-        &background::background(&steady.frames),
-    )?;
-    light.track.steadied = Some(steady.largest * clock.scale);
-    Some(light)
+/// A recording's frames steadied against the camera's shake (`steady::steadied`) and their
+/// own background.
+struct Steady {
+    frames: SmallFrames,
+    bg: background::Background,
+    /// The largest shift taken off (pixels of the frames read).
+    largest: f64,
+}
+
+impl Steady {
+    /// `frames` steadied against the camera's shake; `None` where it held still.
+    fn of(frames: &SmallFrames) -> Option<Steady> {
+        let s = steady::steadied(frames)?;
+        let bg = background::background(&s.frames);
+        Some(Steady {
+            frames: s.frames,
+            bg,
+            largest: s.largest,
+        })
+    }
+
+    /// `route` marked as read on these frames.
+    fn marked(&self, mut route: TrackRoute, clock: &Clock) -> TrackRoute {
+        route.track.steadied = Some(self.largest * clock.scale);
+        route
+    }
+
+    /// The readings of the things that move on these frames that guide the latent.
+    fn guiding(&self, clock: &Clock) -> Vec<TrackRoute> {
+        readings(&self.frames, &self.bg, clock)
+            .into_iter()
+            .filter(|c| c.guiding().is_some())
+            .map(|c| self.marked(c, clock))
+            .collect()
+    }
+
+    /// The brightness of what changes in place (`light`) on these frames.
+    fn brightness(&self, clock: &Clock) -> Option<TrackRoute> {
+        light::brightness(&self.frames, clock, &self.bg).map(|l| self.marked(l, clock))
+    }
 }

@@ -1,19 +1,24 @@
 //! A camera's shake taken off the frames the track reads: each frame's shift against the
-//! background's picture by phase correlation (the whitened cross-power spectrum's peak,
-//! refined between pixels by Lucas–Kanade), and the frame moved back by it
-//! (bilinear, the edge repeated). A hand-held camera's shake moves every edge of a still
+//! frames' median picture by Lucas–Kanade from coarse to fine (robust to what moves by
+//! Huber's weights), and the frame moved back by it (bilinear, the edge repeated). A hand-held camera's shake moves every edge of a still
 //! picture, whose differences from the background then outgrow the object's or the light's;
 //! steadied, the picture differs where the object moves or the light changes.
 
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
-use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
-use std::sync::Arc;
 
 /// Frames all shifted by less than this (pixels of the frames read) are left as they are: the
 /// camera held still.
 const STILL: f64 = 1.0;
+
+/// The sizes the shift is sought at, halving (a shake of eight pixels is two at the smallest),
+/// and the smallest side a halving keeps.
+const LEVELS: usize = 3;
+const LEAST_SIDE: usize = 24;
+
+/// Gauss–Newton steps that refine a shift (Lucas–Kanade), and the step under which it stops.
+const STEPS: usize = 8;
+const SETTLED: f64 = 1e-3;
 
 /// Frames moved back by the camera's shake, and the largest shift taken off (pixels of the
 /// frames read).
@@ -22,67 +27,52 @@ pub struct Steadied {
     pub largest: f64,
 }
 
-/// A 2-D transform of one size: its rows', then its columns'.
-struct Plane {
+/// A picture and its size.
+struct Level {
+    pixels: Vec<u8>,
     size: (usize, usize),
-    rows: Arc<dyn Fft<f64>>,
-    columns: Arc<dyn Fft<f64>>,
 }
 
-impl Plane {
-    fn new((w, h): (usize, usize), inverse: bool) -> Plane {
-        let mut planner = FftPlanner::new();
-        let (rows, columns) = if inverse {
-            (planner.plan_fft_inverse(w), planner.plan_fft_inverse(h))
-        } else {
-            (planner.plan_fft_forward(w), planner.plan_fft_forward(h))
-        };
-        Plane {
-            size: (w, h),
-            rows,
-            columns,
-        }
-    }
-
-    /// Transforms `data` (row-major, w × h) in place.
-    fn apply(&self, data: &mut [Complex<f64>]) {
+impl Level {
+    /// The picture at half the size, each pixel the mean of four.
+    fn halved(&self) -> Level {
         let (w, h) = self.size;
-        self.rows.process(data);
-        let mut column = vec![Complex::default(); h];
-        for x in 0..w {
-            for (y, c) in column.iter_mut().enumerate() {
-                *c = data[y * w + x];
-            }
-            self.columns.process(&mut column);
-            for (y, c) in column.iter().enumerate() {
-                data[y * w + x] = *c;
-            }
+        let (hw, hh) = (w / 2, h / 2);
+        let at = |x: usize, y: usize| u16::from(self.pixels[y * w + x]);
+        let pixels = (0..hh)
+            .flat_map(|y| (0..hw).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let sum = at(2 * x, 2 * y)
+                    + at(2 * x + 1, 2 * y)
+                    + at(2 * x, 2 * y + 1)
+                    + at(2 * x + 1, 2 * y + 1);
+                ((sum + 2) / 4) as u8
+            })
+            .collect();
+        Level {
+            pixels,
+            size: (hw, hh),
         }
     }
-}
 
-/// A Hann window over a picture of `size` (the picture's edges, which the transform joins to
-/// the opposite ones, weigh nothing).
-fn window((w, h): (usize, usize)) -> Vec<f64> {
-    let hann = |i: usize, n: usize| 0.5 - 0.5 * (std::f64::consts::TAU * i as f64 / n as f64).cos();
-    (0..h)
-        .flat_map(|y| (0..w).map(move |x| hann(x, w) * hann(y, h)))
-        .collect()
+    /// This picture and its halvings while the smaller side keeps [`LEAST_SIDE`] pixels, at
+    /// most [`LEVELS`] in all, the full size first.
+    fn pyramid(pixels: &[u8], size: (usize, usize)) -> Vec<Level> {
+        let mut levels = vec![Level {
+            pixels: pixels.to_vec(),
+            size,
+        }];
+        while levels.len() < LEVELS {
+            let last = levels.last().expect("one level");
+            if last.size.0.min(last.size.1) / 2 < LEAST_SIDE {
+                break;
+            }
+            let half = last.halved();
+            levels.push(half);
+        }
+        levels
+    }
 }
-
-/// A picture less its mean, windowed, as complex numbers.
-fn centred(picture: &[u8], window: &[f64]) -> Vec<Complex<f64>> {
-    let mean = picture.iter().map(|&v| f64::from(v)).sum::<f64>() / picture.len().max(1) as f64;
-    picture
-        .iter()
-        .zip(window)
-        .map(|(&v, k)| Complex::new((f64::from(v) - mean) * k, 0.0))
-        .collect()
-}
-
-/// Gauss–Newton steps that refine a shift (Lucas–Kanade), and the step under which it stops.
-const STEPS: usize = 8;
-const SETTLED: f64 = 1e-3;
 
 /// `frame` read at the real point (x, y), bilinear, the edge repeated.
 fn sample(frame: &[u8], (w, h): (usize, usize), x: f64, y: f64) -> f64 {
@@ -97,36 +87,63 @@ fn sample(frame: &[u8], (w, h): (usize, usize), x: f64, y: f64) -> f64 {
     top * (1.0 - ay) + bottom * ay
 }
 
+/// The differences of `frame` read at each point p + `shift` from `reference` at p, over the
+/// picture less `margin` pixels at each edge, less their median (a camera's exposure moves
+/// the whole picture at once), and the points they are at.
+fn differences(
+    frame: &[u8],
+    reference: &[u8],
+    (w, h): (usize, usize),
+    (sx, sy): (f64, f64),
+    margin: usize,
+) -> (Vec<f64>, Vec<usize>) {
+    let mut d = Vec::new();
+    let mut at = Vec::new();
+    for y in margin..h.saturating_sub(margin) {
+        for x in margin..w.saturating_sub(margin) {
+            let p = y * w + x;
+            d.push(sample(frame, (w, h), x as f64 + sx, y as f64 + sy) - f64::from(reference[p]));
+            at.push(p);
+        }
+    }
+    if !d.is_empty() {
+        let mut sorted = d.clone();
+        let mid = sorted.len() / 2;
+        let level = *sorted.select_nth_unstable_by(mid, f64::total_cmp).1;
+        d.iter_mut().for_each(|v| *v -= level);
+    }
+    (d, at)
+}
+
+/// The differences' robust spread (1.4826 × their median absolute value).
+fn spread(d: &[f64]) -> f64 {
+    let mut magnitude: Vec<f64> = d.iter().map(|v| v.abs()).collect();
+    let mid = magnitude.len() / 2;
+    1.4826 * *magnitude.select_nth_unstable_by(mid, f64::total_cmp).1
+}
+
+/// The margin that keeps every point read at `shift` inside a picture of `size`, if the
+/// picture has room for it.
+fn margin_for((w, h): (usize, usize), (sx, sy): (f64, f64)) -> Option<usize> {
+    let m = sx.abs().max(sy.abs()).ceil() + 2.0;
+    (m.is_finite() && m < (w.min(h) / 2) as f64).then_some(m as usize)
+}
+
 /// The shift `start` refined to a fraction of a pixel by Gauss–Newton on the pictures
 /// themselves (Lucas–Kanade, the reference's gradients), each pixel weighed down where it
-/// differs by more than twice the differences' robust spread (what moves: Huber's weights).
+/// differs by more than twice the differences' robust spread (what moves: Huber's weights);
+/// `None` where it runs off the picture.
 fn refined(
     frame: &[u8],
     reference: &[u8],
     (w, h): (usize, usize),
     start: (f64, f64),
-) -> (f64, f64) {
+) -> Option<(f64, f64)> {
     let (mut sx, mut sy) = start;
-    let mut d = Vec::with_capacity(w * h);
     for _ in 0..STEPS {
-        let margin = (sx.abs().max(sy.abs()).ceil() as usize + 2).min(w.min(h) / 2 - 1);
-        d.clear();
-        let mut at = Vec::with_capacity(w * h);
-        for y in margin..h - margin {
-            for x in margin..w - margin {
-                let p = y * w + x;
-                let v = sample(frame, (w, h), x as f64 + sx, y as f64 + sy);
-                d.push(v - f64::from(reference[p]));
-                at.push(p);
-            }
-        }
-        if d.is_empty() {
-            break;
-        }
-        let mut magnitude: Vec<f64> = d.iter().map(|v| v.abs()).collect();
-        let mid = magnitude.len() / 2;
-        let spread = 1.4826 * *magnitude.select_nth_unstable_by(mid, f64::total_cmp).1;
-        let limit = 2.0 * spread.max(0.5);
+        let margin = margin_for((w, h), (sx, sy))?;
+        let (d, at) = differences(frame, reference, (w, h), (sx, sy), margin);
+        let limit = 2.0 * spread(&d).max(0.5);
         let (mut a, mut b) = ([0.0f64; 3], [0.0f64; 2]);
         for (&p, &r) in at.iter().zip(&d) {
             let gx = 0.5 * (f64::from(reference[p + 1]) - f64::from(reference[p - 1]));
@@ -154,56 +171,26 @@ fn refined(
             break;
         }
     }
-    (sx, sy)
+    margin_for((w, h), (sx, sy)).map(|_| (sx, sy))
 }
 
 /// Each frame's shift against `reference` (x, y in pixels: the frame shows the reference's
-/// point p at p + shift), by phase correlation.
-pub fn shifts(frames: &SmallFrames, reference: &[u8]) -> Vec<(f64, f64)> {
-    let (w, h) = frames.size;
-    let forward = Plane::new((w, h), false);
-    let inverse = Plane::new((w, h), true);
-    let window = window((w, h));
-    let mut fixed = centred(reference, &window);
-    forward.apply(&mut fixed);
+/// point p at p + shift), by Lucas–Kanade from coarse to fine: on the pictures halved
+/// ([`LEVELS`] sizes), the smallest from no shift, each finer from the coarser's doubled.
+fn shifts(frames: &SmallFrames, reference: &[u8]) -> Vec<(f64, f64)> {
+    let fixed = Level::pyramid(reference, frames.size);
     (0..frames.len())
         .into_par_iter()
         .map(|i| {
-            let mut spectrum = centred(frames.frame(i), &window);
-            forward.apply(&mut spectrum);
-            for (s, f) in spectrum.iter_mut().zip(&fixed) {
-                let cross = *s * f.conj();
-                let norm = cross.norm();
-                *s = if norm > 1e-12 {
-                    cross / norm
-                } else {
-                    Complex::default()
-                };
-            }
-            inverse.apply(&mut spectrum);
-            let at = |x: usize, y: usize| spectrum[(y % h) * w + (x % w)].re;
-            let (mut px, mut py, mut top) = (0, 0, f64::NEG_INFINITY);
-            for y in 0..h {
-                for x in 0..w {
-                    if at(x, y) > top {
-                        (px, py, top) = (x, y, at(x, y));
-                    }
+            let moving = Level::pyramid(frames.frame(i), frames.size);
+            let mut shift = (0.0, 0.0);
+            for (k, (f, r)) in moving.iter().zip(&fixed).enumerate().rev() {
+                if k + 1 < moving.len() {
+                    shift = (2.0 * shift.0, 2.0 * shift.1);
                 }
+                shift = refined(&f.pixels, &r.pixels, f.size, shift).unwrap_or(shift);
             }
-            // Past half the picture, the peak is a shift the other way.
-            let wrap = |p: usize, n: usize| {
-                if 2 * p > n {
-                    p as f64 - n as f64
-                } else {
-                    p as f64
-                }
-            };
-            refined(
-                frames.frame(i),
-                reference,
-                (w, h),
-                (wrap(px, w), wrap(py, h)),
-            )
+            shift
         })
         .collect()
 }
@@ -219,10 +206,40 @@ fn moved(frame: &[u8], (w, h): (usize, usize), (sx, sy): (f64, f64)) -> Vec<u8> 
         .collect()
 }
 
-/// `frames` moved back by their shifts against `reference` (the background's picture), or
-/// `None` where every shift is under [`STILL`].
-pub fn steadied(frames: &SmallFrames, reference: &[u8]) -> Option<Steadied> {
-    let found = shifts(frames, reference);
+/// At most this many frames, evenly spread, make the median picture the frames are steadied
+/// against (as `background`'s).
+const MEDIAN_FRAMES: usize = 255;
+
+/// Each pixel's median over up to [`MEDIAN_FRAMES`] frames: the still picture a shaken camera
+/// saw, blurred by the shake but not shifted by it.
+fn median(frames: &SmallFrames) -> Vec<u8> {
+    let n = frames.len();
+    let picked: Vec<usize> = if n <= MEDIAN_FRAMES {
+        (0..n).collect()
+    } else {
+        (0..MEDIAN_FRAMES)
+            .map(|k| k * (n - 1) / (MEDIAN_FRAMES - 1))
+            .collect()
+    };
+    let (w, h) = frames.size;
+    (0..w * h)
+        .into_par_iter()
+        .map_init(Vec::new, |values: &mut Vec<u8>, p| {
+            values.clear();
+            values.extend(picked.iter().map(|&i| frames.frame(i)[p]));
+            let mid = values.len() / 2;
+            *values.select_nth_unstable(mid).1
+        })
+        .collect()
+}
+
+/// `frames` moved back by their shifts against their median picture, or `None` where every
+/// shift is under [`STILL`].
+pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
+    if frames.is_empty() {
+        return None;
+    }
+    let found = shifts(frames, &median(frames));
     let largest = found.iter().map(|s| s.0.hypot(s.1)).fold(0.0, f64::max);
     if largest < STILL {
         return None;
@@ -258,24 +275,21 @@ mod tests {
         out
     }
 
-    /// Frames of a wall shaken by up to three pixels: each shift found within a tenth of a
-    /// pixel, and the steadied frames differ from the still wall by less than the shaken ones
-    /// did, away from the edges the shift brings in.
+    /// Frames of a wall, most of them still and the rest shaken by up to three pixels: each
+    /// shift found within a tenth of a pixel, and the steadied frames differ from the still
+    /// wall (their median) by less than a sixth of what the shaken ones did, away from the
+    /// edges the shift brings in.
     #[test]
     fn a_shaken_wall_is_found_and_steadied() {
         let size = (64, 48);
-        let shaken = [
-            (0.0, 0.0),
-            (1.3, -0.6),
-            (-2.4, 0.8),
-            (0.6, 2.7),
-            (-0.2, -1.9),
-        ];
+        let mut shaken = vec![(0.0, 0.0); 6];
+        shaken.extend([(1.3, -0.6), (-2.4, 0.8), (0.6, 2.7), (-0.2, -1.9)]);
         let still = wall(size, (0.0, 0.0));
         let frames = SmallFrames {
             pixels: shaken.iter().flat_map(|&s| wall(size, s)).collect(),
             size,
         };
+        assert_eq!(median(&frames), still);
         let found = shifts(&frames, &still);
         for (f, s) in found.iter().zip(&shaken) {
             assert!(
@@ -283,7 +297,7 @@ mod tests {
                 "{f:?} for {s:?}"
             );
         }
-        let steady = steadied(&frames, &still).expect("a shaken camera");
+        let steady = steadied(&frames).expect("a shaken camera");
         assert!((steady.largest - 2.76).abs() < 0.1, "{}", steady.largest);
         let inner = |a: &[u8]| -> f64 {
             let mut sum = 0.0;
@@ -295,7 +309,7 @@ mod tests {
             }
             sum
         };
-        for i in 1..shaken.len() {
+        for i in 6..shaken.len() {
             let before = inner(frames.frame(i));
             let after = inner(steady.frames.frame(i));
             assert!(after < 0.15 * before, "frame {i}: {after} against {before}");
@@ -315,6 +329,6 @@ mod tests {
             size,
         };
         let found = shifts(&frames, &still);
-        assert!(steadied(&frames, &still).is_none(), "{found:?}");
+        assert!(steadied(&frames).is_none(), "{found:?}");
     }
 }
