@@ -36,6 +36,16 @@ pub struct Background {
     pub noise: f64,
 }
 
+/// Up to `most` of `n` frames' indices, evenly spread from the first to the last (all of them
+/// where there are no more).
+pub(super) fn evenly(n: usize, most: usize) -> Vec<usize> {
+    if n <= most {
+        (0..n).collect()
+    } else {
+        (0..most).map(|k| k * (n - 1) / (most - 1)).collect()
+    }
+}
+
 /// Each frame's level (the median of its differences from `median`, whole grey levels).
 fn levels(frames: &SmallFrames, median: &[u8]) -> Vec<i16> {
     (0..frames.len())
@@ -73,13 +83,7 @@ fn column(frames: &SmallFrames, picked: &[usize], level: &[i16], p: usize, into:
 pub fn background(frames: &SmallFrames) -> Background {
     let n = frames.len();
     let pixels = frames.size.0 * frames.size.1;
-    let picked: Vec<usize> = if n <= BACKGROUND_FRAMES {
-        (0..n).collect()
-    } else {
-        (0..BACKGROUND_FRAMES)
-            .map(|k| k * (n - 1) / (BACKGROUND_FRAMES - 1))
-            .collect()
-    };
+    let picked = evenly(n, BACKGROUND_FRAMES);
     let mut values = Vec::with_capacity(picked.len());
     let flat = vec![0i16; n];
     let raw: Vec<u8> = (0..pixels)

@@ -4,6 +4,7 @@
 //! picture, whose differences from the background then outgrow the object's or the light's;
 //! steadied, the picture differs where the object moves or the light changes.
 
+use super::background::evenly;
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
 
@@ -213,14 +214,7 @@ const MEDIAN_FRAMES: usize = 255;
 /// Each pixel's median over up to [`MEDIAN_FRAMES`] frames: the still picture a shaken camera
 /// saw, blurred by the shake but not shifted by it.
 fn median(frames: &SmallFrames) -> Vec<u8> {
-    let n = frames.len();
-    let picked: Vec<usize> = if n <= MEDIAN_FRAMES {
-        (0..n).collect()
-    } else {
-        (0..MEDIAN_FRAMES)
-            .map(|k| k * (n - 1) / (MEDIAN_FRAMES - 1))
-            .collect()
-    };
+    let picked = evenly(frames.len(), MEDIAN_FRAMES);
     let (w, h) = frames.size;
     (0..w * h)
         .into_par_iter()
