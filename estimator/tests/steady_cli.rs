@@ -26,8 +26,8 @@ fn shake(k: usize) -> (f64, f64) {
 }
 
 /// The disc (radius 6, dark) at (80, 60 + 25 e^(−γ1 t/2) cos ωt) of a 160×120 wall textured
-/// by a few sines of no common period, everything moved by `shake`; each pixel's share of the disc from 4×4
-/// samples; a lossless video.
+/// by a few sines of no common period, everything moved by `shake`; each pixel's share of the
+/// disc from 4×4 samples; a lossless video.
 fn video(dir: &Path) -> PathBuf {
     let frames = dir.join("frames");
     std::fs::create_dir_all(&frames).unwrap();

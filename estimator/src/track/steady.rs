@@ -1,16 +1,18 @@
 //! A camera's shake taken off the frames the track reads: each frame's shift against the
 //! frames' median picture by Lucas–Kanade from coarse to fine (robust to what moves by
-//! Huber's weights), and the frame moved back by it (bilinear, the edge repeated). A hand-held camera's shake moves every edge of a still
-//! picture, whose differences from the background then outgrow the object's or the light's;
-//! steadied, the picture differs where the object moves or the light changes.
-
+//! Huber's weights), and the frame moved back by it (bilinear, the edge repeated). A hand-held
+//! camera's shake moves every edge of a still picture, whose differences from the background
+//! then outgrow the object's or the light's; steadied, the picture differs where the object
+//! moves or the light changes.
 use super::background::evenly;
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
 
-/// Frames all shifted by less than this (pixels of the frames read) are left as they are: the
-/// camera held still.
-const STILL: f64 = 1.0;
+/// Frames are moved only where at least half of them are shifted by this much (pixels of the
+/// frames read): a hand-held camera shakes on most frames, where a still one is pulled on a
+/// few by what moves (the jar's median shift is 0.05 px, a tossed ball's 0.39, the shaken
+/// renders' 0.85–3.3 px).
+const STILL: f64 = 0.5;
 
 /// The sizes the shift is sought at, halving (a shake of eight pixels is two at the smallest),
 /// and the smallest side a halving keeps.
@@ -227,15 +229,17 @@ fn median(frames: &SmallFrames) -> Vec<u8> {
         .collect()
 }
 
-/// `frames` moved back by their shifts against their median picture, or `None` where every
-/// shift is under [`STILL`].
+/// `frames` moved back by their shifts against their median picture, or `None` where half of
+/// them are shifted by less than [`STILL`].
 pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
     if frames.is_empty() {
         return None;
     }
     let found = shifts(frames, &median(frames));
-    let largest = found.iter().map(|s| s.0.hypot(s.1)).fold(0.0, f64::max);
-    if largest < STILL {
+    let mut sizes: Vec<f64> = found.iter().map(|s| s.0.hypot(s.1)).collect();
+    let largest = sizes.iter().copied().fold(0.0, f64::max);
+    let mid = sizes.len() / 2;
+    if *sizes.select_nth_unstable_by(mid, f64::total_cmp).1 < STILL {
         return None;
     }
     let size = frames.size;
@@ -269,21 +273,32 @@ mod tests {
         out
     }
 
-    /// Frames of a wall, most of them still and the rest shaken by up to three pixels: each
-    /// shift found within a tenth of a pixel, and the steadied frames differ from the still
-    /// wall (their median) by less than a sixth of what the shaken ones did, away from the
-    /// edges the shift brings in.
+    /// Frames of a wall, five still and six shaken by up to three pixels: each shift found
+    /// within a tenth of a pixel, and the steadied frames differ from the still wall by less
+    /// than a sixth of what the shaken ones did, away from the edges the shift brings in. With
+    /// four of them shaken, fewer than half, they are left as they are.
     #[test]
     fn a_shaken_wall_is_found_and_steadied() {
         let size = (64, 48);
-        let mut shaken = vec![(0.0, 0.0); 6];
-        shaken.extend([(1.3, -0.6), (-2.4, 0.8), (0.6, 2.7), (-0.2, -1.9)]);
+        let mut shaken = vec![(0.0, 0.0); 5];
+        shaken.extend([
+            (1.3, -0.6),
+            (-2.4, 0.8),
+            (0.6, 2.7),
+            (-0.2, -1.9),
+            (0.9, 0.7),
+            (-0.8, -1.1),
+        ]);
         let still = wall(size, (0.0, 0.0));
         let frames = SmallFrames {
             pixels: shaken.iter().flat_map(|&s| wall(size, s)).collect(),
             size,
         };
-        assert_eq!(median(&frames), still);
+        let few = SmallFrames {
+            pixels: frames.pixels[..9 * 64 * 48].to_vec(),
+            size,
+        };
+        assert!(steadied(&few).is_none());
         let found = shifts(&frames, &still);
         for (f, s) in found.iter().zip(&shaken) {
             assert!(
@@ -292,7 +307,7 @@ mod tests {
             );
         }
         let steady = steadied(&frames).expect("a shaken camera");
-        assert!((steady.largest - 2.76).abs() < 0.1, "{}", steady.largest);
+        assert!((steady.largest - 2.76).abs() < 0.3, "{}", steady.largest);
         let inner = |a: &[u8]| -> f64 {
             let mut sum = 0.0;
             for y in 4..size.1 - 4 {
@@ -303,7 +318,7 @@ mod tests {
             }
             sum
         };
-        for i in 6..shaken.len() {
+        for i in 5..shaken.len() {
             let before = inner(frames.frame(i));
             let after = inner(steady.frames.frame(i));
             assert!(after < 0.15 * before, "frame {i}: {after} against {before}");
