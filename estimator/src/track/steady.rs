@@ -14,6 +14,9 @@ use rayon::prelude::*;
 /// renders' 0.85–3.3 px).
 const STILL: f64 = 0.5;
 
+/// Whether the camera moved is read first on this many frames, evenly spread.
+const PROBED: usize = 32;
+
 /// The sizes the shift is sought at, halving (a shake of eight pixels is two at the smallest),
 /// and the smallest side a halving keeps.
 const LEVELS: usize = 3;
@@ -177,14 +180,15 @@ fn refined(
     margin_for((w, h), (sx, sy)).map(|_| (sx, sy))
 }
 
-/// Each frame's shift against `reference` (x, y in pixels: the frame shows the reference's
-/// point p at p + shift), by Lucas–Kanade from coarse to fine: on the pictures halved
-/// ([`LEVELS`] sizes), the smallest from no shift, each finer from the coarser's doubled.
-fn shifts(frames: &SmallFrames, reference: &[u8]) -> Vec<(f64, f64)> {
+/// The shift against `reference` of each frame of `frames` whose index is in `which` (x, y
+/// in pixels: the frame shows the reference's point p at p + shift), by Lucas–Kanade from
+/// coarse to fine: on the pictures halved ([`LEVELS`] sizes), the smallest from no shift,
+/// each finer from the coarser's doubled.
+fn shifts(frames: &SmallFrames, reference: &[u8], which: &[usize]) -> Vec<(f64, f64)> {
     let fixed = Level::pyramid(reference, frames.size);
-    (0..frames.len())
-        .into_par_iter()
-        .map(|i| {
+    which
+        .par_iter()
+        .map(|&i| {
             let moving = Level::pyramid(frames.frame(i), frames.size);
             let mut shift = (0.0, 0.0);
             for (k, (f, r)) in moving.iter().zip(&fixed).enumerate().rev() {
@@ -196,6 +200,13 @@ fn shifts(frames: &SmallFrames, reference: &[u8]) -> Vec<(f64, f64)> {
             shift
         })
         .collect()
+}
+
+/// The median of the shifts' sizes.
+fn median_size(found: &[(f64, f64)]) -> f64 {
+    let mut sizes: Vec<f64> = found.iter().map(|s| s.0.hypot(s.1)).collect();
+    let mid = sizes.len() / 2;
+    *sizes.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// `frame` moved back by `shift` (its point p + shift put at p), bilinear, the edge repeated.
@@ -235,13 +246,18 @@ pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
     if frames.is_empty() {
         return None;
     }
-    let found = shifts(frames, &median(frames));
-    let mut sizes: Vec<f64> = found.iter().map(|s| s.0.hypot(s.1)).collect();
-    let largest = sizes.iter().copied().fold(0.0, f64::max);
-    let mid = sizes.len() / 2;
-    if *sizes.select_nth_unstable_by(mid, f64::total_cmp).1 < STILL {
+    // Whether the camera moved, from a few frames spread over the recording first: a still
+    // camera's recording is not measured frame by frame.
+    let reference = median(frames);
+    let n = frames.len();
+    if median_size(&shifts(frames, &reference, &evenly(n, PROBED))) < STILL {
         return None;
     }
+    let found = shifts(frames, &reference, &(0..n).collect::<Vec<_>>());
+    if median_size(&found) < STILL {
+        return None;
+    }
+    let largest = found.iter().map(|s| s.0.hypot(s.1)).fold(0.0, f64::max);
     let size = frames.size;
     let pixels = (0..frames.len())
         .into_par_iter()
@@ -299,7 +315,8 @@ mod tests {
             size,
         };
         assert!(steadied(&few).is_none());
-        let found = shifts(&frames, &still);
+        let all: Vec<usize> = (0..frames.len()).collect();
+        let found = shifts(&frames, &still, &all);
         for (f, s) in found.iter().zip(&shaken) {
             assert!(
                 (f.0 - s.0).abs() < 0.1 && (f.1 - s.1).abs() < 0.1,
@@ -337,7 +354,7 @@ mod tests {
                 .collect(),
             size,
         };
-        let found = shifts(&frames, &still);
+        let found = shifts(&frames, &still, &[0, 1, 2]);
         assert!(steadied(&frames).is_none(), "{found:?}");
     }
 }
