@@ -22,6 +22,7 @@ pub mod link;
 pub(crate) mod metres;
 mod patch;
 mod plane;
+mod pyramid;
 mod reading;
 mod rod;
 mod route;

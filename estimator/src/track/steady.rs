@@ -5,6 +5,7 @@
 //! then outgrow the object's or the light's; steadied, the picture differs where the object
 //! moves or the light changes.
 use super::background::evenly;
+use super::pyramid::Level;
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
 
@@ -17,11 +18,6 @@ const STILL: f64 = 0.5;
 /// Whether the camera moved is read first on this many frames, evenly spread.
 const PROBED: usize = 32;
 
-/// The sizes the shift is sought at, halving (a shake of eight pixels is two at the smallest),
-/// and the smallest side a halving keeps.
-const LEVELS: usize = 3;
-const LEAST_SIDE: usize = 24;
-
 /// Gauss–Newton steps that refine a shift (Lucas–Kanade), and the step under which it stops.
 const STEPS: usize = 8;
 const SETTLED: f64 = 1e-3;
@@ -31,53 +27,6 @@ const SETTLED: f64 = 1e-3;
 pub struct Steadied {
     pub frames: SmallFrames,
     pub largest: f64,
-}
-
-/// A picture and its size.
-struct Level {
-    pixels: Vec<u8>,
-    size: (usize, usize),
-}
-
-impl Level {
-    /// The picture at half the size, each pixel the mean of four.
-    fn halved(&self) -> Level {
-        let (w, h) = self.size;
-        let (hw, hh) = (w / 2, h / 2);
-        let at = |x: usize, y: usize| u16::from(self.pixels[y * w + x]);
-        let pixels = (0..hh)
-            .flat_map(|y| (0..hw).map(move |x| (x, y)))
-            .map(|(x, y)| {
-                let sum = at(2 * x, 2 * y)
-                    + at(2 * x + 1, 2 * y)
-                    + at(2 * x, 2 * y + 1)
-                    + at(2 * x + 1, 2 * y + 1);
-                ((sum + 2) / 4) as u8
-            })
-            .collect();
-        Level {
-            pixels,
-            size: (hw, hh),
-        }
-    }
-
-    /// This picture and its halvings while the smaller side keeps [`LEAST_SIDE`] pixels, at
-    /// most [`LEVELS`] in all, the full size first.
-    fn pyramid(pixels: &[u8], size: (usize, usize)) -> Vec<Level> {
-        let mut levels = vec![Level {
-            pixels: pixels.to_vec(),
-            size,
-        }];
-        while levels.len() < LEVELS {
-            let last = levels.last().expect("one level");
-            if last.size.0.min(last.size.1) / 2 < LEAST_SIDE {
-                break;
-            }
-            let half = last.halved();
-            levels.push(half);
-        }
-        levels
-    }
 }
 
 /// `frame` read at the real point (x, y), bilinear, the edge repeated.
@@ -182,7 +131,7 @@ fn refined(
 
 /// The shift against `reference` of each frame of `frames` whose index is in `which` (x, y
 /// in pixels: the frame shows the reference's point p at p + shift), by Lucas–Kanade from
-/// coarse to fine: on the pictures halved ([`LEVELS`] sizes), the smallest from no shift,
+/// coarse to fine: on the pictures halved (`pyramid::LEVELS` sizes), the smallest from no shift,
 /// each finer from the coarser's doubled.
 fn shifts(frames: &SmallFrames, reference: &[u8], which: &[usize]) -> Vec<(f64, f64)> {
     let fixed = Level::pyramid(reference, frames.size);
