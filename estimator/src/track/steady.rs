@@ -4,6 +4,7 @@
 //! camera's shake moves every edge of a still picture, whose differences from the background
 //! then outgrow the object's or the light's; steadied, the picture differs where the object
 //! moves or the light changes.
+
 use super::background::evenly;
 use super::pyramid::Level;
 use physvid_shared::video::SmallFrames;
