@@ -5,9 +5,8 @@
 //! it holds (`segment`); where nothing guides the latent, the same read again on frames
 //! steadied against a camera's shake (`steady`), kept where it guides; and where nothing that
 //! moves guides, the brightness of what changes in place (`light`), kept where its decay guides
-//! or nothing that moves has a law. It
-//! reads no model and trains nothing: seconds on a recording, and an answer to set beside the
-//! latent's.
+//! or nothing that moves has a law. It reads no model and trains nothing: seconds on a
+//! recording, and an answer to set beside the latent's.
 
 mod angles;
 pub mod background;
@@ -304,33 +303,27 @@ pub fn candidates(
 /// A recording's frames steadied against the camera's shake (`steady::steadied`) and their
 /// own background.
 struct Steady {
-    frames: SmallFrames,
+    steadied: steady::Steadied,
     bg: background::Background,
-    /// The largest shift taken off (pixels of the frames read).
-    largest: f64,
 }
 
 impl Steady {
     /// `frames` steadied against the camera's shake; `None` where it held still.
     fn of(frames: &SmallFrames) -> Option<Steady> {
-        let s = steady::steadied(frames)?;
-        let bg = background::background(&s.frames);
-        Some(Steady {
-            frames: s.frames,
-            bg,
-            largest: s.largest,
-        })
+        let steadied = steady::steadied(frames)?;
+        let bg = background::background(&steadied.frames);
+        Some(Steady { steadied, bg })
     }
 
     /// `route` marked as read on these frames.
     fn marked(&self, mut route: TrackRoute, clock: &Clock) -> TrackRoute {
-        route.track.steadied = Some(self.largest * clock.scale);
+        route.track.steadied = Some(self.steadied.largest * clock.scale);
         route
     }
 
     /// The readings of the things that move on these frames that guide the latent.
     fn guiding(&self, clock: &Clock) -> Vec<TrackRoute> {
-        readings(&self.frames, &self.bg, clock)
+        readings(&self.steadied.frames, &self.bg, clock)
             .into_iter()
             .filter(|c| c.guiding().is_some())
             .map(|c| self.marked(c, clock))
@@ -339,6 +332,6 @@ impl Steady {
 
     /// The brightness of what changes in place (`light`) on these frames.
     fn brightness(&self, clock: &Clock) -> Option<TrackRoute> {
-        light::brightness(&self.frames, clock, &self.bg).map(|l| self.marked(l, clock))
+        light::brightness(&self.steadied.frames, clock, &self.bg).map(|l| self.marked(l, clock))
     }
 }

@@ -200,10 +200,17 @@ pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
     // camera's recording is not measured frame by frame.
     let reference = median(frames);
     let n = frames.len();
-    if median_size(&shifts(frames, &reference, &evenly(n, PROBED))) < STILL {
+    let probe = evenly(n, PROBED);
+    let probed = shifts(frames, &reference, &probe);
+    if median_size(&probed) < STILL {
         return None;
     }
-    let found = shifts(frames, &reference, &(0..n).collect::<Vec<_>>());
+    let rest: Vec<usize> = (0..n).filter(|i| probe.binary_search(i).is_err()).collect();
+    let measured = shifts(frames, &reference, &rest);
+    let mut found = vec![(0.0, 0.0); n];
+    for (&i, s) in probe.iter().zip(probed).chain(rest.iter().zip(measured)) {
+        found[i] = s;
+    }
     if median_size(&found) < STILL {
         return None;
     }
