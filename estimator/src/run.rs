@@ -103,12 +103,15 @@ pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimat
         .as_ref()
         .and_then(|r| guide::request(req, r, chooses(req)));
     let req = guided.as_ref().map_or(req, |(g, _)| g);
+    let steadied = route.as_ref().and_then(|r| guide::steadied(req, r));
+    let req = steadied.as_ref().map_or(req, |(g, _)| g);
     let mut est = if chooses(req) {
         choose(req, watch)?
     } else {
         estimate(req, watch)?
     };
     warnings.extend(guided.map(|(_, why)| why));
+    warnings.extend(steadied.map(|(_, why)| why));
     guide::settle(&mut est.report, route, warnings);
     Ok(est)
 }

@@ -134,6 +134,7 @@ impl RecordingArgs {
             given: self.given(),
             measured_at: Vec::new(),
             tracked: None,
+            shake: None,
         }
     }
 

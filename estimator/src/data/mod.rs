@@ -17,6 +17,7 @@ pub mod recording;
 mod request;
 mod reuse;
 mod scale;
+mod shake;
 mod stillness;
 pub mod summary;
 mod swing;
@@ -27,6 +28,7 @@ mod tracked;
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};
 pub use request::{falls, Frames, LoadRequest, RecordingRequest, TrackedMotion, FALL_DEG};
+pub use shake::CameraShake;
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;

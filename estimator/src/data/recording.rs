@@ -118,6 +118,12 @@ pub fn load_recording(
         max_clips: MAX_DEFAULT_CLIPS,
     };
     let mut decoded = super::reuse::decode(input, &opts, info.clone(), keep)?;
+    if let Some(shake) = &flags.shake {
+        // The first frame's time on the file's timeline, as the track read it.
+        let times = decoded.info.times_within(opts.start, opts.end);
+        let first = times.first().copied().unwrap_or(opts.start.unwrap_or(0.0));
+        shake.steady(&mut decoded, first, crop);
+    }
     warnings.extend(decoded.clock_note.clone());
     // Frames at the start off the even clock were left out: the part starts at the first kept,
     // and every time below counts from it.

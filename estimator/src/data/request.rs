@@ -144,6 +144,10 @@ pub struct RecordingRequest {
     /// release and line read from it in place of the picture's.
     #[serde(default)]
     pub tracked: Option<TrackedMotion>,
+    /// The camera's shake the object's track measured (`guide::steadied`): each frame moved
+    /// back by it before the encoder sees it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shake: Option<super::CameraShake>,
     /// The recording flags given, as written (a data set refuses them by name).
     pub given: Vec<String>,
 }

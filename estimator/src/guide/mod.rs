@@ -198,6 +198,21 @@ pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
         .or_else(|| sighted(req, route, chooses))
 }
 
+/// `req` with the latent route's frames steadied by the camera's shake, where the track was
+/// read on frames steadied against it (`TrackRoute::shake`): the encoder sees the frames the
+/// track that guides it saw. With the warning that says so; `None` for a track read as shot.
+pub fn steadied(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
+    let shake = route.shake.as_ref()?;
+    let mut g = req.clone();
+    g.load.recording.shake = Some(shake.clone());
+    let why = format!(
+        "the camera shook (up to {:.1} px of the frame): the latent route read each frame moved \
+         back by the shift the track measured in it",
+        shake.largest
+    );
+    Some((g, why))
+}
+
 /// `report` with the track and the route's warnings set on its run, its verdict judged again
 /// with them (the model choice's close call kept), then each value both routes measured made
 /// one (`combine`: both weighed where they agree, else the track's) and the answer's own

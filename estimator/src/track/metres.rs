@@ -230,6 +230,7 @@ pub(crate) mod tests {
             stick: None,
             plane: None,
             by_readings: None,
+            shake: None,
         }
     }
 

@@ -35,9 +35,10 @@ pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 pub(crate) use route::tests::route as test_route;
 pub use route::{LawSpan, TrackRoute};
 
+use crate::data::CameraShake;
 use physvid_shared::video::{small_chroma, small_frames, SmallFrames, VideoError, VideoInfo};
 pub use reading::Reading;
-use reading::{readings, Clock};
+use reading::{readings, times, Clock};
 use serde::Serialize;
 use std::path::Path;
 
@@ -120,38 +121,6 @@ impl Track {
         }
         s
     }
-}
-
-/// The frames' real times: `fps` where the user gave it, else the container's timestamps
-/// (a slow-motion capture's scaled to its capture rate; the slots of their even clock where
-/// the frames were put on it), else the container's even rate.
-/// And each frame's time on the file's own timeline.
-fn times(
-    info: &VideoInfo,
-    span: (Option<f64>, Option<f64>),
-    n: usize,
-    fps: Option<f64>,
-) -> (Vec<f64>, Vec<f64>) {
-    let from = span.0.unwrap_or(0.0);
-    let stamps = info.times_within(span.0, span.1);
-    let even = |rate: f64| -> Vec<f64> { (0..n).map(|i| i as f64 / rate).collect() };
-    let container = info.read_rate(info.container_fps.unwrap_or(30.0));
-    // Frames put on their clock (resampled, or some at an end left out): slot k's time.
-    let clock = info.clock(span.0, span.1).and_then(Result::ok);
-    let file: Vec<f64> = match clock {
-        Some(c) if !c.is_even() => (0..n).map(|k| c.start + k as f64 * c.interval).collect(),
-        _ if stamps.len() == n => stamps.clone(),
-        _ => even(container).iter().map(|t| from + t).collect(),
-    };
-    if let Some(f) = fps {
-        return (even(info.read_rate(f)), file);
-    }
-    let slow = match (info.capture_fps, info.container_fps) {
-        (Some(c), Some(f)) if c > f => f / c,
-        _ => 1.0,
-    };
-    let real = file.iter().map(|t| (t - file[0]) * slow).collect();
-    (real, file)
 }
 
 /// Tracklets tried as the object: this many, those that move the most (`Tracklet::reach`: a
@@ -315,9 +284,10 @@ impl Steady {
         Some(Steady { steadied, bg })
     }
 
-    /// `route` marked as read on these frames.
+    /// `route` marked as read on these frames, with their shifts for the latent route's.
     fn marked(&self, mut route: TrackRoute, clock: &Clock) -> TrackRoute {
         route.track.steadied = Some(self.steadied.largest * clock.scale);
+        route.shake = Some(self.shake(clock));
         route
     }
 
@@ -328,6 +298,18 @@ impl Steady {
             .filter(|c| c.guiding().is_some())
             .map(|c| self.marked(c, clock))
             .collect()
+    }
+
+    /// The camera's shake, for the latent route's frames (pixels of the displayed frame, by
+    /// the frames' times on the file's timeline).
+    fn shake(&self, clock: &Clock) -> CameraShake {
+        let k = clock.scale;
+        let shifts = &self.steadied.shifts;
+        CameraShake {
+            file_s: clock.file.to_vec(),
+            shift: shifts.iter().map(|&(x, y)| (x * k, y * k)).collect(),
+            largest: self.steadied.largest * k,
+        }
     }
 
     /// The brightness of what changes in place (`light`) on these frames.

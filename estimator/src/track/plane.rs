@@ -137,6 +137,7 @@ mod tests {
             stick: None,
             plane: None,
             by_readings: None,
+            shake: None,
         };
         let corners = [(0.0, 0.0), (4.0, 0.0), (4.0, 6.0), (0.0, 6.0)].map(tilted);
         let plane = Plane {

@@ -9,7 +9,7 @@ use super::template::{self, Match};
 use super::{
     background, blobs, chosen, fit, link, rod, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED,
 };
-use physvid_shared::video::SmallFrames;
+use physvid_shared::video::{SmallFrames, VideoInfo};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -108,6 +108,38 @@ pub(super) struct Clock<'a> {
     pub picture: (usize, usize),
     /// How far the object may move in a frame (pixels of the frames read).
     pub reach: f64,
+}
+
+/// The frames' real times: `fps` where the user gave it, else the container's timestamps
+/// (a slow-motion capture's scaled to its capture rate; the slots of their even clock where
+/// the frames were put on it), else the container's even rate.
+/// And each frame's time on the file's own timeline.
+pub(super) fn times(
+    info: &VideoInfo,
+    span: (Option<f64>, Option<f64>),
+    n: usize,
+    fps: Option<f64>,
+) -> (Vec<f64>, Vec<f64>) {
+    let from = span.0.unwrap_or(0.0);
+    let stamps = info.times_within(span.0, span.1);
+    let even = |rate: f64| -> Vec<f64> { (0..n).map(|i| i as f64 / rate).collect() };
+    let container = info.read_rate(info.container_fps.unwrap_or(30.0));
+    // Frames put on their clock (resampled, or some at an end left out): slot k's time.
+    let clock = info.clock(span.0, span.1).and_then(Result::ok);
+    let file: Vec<f64> = match clock {
+        Some(c) if !c.is_even() => (0..n).map(|k| c.start + k as f64 * c.interval).collect(),
+        _ if stamps.len() == n => stamps.clone(),
+        _ => even(container).iter().map(|t| from + t).collect(),
+    };
+    if let Some(f) = fps {
+        return (even(info.read_rate(f)), file);
+    }
+    let slow = match (info.capture_fps, info.container_fps) {
+        (Some(c), Some(f)) if c > f => f / c,
+        _ => 1.0,
+    };
+    let real = file.iter().map(|t| (t - file[0]) * slow).collect();
+    (real, file)
 }
 
 #[cfg(test)]

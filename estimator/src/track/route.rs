@@ -6,6 +6,7 @@ use super::laws::{TrackLaw, Value};
 use super::Reading;
 use super::Track;
 use crate::calibration::{Plane, Stick};
+use crate::data::CameraShake;
 use crate::digits::{sig, significant};
 use serde::Serialize;
 
@@ -72,6 +73,10 @@ pub struct TrackRoute {
     /// readings themselves.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub by_readings: Option<f64>,
+    /// The camera's shake, where this was read on frames steadied against it (`steady`): the
+    /// latent route reads its frames steadied by the same shifts.
+    #[serde(skip)]
+    pub shake: Option<CameraShake>,
 }
 
 impl TrackRoute {
@@ -85,6 +90,7 @@ impl TrackRoute {
             stick: None,
             plane: None,
             by_readings: None,
+            shake: None,
         }
     }
 
@@ -278,6 +284,7 @@ pub(crate) mod tests {
             stick: None,
             plane: None,
             by_readings: None,
+            shake: None,
         };
         (route, span)
     }

@@ -27,6 +27,9 @@ const SETTLED: f64 = 1e-3;
 /// frames read).
 pub struct Steadied {
     pub frames: SmallFrames,
+    /// Each frame's shift (pixels of the frames read: its point p + shift shows the median
+    /// picture's p), and the largest.
+    pub shifts: Vec<(f64, f64)>,
     pub largest: f64,
 }
 
@@ -222,6 +225,7 @@ pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
         .collect();
     Some(Steadied {
         frames: SmallFrames { pixels, size },
+        shifts: found,
         largest,
     })
 }

@@ -2,7 +2,8 @@
 //! brightness gradient across the frame, an ambient floor so that a black background shows
 //! the light too), and each object's shadow cast on the background away from the light.
 
-use super::{shifted, Clip, Perturbation};
+use super::{Clip, Perturbation};
+use physvid_shared::video::shifted;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
@@ -38,7 +39,7 @@ impl Perturbation for Light {
                     .map(|v| ((v - bg).abs() / 0.1).clamp(0.0, 1.0))
                     .collect();
                 let reach = 0.03 * l * s;
-                let shadow = shifted(&object, size, -ux * reach, -uy * reach);
+                let shadow = shifted(&object, (size, size), -ux * reach, -uy * reach);
                 for (i, v) in plane.iter_mut().enumerate() {
                     let (x, y) = ((i % size) as f32 - s / 2.0, (i / size) as f32 - s / 2.0);
                     let gain = 1.0 + 0.06 * l * (x * ux + y * uy) / (s / 2.0);

@@ -167,27 +167,6 @@ pub fn apply_all(list: &[Perturbed], clip: &mut Clip, seed: u64, index: usize) {
     }
 }
 
-/// Moves `frame` (S × S, one channel) by (dx, dy) pixels, bilinearly, the edges repeated.
-pub fn shifted(frame: &[f32], size: usize, dx: f32, dy: f32) -> Vec<f32> {
-    let at = |x: isize, y: isize| {
-        let x = x.clamp(0, size as isize - 1) as usize;
-        let y = y.clamp(0, size as isize - 1) as usize;
-        frame[y * size + x]
-    };
-    let mut out = vec![0.0; size * size];
-    for y in 0..size {
-        for x in 0..size {
-            let (sx, sy) = (x as f32 - dx, y as f32 - dy);
-            let (x0, y0) = (sx.floor(), sy.floor());
-            let (fx, fy) = (sx - x0, sy - y0);
-            let (x0, y0) = (x0 as isize, y0 as isize);
-            out[y * size + x] = (1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
-                + fy * ((1.0 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -207,15 +186,5 @@ mod tests {
         all.sort();
         all.dedup();
         assert_eq!(all.len(), PERTURBATIONS.len());
-    }
-
-    #[test]
-    fn a_whole_pixel_shift_moves_the_picture() {
-        let size = 6;
-        let mut f = vec![0.0f32; size * size];
-        f[2 * size + 2] = 1.0;
-        let g = shifted(&f, size, 1.0, 2.0);
-        assert!((g[4 * size + 3] - 1.0).abs() < 1e-6);
-        assert!((g.iter().sum::<f32>() - 1.0).abs() < 1e-6);
     }
 }

@@ -1,7 +1,8 @@
 //! Camera shake: every frame moved by its own random offset (a hand-held camera), sub-pixel,
 //! the edges repeated.
 
-use super::{shifted, Clip, Perturbation};
+use super::{Clip, Perturbation};
+use physvid_shared::video::shifted;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -23,7 +24,7 @@ impl Perturbation for Shake {
             let dx: f32 = StandardNormal.sample(rng);
             let dy: f32 = StandardNormal.sample(rng);
             for plane in frame.chunks_mut(px) {
-                let moved = shifted(plane, size, sigma * dx, sigma * dy);
+                let moved = shifted(plane, (size, size), sigma * dx, sigma * dy);
                 plane.copy_from_slice(&moved);
             }
         }

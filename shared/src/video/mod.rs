@@ -23,7 +23,7 @@ pub use colour::colour_frames;
 pub use decode::decode;
 pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};
-pub use resize::FrameResizer;
+pub use resize::{shifted, FrameResizer};
 pub use small::{small_chroma, small_frames, SmallFrames};
 pub use still::still;
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};

@@ -66,6 +66,28 @@ impl FrameResizer {
     }
 }
 
+/// Moves `frame` (`size` = (width, height), one channel) by (dx, dy) pixels: its point p put at
+/// p + (dx, dy), bilinearly, the edges repeated.
+pub fn shifted(frame: &[f32], (w, h): (usize, usize), dx: f32, dy: f32) -> Vec<f32> {
+    let at = |x: isize, y: isize| {
+        let x = x.clamp(0, w as isize - 1) as usize;
+        let y = y.clamp(0, h as isize - 1) as usize;
+        frame[y * w + x]
+    };
+    let mut out = vec![0.0; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let (sx, sy) = (x as f32 - dx, y as f32 - dy);
+            let (x0, y0) = (sx.floor(), sy.floor());
+            let (fx, fy) = (sx - x0, sy - y0);
+            let (x0, y0) = (x0 as isize, y0 as isize);
+            out[y * w + x] = (1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
+                + fy * ((1.0 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,5 +130,18 @@ mod tests {
         for (o, e) in out.iter().zip(expect) {
             assert!((o - e / 255.0).abs() < 1e-5, "{out:?}");
         }
+    }
+
+    #[test]
+    fn a_whole_pixel_shift_moves_the_picture() {
+        let (w, h) = (7, 5);
+        let mut f = vec![0.0f32; w * h];
+        f[2 * w + 2] = 1.0;
+        let g = shifted(&f, (w, h), 1.0, 2.0);
+        assert!((g[4 * w + 3] - 1.0).abs() < 1e-6);
+        assert!((g.iter().sum::<f32>() - 1.0).abs() < 1e-6);
+        // Half a pixel: shared between two, the edge repeated where the picture leaves.
+        let g = shifted(&f, (w, h), -0.5, 0.0);
+        assert!((g[2 * w + 1] - 0.5).abs() < 1e-6 && (g[2 * w + 2] - 0.5).abs() < 1e-6);
     }
 }
