@@ -199,8 +199,9 @@ pub fn request(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Requ
 }
 
 /// `req` with the latent route's frames steadied by the camera's shake, where the track was
-/// read on frames steadied against it (`TrackRoute::shake`): the encoder sees the frames the
-/// track that guides it saw. With the warning that says so; `None` for a track read as shot.
+/// read on frames steadied against it or the camera shook from frame to frame
+/// (`TrackRoute::shake`): the encoder sees the frames the track that guides it saw, or a
+/// still picture. With the warning that says so; `None` for a still camera or a slow drift.
 pub fn steadied(req: &Request, route: &TrackRoute) -> Option<(Request, String)> {
     let shake = route.shake.as_ref()?;
     let mut g = req.clone();

@@ -266,6 +266,16 @@ pub fn candidates(
         }
         all.extend(light.filter(|l| lawless || l.guiding().is_some()));
     }
+    // Where the camera shook from frame to frame (not a slow drift), the latent route reads
+    // the steadied frames whatever the track was read on.
+    if let Some(s) = steady
+        .as_ref()
+        .filter(|s| s.steadied.step >= steady::JITTER)
+    {
+        let shake = s.shake(&clock);
+        let as_shot = all.iter_mut().filter(|c| c.shake.is_none());
+        as_shot.for_each(|c| c.shake = Some(shake.clone()));
+    }
     Ok(all)
 }
 

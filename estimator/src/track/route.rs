@@ -73,8 +73,9 @@ pub struct TrackRoute {
     /// readings themselves.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub by_readings: Option<f64>,
-    /// The camera's shake, where this was read on frames steadied against it (`steady`): the
-    /// latent route reads its frames steadied by the same shifts.
+    /// The camera's shake, where this was read on frames steadied against it (`steady`), or
+    /// where that shake changes from frame to frame (`steady::JITTER`): the latent route reads
+    /// its frames steadied by the same shifts.
     #[serde(skip)]
     pub shake: Option<CameraShake>,
 }

@@ -16,6 +16,11 @@ use rayon::prelude::*;
 /// renders' 0.85–3.3 px).
 const STILL: f64 = 0.5;
 
+/// A shift changing by this much a frame (the median, pixels of the frames read) is a shake the
+/// latent's frames are steadied against whatever the track was read on (`Steadied::step`):
+/// slow drifts change by 0.04–0.15 px (the falling ball, the phone, the suite's clutter).
+pub const JITTER: f64 = 0.3;
+
 /// Whether the camera moved is read first on this many frames, evenly spread.
 const PROBED: usize = 32;
 
@@ -31,6 +36,9 @@ pub struct Steadied {
     /// picture's p), and the largest.
     pub shifts: Vec<(f64, f64)>,
     pub largest: f64,
+    /// The median change of the shift from one frame to the next (pixels of the frames read):
+    /// a hand's shake moves the picture within a clip, a slow drift barely does.
+    pub step: f64,
 }
 
 /// `frame` read at the real point (x, y), bilinear, the edge repeated.
@@ -218,6 +226,15 @@ pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
         return None;
     }
     let largest = found.iter().map(|s| s.0.hypot(s.1)).fold(0.0, f64::max);
+    let steps: Vec<(f64, f64)> = found
+        .windows(2)
+        .map(|p| (p[1].0 - p[0].0, p[1].1 - p[0].1))
+        .collect();
+    let step = if steps.is_empty() {
+        0.0
+    } else {
+        median_size(&steps)
+    };
     let size = frames.size;
     let pixels = (0..frames.len())
         .into_par_iter()
@@ -227,6 +244,7 @@ pub fn steadied(frames: &SmallFrames) -> Option<Steadied> {
         frames: SmallFrames { pixels, size },
         shifts: found,
         largest,
+        step,
     })
 }
 
@@ -286,6 +304,7 @@ mod tests {
         }
         let steady = steadied(&frames).expect("a shaken camera");
         assert!((steady.largest - 2.76).abs() < 0.3, "{}", steady.largest);
+        assert!(steady.step > JITTER, "{}", steady.step);
         let inner = |a: &[u8]| -> f64 {
             let mut sum = 0.0;
             for y in 4..size.1 - 4 {
@@ -301,6 +320,16 @@ mod tests {
             let after = inner(steady.frames.frame(i));
             assert!(after < 0.15 * before, "frame {i}: {after} against {before}");
         }
+    }
+
+    /// A wall drifting by 0.1 px a frame is steadied, but it is no shake ([`JITTER`]).
+    #[test]
+    fn a_slow_drift_is_no_shake() {
+        let (size, drift) = ((40, 30), |k: usize| (0.1 * k as f64 - 1.5, 0.0));
+        let pixels = (0..30).flat_map(|k| wall(size, drift(k))).collect();
+        let frames = SmallFrames { pixels, size };
+        let steady = steadied(&frames).expect("a drifting camera");
+        assert!(steady.step < JITTER / 2.0, "{}", steady.step);
     }
 
     /// A still wall is left as it is.
