@@ -12,11 +12,17 @@ use serde::{Deserialize, Serialize};
 pub struct CameraShake {
     pub file_s: Vec<f64>,
     pub shift: Vec<(f64, f64)>,
-    /// The largest shift (pixels of the displayed frame).
-    pub largest: f64,
 }
 
 impl CameraShake {
+    /// The largest shift (pixels of the displayed frame).
+    pub fn largest(&self) -> f64 {
+        self.shift
+            .iter()
+            .map(|s| s.0.hypot(s.1))
+            .fold(0.0, f64::max)
+    }
+
     /// The shift of the frame read nearest to `t` (seconds of the file's timeline): a hand's
     /// shake changes from one frame to the next, so it is not interpolated.
     pub fn at(&self, t: f64) -> (f64, f64) {
@@ -56,8 +62,8 @@ mod tests {
         let shake = CameraShake {
             file_s: vec![0.0, 0.1, 0.2],
             shift: vec![(0.0, 0.0), (2.0, -1.0), (4.0, 0.0)],
-            largest: 4.0,
         };
+        assert_eq!(shake.largest(), 4.0);
         assert_eq!(shake.at(-1.0), (0.0, 0.0));
         assert_eq!(shake.at(0.06), (2.0, -1.0));
         assert_eq!(shake.at(0.14), (2.0, -1.0));
@@ -98,7 +104,6 @@ mod tests {
         let shake = CameraShake {
             file_s: vec![1.0, 1.1],
             shift: vec![(0.0, 0.0), (4.0, 2.0)],
-            largest: 4.5,
         };
         let crop = Crop {
             x: 8,

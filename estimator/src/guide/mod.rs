@@ -209,7 +209,7 @@ pub fn steadied(req: &Request, route: &TrackRoute) -> Option<(Request, String)> 
     let why = format!(
         "the camera shook (up to {:.1} px of the frame): the latent route read each frame moved \
          back by the shift the track measured in it",
-        shake.largest
+        shake.largest()
     );
     Some((g, why))
 }

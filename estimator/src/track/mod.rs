@@ -18,6 +18,7 @@ mod guiding;
 pub mod laws;
 mod light;
 pub mod link;
+mod lucas_kanade;
 pub(crate) mod metres;
 mod patch;
 mod plane;
@@ -270,7 +271,7 @@ pub fn candidates(
     // the steadied frames whatever the track was read on.
     if let Some(s) = steady
         .as_ref()
-        .filter(|s| s.steadied.step >= steady::JITTER)
+        .filter(|s| s.steadied.step() >= steady::JITTER)
     {
         let shake = s.shake(&clock);
         let as_shot = all.iter_mut().filter(|c| c.shake.is_none());
@@ -296,7 +297,7 @@ impl Steady {
 
     /// `route` marked as read on these frames, with their shifts for the latent route's.
     fn marked(&self, mut route: TrackRoute, clock: &Clock) -> TrackRoute {
-        route.track.steadied = Some(self.steadied.largest * clock.scale);
+        route.track.steadied = Some(self.steadied.largest() * clock.scale);
         route.shake = Some(self.shake(clock));
         route
     }
@@ -318,7 +319,6 @@ impl Steady {
         CameraShake {
             file_s: clock.file.to_vec(),
             shift: shifts.iter().map(|&(x, y)| (x * k, y * k)).collect(),
-            largest: self.steadied.largest * k,
         }
     }
 
