@@ -1,6 +1,6 @@
 //! The model chosen by the evidence end to end: `--model auto` on a data set (meta.json's model
 //! set aside), no `--model` on a bare `.npy`, the ranking in report.json, report.html and the
-//! table, and `--candidate`'s refusals.
+//! table, `--candidate`'s refusals, and the library's choice handing back the chosen one's clips.
 
 mod util;
 
@@ -122,4 +122,26 @@ fn a_recordings_candidates_share_one_cut_from_the_motions_period() {
     assert_eq!(r["recording"]["frames_per_clip"], 20);
     let table = physvid_testkit::stdout(&o);
     assert!(table.contains("clips: every candidate"), "{table}");
+}
+
+#[test]
+fn the_apis_choice_hands_back_the_chosen_models_clips() {
+    if !util::need_ffmpeg() {
+        return;
+    }
+    // Each candidate's clips are let go once its report is made; the chosen one's are loaded
+    // again: the same clips its report was trained on.
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, video) = oscillator_video(tmp.path(), 20);
+    let mut req = estimator::Request::new(&video);
+    req.load.recording.size = Some((20, 15));
+    (req.training.epochs, req.training.threads, req.quiet) = (3, 1, true);
+    let fit = estimator::estimation(&req).unwrap();
+    let run = &fit.report.run;
+    let choice = fit.report.model_choice.as_ref().expect("a model choice");
+    assert_eq!(choice.chosen, run.model);
+    assert!(choice.candidates.len() >= 2, "{:?}", choice.candidates);
+    assert_eq!(fit.data.shape, run.shape);
+    assert_eq!(fit.data.train.size()[0], run.train_clips);
+    assert_eq!(fit.data.val.size()[0], run.validation_clips);
 }

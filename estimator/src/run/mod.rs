@@ -3,8 +3,6 @@
 
 use crate::analysis::ensemble::summarise;
 use crate::analysis::{Run, RunInfo};
-use crate::choice;
-use crate::choice::ChoiceRequest;
 use crate::config::{Request, RunConfig};
 use crate::data::{load_clips, probe, ClipData};
 use crate::device::{cpu_threads, select_device};
@@ -16,9 +14,13 @@ use crate::progress::Progress;
 use crate::report::Report;
 use crate::train::{fit, fit_best, Cancel, EpochRecord, StopReason};
 use crate::verdict::{self, Grade};
+pub use choose::{choose, chooses};
 use physvid_shared::term;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
+use tch::Device;
+
+mod choose;
 
 /// A caller's function told each epoch, with the model's parameter names.
 pub type EpochFn<'a> = dyn Fn(&EpochRecord, &[&str]) + Sync + 'a;
@@ -116,93 +118,11 @@ pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimat
     Ok(est)
 }
 
-/// Whether `req` chooses its model: asked to (`choose`), or no model named on an input that
-/// names none (`choice::names_no_model`).
-pub fn chooses(req: &Request) -> bool {
-    req.choose || (req.load.model.is_none() && choice::names_no_model(&req.load))
-}
-
-/// Fits every candidate model and keeps the one the evidence favours (`choice`), with the
-/// ranking in its report; writes nothing.
-pub fn choose(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
-    let begun = Instant::now();
-    let (models, cut) = choice::candidates(&ChoiceRequest::of(req))?;
-    let tries: Vec<Request> = models
-        .into_iter()
-        .map(|m| choice::candidate_request(req, m, cut.as_ref()))
-        .collect();
-    let cut = cut.map(|c| c.why);
-    let quiet = req.quiet;
-    let (mut fits, mut summaries, mut errors) = (Vec::new(), Vec::new(), Vec::new());
-    for (i, a) in tries.iter().enumerate() {
-        let model = a.load.model.expect("a candidate names its model");
-        let start = Instant::now();
-        let fit = estimate(a, watch);
-        let summary = choice::summary(
-            model,
-            fit.as_ref()
-                .map(|e| (&e.report.run, &e.report.verdict))
-                .map_err(|e| e.to_string()),
-        );
-        // A candidate that fails says so in the ranking: a refusal every candidate shares
-        // (the input's) stays one line.
-        if !quiet && fit.is_ok() {
-            term::eprint_line(&format!(
-                "model choice {}/{}: {} ({:.1} s)",
-                i + 1,
-                tries.len(),
-                summary.line(),
-                start.elapsed().as_secs_f64()
-            ));
-        }
-        summaries.push(summary);
-        fits.push(fit.map_err(|e| errors.push(e)).ok());
-    }
-    let Some(mut ranked) = choice::rank::rank(summaries) else {
-        // The same refusal from every candidate is the input's, and stands alone; else the
-        // first is named.
-        let first = errors.remove(0);
-        if errors.iter().all(|e| e.to_string() == first.to_string()) {
-            return Err(first);
-        }
-        return Err(EstimateError::NoEstimate(format!(
-            "no candidate model gave an estimate ({}); pass --model",
-            first
-        ))
-        .into());
-    };
-    let i = tries
-        .iter()
-        .position(|a| a.load.model.is_some_and(|m| m.name() == ranked.chosen))
-        .expect("the chosen model is a candidate");
-    let mut chosen = match req.training.ensemble {
-        1 => fits[i].take().expect("the chosen candidate was fitted"),
-        k => {
-            let mut a = tries[i].clone();
-            a.training.ensemble = k;
-            estimate(&a, watch)?
-        }
-    };
-    chosen.report.run.config.quiet = quiet;
-    ranked.wall_time_s = begun.elapsed().as_secs_f64();
-    ranked.cut = cut;
-    chosen.report.verdict =
-        verdict::judge(&chosen.report.run).with(choice::close::close_call(&ranked));
-    chosen.report.model_choice = Some(ranked);
-    Ok(chosen)
-}
-
 /// Loads the data and trains (and the ensemble's further members); writes nothing.
 pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
     let start = Instant::now();
-    cpu_threads(req.training.threads);
-    let (device, device_warning) = select_device(req.training.device)?;
-    let cfg = RunConfig::resolve(req, probe(&req.load)?)?;
-    let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;
-    data.warnings.extend(device_warning);
-    let cfg = &cfg.with_frames(&data)?;
-    data.warnings.extend(cfg.encoder_note.clone());
-    data.warnings.extend(cfg.reference_notes.iter().cloned());
+    let (cfg, data, device) = loaded(req)?;
+    let cfg = &cfg;
     let model = cfg.model;
     // The given (or default) start and those read off the frames; the best after a short
     // probe is trained to the end.
@@ -310,6 +230,20 @@ pub fn estimate(req: &Request, watch: Watch) -> anyhow::Result<Estimation> {
         }
     }
     Ok(Estimation { report, data })
+}
+
+/// The configuration `req` resolves to, the clips it loads (with what the device and the
+/// frames add to their warnings) and the device they are on.
+fn loaded(req: &Request) -> anyhow::Result<(RunConfig, ClipData, Device)> {
+    cpu_threads(req.training.threads);
+    let (device, device_warning) = select_device(req.training.device)?;
+    let cfg = RunConfig::resolve(req, probe(&req.load)?)?;
+    let mut data = load_clips(&cfg.request, &cfg.plan, cfg.model, device)?;
+    data.warnings.extend(device_warning);
+    let cfg = cfg.with_frames(&data)?;
+    data.warnings.extend(cfg.encoder_note.clone());
+    data.warnings.extend(cfg.reference_notes.iter().cloned());
+    Ok((cfg, data, device))
 }
 
 /// Why a run gave no estimate, if it did not: no epoch with a finite validation error (the
