@@ -15,10 +15,13 @@ pub struct Match {
     pub score: f64,
 }
 
-/// The zero-mean patch and its norm.
+/// The patch's pixels, with their sum and spread: what the correlation needs, in integers.
 pub(super) struct Patch {
-    values: Vec<f64>,
-    norm: f64,
+    pixels: Vec<u8>,
+    /// The pixels' sum.
+    sum: i64,
+    /// n·Σq² − (Σq)² over its n pixels q: n² times their variance.
+    spread: i64,
     pub half: usize,
 }
 
@@ -33,42 +36,51 @@ impl Patch {
             return None;
         }
         let side = 2 * half + 1;
-        let mut values = Vec::with_capacity(side * side);
+        let mut pixels = Vec::with_capacity(side * side);
         for y in cy - half..=cy + half {
-            for x in cx - half..=cx + half {
-                values.push(frame[y * w + x] as f64);
-            }
+            pixels.extend_from_slice(&frame[y * w + cx - half..=y * w + cx + half]);
         }
-        let mean = values.iter().sum::<f64>() / values.len() as f64;
-        values.iter_mut().for_each(|v| *v -= mean);
-        let norm = values.iter().map(|v| v * v).sum::<f64>().sqrt();
-        (norm > 0.0).then_some(Patch { values, norm, half })
+        let n = pixels.len() as i64;
+        let sum: i64 = pixels.iter().map(|&q| i64::from(q)).sum();
+        let squares: i64 = pixels.iter().map(|&q| i64::from(q) * i64::from(q)).sum();
+        let spread = n * squares - sum * sum;
+        (spread > 0).then_some(Patch {
+            pixels,
+            sum,
+            spread,
+            half,
+        })
     }
 
-    /// The correlation of this patch with `frame` centred at (cx, cy) (inside).
+    /// The normalised cross-correlation of this patch with `frame` centred at (cx, cy)
+    /// (inside): (nΣpq − ΣpΣq) / √((nΣp² − (Σp)²)(nΣq² − (Σq)²)), every sum an exact integer
+    /// (a byte row's sums fit in 32 bits: 255² × 66 000 < 2³², no picture is that wide).
     fn score(&self, frame: &[u8], w: usize, (cx, cy): (usize, usize)) -> f64 {
         let half = self.half;
         let side = 2 * half + 1;
-        // The pixels' sums in integers (exact, as the f64 sums of bytes are).
-        let (mut sum, mut sum_sq, mut cross) = (0u64, 0u64, 0.0);
+        let (mut sum, mut squares, mut cross) = (0i64, 0i64, 0i64);
         for (r, y) in (cy - half..=cy + half).enumerate() {
             let row = &frame[y * w + cx - half..y * w + cx + half + 1];
-            let t = &self.values[r * side..(r + 1) * side];
-            // A row's sums fit in 32 bits (255² × 66 000 < 2³²: no picture is that wide).
-            sum += row.iter().map(|&p| p as u32).sum::<u32>() as u64;
-            sum_sq += row.iter().map(|&p| (p as u32) * (p as u32)).sum::<u32>() as u64;
-            for (p, q) in row.iter().zip(t) {
-                cross += *p as f64 * q;
-            }
+            let t = &self.pixels[r * side..(r + 1) * side];
+            sum += i64::from(row.iter().map(|&p| u32::from(p)).sum::<u32>());
+            squares += i64::from(
+                row.iter()
+                    .map(|&p| u32::from(p) * u32::from(p))
+                    .sum::<u32>(),
+            );
+            cross += i64::from(
+                row.iter()
+                    .zip(t)
+                    .map(|(&p, &q)| u32::from(p) * u32::from(q))
+                    .sum::<u32>(),
+            );
         }
-        let (sum, sum_sq) = (sum as f64, sum_sq as f64);
-        let n = (side * side) as f64;
-        let var = sum_sq - sum * sum / n;
-        if var <= 0.0 {
+        let n = (side * side) as i64;
+        let spread = n * squares - sum * sum;
+        if spread <= 0 {
             return 0.0;
         }
-        // The template has zero mean, so the frame's mean drops out of the cross term.
-        cross / (self.norm * var.sqrt())
+        (n * cross - sum * self.sum) as f64 / (spread as f64 * self.spread as f64).sqrt()
     }
 }
 
@@ -128,4 +140,48 @@ pub(super) fn best_match(
         y: (y0 + by) as f64 + dy,
         score,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 40×30 picture of bytes from a fixed sequence.
+    fn picture() -> Vec<u8> {
+        (0..40 * 30)
+            .map(|i: usize| ((i * 7919 + i * i * 31) % 251) as u8)
+            .collect()
+    }
+
+    /// The correlation as its definition says, in floating point.
+    fn defined(frame: &[u8], w: usize, patch: &[u8], (cx, cy): (usize, usize), half: usize) -> f64 {
+        let mut p = Vec::new();
+        for y in cy - half..=cy + half {
+            for x in cx - half..=cx + half {
+                p.push(f64::from(frame[y * w + x]));
+            }
+        }
+        let q: Vec<f64> = patch.iter().map(|&v| f64::from(v)).collect();
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let (mp, mq) = (mean(&p), mean(&q));
+        let cross: f64 = p.iter().zip(&q).map(|(a, b)| (a - mp) * (b - mq)).sum();
+        let spread = |v: &[f64], m: f64| v.iter().map(|a| (a - m) * (a - m)).sum::<f64>().sqrt();
+        cross / (spread(&p, mp) * spread(&q, mq))
+    }
+
+    #[test]
+    fn the_integer_correlation_is_the_defined_one() {
+        let frame = picture();
+        let patch = Patch::cut(&frame, (40, 30), (12, 9), 4).expect("a patch");
+        // On its own place it matches exactly; elsewhere it is the definition's value.
+        assert_eq!(patch.score(&frame, 40, (12, 9)), 1.0);
+        for at in [(20, 15), (5, 5), (35, 25), (13, 9)] {
+            let got = patch.score(&frame, 40, at);
+            let want = defined(&frame, 40, &patch.pixels, at, 4);
+            assert!((got - want).abs() < 1e-12, "{at:?}: {got} against {want}");
+            assert!((-1.0..=1.0).contains(&got), "{got}");
+        }
+        // A flat patch has nothing to correlate.
+        assert!(Patch::cut(&[9u8; 100], (10, 10), (5, 5), 2).is_none());
+    }
 }

@@ -141,7 +141,14 @@ pub(super) fn swing(
             })
             .collect()
     };
-    let best = [1.0, 1.15, 1.35]
+    // From the small-angle rate, raised for amplitudes it does not know; from a fitted swing's
+    // own rate (`start`: a span grown from one), that alone.
+    let raised: &[f64] = if start.is_some() {
+        &[1.0]
+    } else {
+        &[1.0, 1.15, 1.35]
+    };
+    let best = raised
         .iter()
         .filter_map(|k| least_squares(&[k * w * w, 2.0 * z, level, a0, v0], &residual))
         .min_by(|a, b| sum_sq(&a.1).total_cmp(&sum_sq(&b.1)))?;
