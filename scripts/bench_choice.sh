@@ -42,6 +42,7 @@ best() {
 
 printf '%-26s %9s %10s %7s %9s  %-18s %s\n' recording "decode s" "estimate s" ratio "peak MiB" chosen grade
 ratios=()
+peaks=()
 for v in "${videos[@]}"; do
   read -r decode _ < <(best ffmpeg -v error -nostdin -i "$v" -f null - | paste -sd' ')
   rm -rf "$tmp/run"
@@ -57,12 +58,19 @@ PY
 )
   ratio=$(python3 -c "print(f'{$wall / max($decode, 1e-3):.1f}')")
   ratios+=("$ratio")
+  peaks+=("$((kb / 1024))")
   printf '%-26s %9s %10s %7s %9s  %-18s %s\n' "$(basename "$v")" "$decode" "$wall" "${ratio}×" \
     "$((kb / 1024))" "$model" "$grade"
 done
-python3 - "${ratios[@]}" <<'PY'
+python3 - "${#ratios[@]}" "${ratios[@]}" "${peaks[@]}" <<'PY'
 import statistics, sys
-r = sorted(float(x) for x in sys.argv[1:])
+n = int(sys.argv[1])
+r = sorted(float(x) for x in sys.argv[2:2 + n])
+peaks = [int(x) for x in sys.argv[2 + n:]]
 print(f"ratio estimate / decode over {len(r)} recordings: median {statistics.median(r):.1f}×, "
       f"largest {r[-1]:.1f}×, within 10×: {sum(x <= 10 for x in r)} of {len(r)}")
+# The bar's 2 GB as 2·10⁹ bytes (1907 MiB), the stricter reading.
+bar = 2e9 / 2**20
+print(f"peak memory: largest {max(peaks)} MiB, within 2 GB ({bar:.0f} MiB): "
+      f"{sum(p <= bar for p in peaks)} of {len(peaks)}")
 PY
