@@ -28,7 +28,7 @@ mod tracked;
 pub use framing::{Framing, DEFAULT_SIZE};
 pub use probe::{probe, Plan, Probe, RecordingPlan};
 pub use request::{falls, Frames, LoadRequest, RecordingRequest, TrackedMotion, FALL_DEG};
-pub use shake::CameraShake;
+pub use shake::{largest_shift, CameraShake};
 
 use crate::error::{input_error, EstimateError};
 use crate::physics::ModelRef;

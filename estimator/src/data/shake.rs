@@ -14,13 +14,15 @@ pub struct CameraShake {
     pub shift: Vec<(f64, f64)>,
 }
 
+/// The largest of `shifts` (x, y) by its size.
+pub fn largest_shift(shifts: &[(f64, f64)]) -> f64 {
+    shifts.iter().map(|s| s.0.hypot(s.1)).fold(0.0, f64::max)
+}
+
 impl CameraShake {
     /// The largest shift (pixels of the displayed frame).
     pub fn largest(&self) -> f64 {
-        self.shift
-            .iter()
-            .map(|s| s.0.hypot(s.1))
-            .fold(0.0, f64::max)
+        largest_shift(&self.shift)
     }
 
     /// The shift of the frame read nearest to `t` (seconds of the file's timeline): a hand's

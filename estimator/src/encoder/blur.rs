@@ -28,10 +28,10 @@ pub(super) fn smoothed(x: &Tensor, (c, h, w): (i64, i64, i64)) -> Tensor {
     let img = x.reshape([f * c, 1, h, w]);
     // A few hundred images a pass: the convolution's working memory grows with the batch (all
     // 3 280 frames of a recording at once took 2 GB, where the frames are 73 MB).
-    let parts: Vec<Tensor> = (0..f * c)
-        .step_by(BLURRED_AT_ONCE as usize)
-        .map(|s| {
-            let part = img.narrow(0, s, BLURRED_AT_ONCE.min(f * c - s));
+    let parts: Vec<Tensor> = img
+        .split(BLURRED_AT_ONCE, 0)
+        .iter()
+        .map(|part| {
             let down = part.conv2d(
                 &kernel.view([1, 1, -1, 1]),
                 None::<Tensor>,

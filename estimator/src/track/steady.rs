@@ -8,6 +8,7 @@
 use super::background::evenly;
 use super::lucas_kanade::{refined, sample};
 use super::pyramid::Level;
+use crate::data::largest_shift;
 use physvid_shared::video::SmallFrames;
 use rayon::prelude::*;
 
@@ -36,10 +37,7 @@ pub struct Steadied {
 impl Steadied {
     /// The largest shift (pixels of the frames read).
     pub fn largest(&self) -> f64 {
-        self.shifts
-            .iter()
-            .map(|s| s.0.hypot(s.1))
-            .fold(0.0, f64::max)
+        largest_shift(&self.shifts)
     }
 
     /// The median change of the shift from one frame to the next (pixels of the frames read):
