@@ -10,6 +10,7 @@ use crate::error::{input_error, EstimateError};
 use crate::html::{report_page, Figure, Frame};
 use crate::plots::{change_png, frame_jpeg, latents_png, parameters_png, timeline_png, track_png};
 use crate::report::Report;
+use crate::track::TrackRoute;
 use physvid_shared::outdir::{self, OutputDir, Wait, MANIFEST};
 use std::path::Path;
 
@@ -202,16 +203,8 @@ fn framed(report: &Report, frame: &Frame) -> Option<Vec<u8>> {
 /// chosen span where it has one (the object in motion), else of the part kept; none where it
 /// cannot be read again (the page goes without it).
 fn frame_of(report: &Report, rec: &RecordingSummary) -> Option<Frame> {
-    let at = match report
-        .run
-        .track
-        .as_ref()
-        .and_then(|t| Some((t, t.chosen_span()?)))
-    {
-        Some((t, l)) => {
-            let (a, b) = t.file_span(l);
-            (a + b) / 2.0
-        }
+    let at = match report.run.track.as_ref().and_then(TrackRoute::shown_at) {
+        Some(at) => at,
         None => {
             let start = rec.start.unwrap_or(0.0);
             let frames = rec.frames_decoded.saturating_sub(1) as f64;

@@ -12,6 +12,7 @@ use crate::output::{check_out, clear_earlier, write_outputs};
 use crate::physics::Settles;
 use crate::progress::Progress;
 use crate::report::Report;
+use crate::track::TrackRoute;
 use crate::train::{fit, fit_best, Cancel, EpochRecord, StopReason};
 use crate::verdict::{self, Grade};
 pub use choose::{choose, chooses};
@@ -101,6 +102,10 @@ pub fn estimation_watched(req: &Request, watch: Watch) -> anyhow::Result<Estimat
     cpu_threads(req.training.threads);
     let mut warnings = Vec::new();
     let route = guide::second_route(req, &mut warnings)?;
+    // The frame the page will show is known now: made while the latent trains.
+    if let Some(at) = route.as_ref().and_then(TrackRoute::shown_at) {
+        physvid_shared::video::still_ahead(req.input(), at);
+    }
     let guided = route
         .as_ref()
         .and_then(|r| guide::request(req, r, chooses(req)));

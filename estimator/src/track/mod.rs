@@ -43,8 +43,9 @@ use reading::{readings, times, Clock};
 use serde::Serialize;
 use std::path::Path;
 
-/// The long side of the frames the track is read on (pixels).
-pub const TRACK_SIDE: usize = 320;
+/// The long side of the frames the track is read on (pixels): the video layer's, which decodes
+/// them beside its look at the recording's fields.
+pub use physvid_shared::video::TRACK_SIDE;
 
 /// A tracklet must live at least this many frames to be followed.
 const LEAST_FRAMES: usize = 12;

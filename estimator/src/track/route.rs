@@ -165,6 +165,13 @@ impl TrackRoute {
         k.file_s.first().map_or(t, |f0| f0 + (t - k.t[0]) * ratio)
     }
 
+    /// The middle of the chosen law's span on the file's own timeline (the object in motion):
+    /// the frame report.html shows.
+    pub fn shown_at(&self) -> Option<f64> {
+        let (a, b) = self.file_span(self.chosen_span()?);
+        Some((a + b) / 2.0)
+    }
+
     /// The chosen law's span.
     pub fn chosen_span(&self) -> Option<&LawSpan> {
         self.laws.iter().find(|l| Some(l.law) == self.chosen)

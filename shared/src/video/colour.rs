@@ -18,7 +18,7 @@ pub fn colour_frames(
     frames: Range<usize>,
     size: (usize, usize),
 ) -> Result<Vec<f32>, VideoError> {
-    let mut cmd = tool("ffmpeg")?;
+    let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin"]);
     trimmed_input(&mut cmd, input, opts.start, opts.end);
     if let Some(filter) = info.filter() {

@@ -6,7 +6,7 @@
 use super::clock::Clock;
 use super::decoded::{cut, DecodedVideo};
 use super::folder::{check_alike, concat_list, damaged_folder, numbered};
-use super::tools::{read_full, tool, trimmed_input, EVERY_FRAME};
+use super::tools::{not_started, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
 use std::io::BufRead;
 use std::path::Path;
@@ -23,7 +23,7 @@ pub fn decode(
     probed: Option<VideoInfo>,
 ) -> Result<DecodedVideo, VideoError> {
     let folder = input.is_dir();
-    let mut cmd = tool("ffmpeg")?;
+    let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin"]);
     let mut list_file = None;
     let mut folder_files = Vec::new();
@@ -96,9 +96,7 @@ pub fn decode(
     cmd.stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .stdin(Stdio::null());
-    let mut child = cmd
-        .spawn()
-        .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
+    let mut child = cmd.spawn().map_err(|e| not_started("ffmpeg", input, e))?;
     let mut stdout = child.stdout.take().expect("piped stdout");
     let mut stderr = child.stderr.take().expect("piped stderr");
     // ffmpeg's complaints (at `-v error` a clean file has none), each with the frames read

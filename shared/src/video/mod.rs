@@ -24,8 +24,8 @@ pub use decode::decode;
 pub use decoded::DecodedVideo;
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::{shifted, FrameResizer};
-pub use small::{small_chroma, small_frames, SmallFrames};
-pub use still::still;
+pub use small::{small_chroma, small_frames, SmallFrames, TRACK_SIDE};
+pub use still::{still, still_ahead};
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 
 use std::path::{Path, PathBuf};
@@ -53,6 +53,20 @@ pub(crate) fn bad(path: &Path, reason: impl Into<String>) -> VideoError {
     VideoError::BadInput {
         path: path.to_path_buf(),
         reason: reason.into(),
+    }
+}
+
+/// A file as it is now: its canonical path, size and modification time (a file written again
+/// is another), for what a process keeps of a file it read.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct FileKey(PathBuf, u64, Option<std::time::SystemTime>);
+
+impl FileKey {
+    /// `path`'s key, none where it cannot be read.
+    pub(crate) fn of(path: &Path) -> Option<FileKey> {
+        let m = std::fs::metadata(path).ok()?;
+        let at = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        Some(FileKey(at, m.len(), m.modified().ok()))
     }
 }
 

@@ -3,8 +3,8 @@
 
 use super::clock::{Clock, Uneven};
 use super::fields::{self, Fields, FieldsChoice};
-use super::tools::tool;
-use super::{bad, VideoError};
+use super::tools::{not_started, tool};
+use super::{bad, FileKey, VideoError};
 use std::path::Path;
 use std::sync::Mutex;
 
@@ -119,20 +119,12 @@ const KEPT_PROBES: usize = 8;
 
 /// As [`probe`], its fields read as `choice` says (`--fields`). One of the last
 /// [`KEPT_PROBES`] files probed in this process, unchanged since (its size and modification
-/// time), is not probed again (the track and the latent route each ask: two ffprobe runs and a
+/// time), is not probed again (the track and the latent route each ask: an ffprobe run and a
 /// look at its fields).
 pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
-    type Key = (
-        std::path::PathBuf,
-        FieldsChoice,
-        u64,
-        Option<std::time::SystemTime>,
-    );
+    type Key = (FileKey, FieldsChoice);
     static PROBED: Mutex<Vec<(Key, VideoInfo)>> = Mutex::new(Vec::new());
-    let key = std::fs::metadata(path).ok().map(|m| {
-        let at = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-        (at, choice, m.len(), m.modified().ok())
-    });
+    let key = FileKey::of(path).map(|f| (f, choice));
     let lock = || PROBED.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(k) = &key {
         if let Some((_, info)) = lock().iter().find(|(was, _)| was == k) {
@@ -153,18 +145,22 @@ pub fn probe_as(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoErr
 /// [`probe_as`] by ffprobe, every time.
 fn probe_fresh(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoError> {
     crate::input::check_kind(path).map_err(|e| bad(path, e))?;
-    let out = tool("ffprobe")?
+    let out = tool("ffprobe")
         .args([
             "-v",
             "error",
             "-print_format",
             "json",
+            "-select_streams",
+            "v:0",
             "-show_streams",
             "-show_format",
+            "-show_entries",
+            "packet=pts_time",
         ])
         .arg(path)
         .output()
-        .map_err(|e| bad(path, format!("cannot run ffprobe: {e}")))?;
+        .map_err(|e| not_started("ffprobe", path, e))?;
     let not_video = |reason: String| VideoError::NotAVideo {
         path: path.to_path_buf(),
         reason,
@@ -218,7 +214,7 @@ fn probe_fresh(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoErro
         })
         .filter(|&n| n > 0);
     let info = VideoInfo {
-        frame_times: frame_times(path)?,
+        frame_times: frame_times(&v),
         expected_frames,
         width: if quarter { h } else { w },
         height: if quarter { w } else { h },
@@ -244,30 +240,20 @@ fn probe_fresh(path: &Path, choice: FieldsChoice) -> Result<VideoInfo, VideoErro
     })
 }
 
-/// The presentation times of the first video stream's packets (s, sorted), read from the
-/// container's index by ffprobe without decoding.
-pub fn frame_times(path: &Path) -> Result<Vec<f64>, VideoError> {
-    let out = tool("ffprobe")?
-        .args([
-            "-v",
-            "error",
-            "-select_streams",
-            "v:0",
-            "-show_entries",
-            "packet=pts_time",
-            "-of",
-            "csv=p=0",
-        ])
-        .arg(path)
-        .output()
-        .map_err(|e| bad(path, format!("cannot run ffprobe: {e}")))?;
-    let mut t: Vec<f64> = String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .filter_map(|l| l.trim().trim_end_matches(',').parse::<f64>().ok())
-        .filter(|v| v.is_finite())
-        .collect();
+/// The presentation times of the first video stream's packets (s, sorted), as ffprobe read
+/// them from the container's index without decoding (`packets` of its JSON).
+fn frame_times(v: &serde_json::Value) -> Vec<f64> {
+    let mut t: Vec<f64> = v["packets"]
+        .as_array()
+        .map(|ps| {
+            ps.iter()
+                .filter_map(|p| p["pts_time"].as_str()?.trim().parse::<f64>().ok())
+                .filter(|t| t.is_finite())
+                .collect()
+        })
+        .unwrap_or_default();
     t.sort_by(f64::total_cmp);
-    Ok(presented(t))
+    presented(t)
 }
 
 /// The times of the frames a player shows: an edit list (a phone's trim, `ffmpeg -ss … -c copy`)
@@ -291,15 +277,14 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("clip.mp4");
         let render = |size: &str| {
-            tool("ffmpeg").ok().and_then(|mut c| {
-                c.args(["-v", "error", "-y", "-f", "lavfi", "-i"])
-                    .arg(format!("testsrc=size={size}:rate=10"))
-                    .args(["-frames:v", "5", "-pix_fmt", "yuv420p"])
-                    .arg(&file)
-                    .status()
-                    .ok()
-                    .filter(|s| s.success())
-            })
+            tool("ffmpeg")
+                .args(["-v", "error", "-y", "-f", "lavfi", "-i"])
+                .arg(format!("testsrc=size={size}:rate=10"))
+                .args(["-frames:v", "5", "-pix_fmt", "yuv420p"])
+                .arg(&file)
+                .status()
+                .ok()
+                .filter(|s| s.success())
         };
         if render("32x24").is_none() {
             return; // no ffmpeg here

@@ -3,8 +3,14 @@
 //! survey and the object's track read.
 
 use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
-use super::{VideoError, VideoInfo};
+use super::{FileKey, VideoError, VideoInfo};
 use std::path::Path;
+use std::sync::Mutex;
+
+/// The long side (pixels) at which the object's track reads a recording whole. The look at a
+/// recording's fields (`fields::find`) decodes it at this size in the same pass, for the track
+/// (one decode of a 1080p spring fewer: 0.6 s of its 6).
+pub const TRACK_SIDE: usize = 320;
 
 /// Frames of one size (grey, or chroma: `small_chroma`), row-major, one after another.
 pub struct SmallFrames {
@@ -30,7 +36,9 @@ impl SmallFrames {
 }
 
 /// `input` (trimmed to `start`..`end` seconds) decoded to grey with its long side at most
-/// `side` pixels (never enlarged), interlaced fields split as the probe found them.
+/// `side` pixels (never enlarged), interlaced fields split as the probe found them. The whole
+/// of a progressive recording at [`TRACK_SIDE`] is the one its fields' look decoded, where
+/// that was this process's last (and is not served twice: the track holds it).
 pub fn small_frames(
     input: &Path,
     info: &VideoInfo,
@@ -52,6 +60,43 @@ pub fn small_chroma(
     decode_small(input, info, span, side, Picture::Chroma)
 }
 
+/// The size of a `width`×`height` picture with its long side at most `side` (never enlarged).
+pub(super) fn small_size((width, height): (usize, usize), side: usize) -> (usize, usize) {
+    let scale = (side as f64 / width.max(height) as f64).min(1.0);
+    let w = ((width as f64 * scale).round() as usize).max(2);
+    let h = ((height as f64 * scale).round() as usize).max(2);
+    (w, h)
+}
+
+/// ffmpeg's filter that makes a frame `size` (w, h), its pixels area-averaged.
+pub(super) fn small_filter((w, h): (usize, usize)) -> String {
+    format!("scale={w}:{h}:flags=area")
+}
+
+/// The whole of the last recording whose fields were looked at, progressive, at
+/// [`TRACK_SIDE`], decoded in the look's pass; and the file it is of.
+static KEPT: Mutex<Option<(FileKey, SmallFrames)>> = Mutex::new(None);
+
+/// Keeps `frames` (the whole of the progressive recording at `path` at [`TRACK_SIDE`]) for
+/// [`small_frames`], in place of any other file's.
+pub(super) fn keep(path: &Path, frames: SmallFrames) {
+    let Some(key) = FileKey::of(path) else {
+        return;
+    };
+    *KEPT.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, frames));
+}
+
+/// The kept frames of `path` of this `size`, taken (none where another file's or another
+/// size's are kept, or where the file changed since).
+fn kept(path: &Path, size: (usize, usize)) -> Option<SmallFrames> {
+    let key = FileKey::of(path)?;
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    match kept.as_ref() {
+        Some((k, f)) if *k == key && f.size == size => kept.take().map(|(_, f)| f),
+        _ => None,
+    }
+}
+
 /// What a small frame's byte holds.
 #[derive(Clone, Copy, PartialEq)]
 enum Picture {
@@ -66,17 +111,21 @@ fn decode_small(
     side: usize,
     picture: Picture,
 ) -> Result<SmallFrames, VideoError> {
-    let scale = (side as f64 / info.width.max(info.height) as f64).min(1.0);
-    let w = ((info.width as f64 * scale).round() as usize).max(2);
-    let h = ((info.height as f64 * scale).round() as usize).max(2);
-    let mut cmd = tool("ffmpeg")?;
+    let (w, h) = small_size((info.width, info.height), side);
+    let whole = start.is_none() && end.is_none() && info.filter().is_none();
+    if whole && side == TRACK_SIDE && picture == Picture::Grey {
+        if let Some(kept) = kept(input, (w, h)) {
+            return Ok(kept);
+        }
+    }
+    let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin"]);
     trimmed_input(&mut cmd, input, start, end);
     cmd.args(EVERY_FRAME).args([
         "-vf",
         &match info.filter() {
-            Some(fields) => format!("{fields},scale={w}:{h}:flags=area"),
-            None => format!("scale={w}:{h}:flags=area"),
+            Some(fields) => format!("{fields},{}", small_filter((w, h))),
+            None => small_filter((w, h)),
         },
     ]);
     let n = w * h;

@@ -5,30 +5,20 @@ use super::{bad, VideoError};
 use std::io::Read;
 use std::path::Path;
 use std::process::{Child, ChildStdout, Command, Stdio};
-use std::sync::OnceLock;
 
-/// `name` (ffmpeg, ffprobe) as a command, or the error that says how to install it. Whether
-/// it runs is asked once a process (`name -version`: a twentieth of a second each time, eight
-/// times in a run on a recording).
-pub(crate) fn tool(name: &'static str) -> Result<Command, VideoError> {
-    static FFMPEG: OnceLock<bool> = OnceLock::new();
-    static FFPROBE: OnceLock<bool> = OnceLock::new();
-    let runs = || {
-        Command::new(name)
-            .arg("-version")
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .status()
-            .is_ok()
-    };
-    let runs = match name {
-        "ffmpeg" => *FFMPEG.get_or_init(runs),
-        "ffprobe" => *FFPROBE.get_or_init(runs),
-        _ => runs(),
-    };
-    match runs {
-        true => Ok(Command::new(name)),
-        false => Err(VideoError::ToolMissing { tool: name }),
+/// `name` (ffmpeg, ffprobe) as a command. Whether it is installed is learnt when it is started
+/// ([`not_started`]), not asked beforehand: `name -version` cost a tenth of a second a tool,
+/// a run on a recording's time as long as its whole decode on a short one.
+pub(crate) fn tool(name: &'static str) -> Command {
+    Command::new(name)
+}
+
+/// Why `tool` could not be started on `input`: not installed (the error that says how to
+/// install it), or the reason the system gave.
+pub(crate) fn not_started(tool: &'static str, input: &Path, e: std::io::Error) -> VideoError {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => VideoError::ToolMissing { tool },
+        _ => bad(input, format!("cannot run {tool}: {e}")),
     }
 }
 
@@ -85,9 +75,7 @@ pub(crate) fn raw_frames(
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .stdin(Stdio::null());
-    let mut child = cmd
-        .spawn()
-        .map_err(|e| bad(input, format!("cannot run ffmpeg: {e}")))?;
+    let mut child = cmd.spawn().map_err(|e| not_started("ffmpeg", input, e))?;
     let stdout = child.stdout.take().expect("piped stdout");
     Ok((child, stdout))
 }

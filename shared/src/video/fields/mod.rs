@@ -104,8 +104,10 @@ pub fn from_tag(tag: &str) -> Option<FieldOrder> {
 }
 
 /// The fields of the recording at `path` (stored `size` (w, h), `frames` in all, `tag` its
-/// container's field order), or `None` when it is progressive. Decodes a recording's first
-/// frames once more (`picture`); remembered per file for the process (probed again by model choice and the run).
+/// container's field order), or `None` when it is progressive. Decodes the recording once
+/// more (`picture`: its first frames looked at, the whole at the track's size kept for the
+/// track where it is progressive); remembered per file for the process (probed again by
+/// model choice and the run).
 pub fn find(
     path: &Path,
     size: (usize, usize),
@@ -117,7 +119,8 @@ pub fn find(
     if let Some(f) = seen.lock().ok().and_then(|s| s.get(path).copied()) {
         return Ok(f);
     }
-    let fields = match (picture::look(path, size, frames)?, tag) {
+    let (look, whole) = picture::look(path, size, frames)?;
+    let fields = match (look, tag) {
         (Look::Interlaced(order, share), _) => Some(Fields {
             order,
             by: "picture",
@@ -130,6 +133,9 @@ pub fn find(
         }),
         _ => None,
     };
+    if let (None, Some(whole)) = (fields, whole) {
+        super::small::keep(path, whole);
+    }
     if let Ok(mut s) = seen.lock() {
         s.insert(path.to_path_buf(), fields);
     }

@@ -2,15 +2,16 @@
 //! voting for the order in which a frame's fields were taken where the weaves with the next
 //! frame tell (see the module above for the measurements).
 
-use super::super::tools::{gray_frames, read_full, tool};
-use super::super::VideoError;
+use super::super::small::{small_filter, small_size, TRACK_SIDE};
+use super::super::tools::{gray_frames, read_full, tool, EVERY_FRAME};
+use super::super::{SmallFrames, VideoError};
 use super::FieldOrder;
 use std::path::Path;
 
 /// Frames looked at: pairs spread over the recording's first [`WITHIN`] frames (every frame of
 /// a short one), each narrowed to at most [`WIDTH`] columns (the rows, where fields differ,
-/// kept whole): the look costs a decode of at most those frames (0.7 s on a 1080p spring, under
-/// 0.2 s at 640×360).
+/// kept whole). The pass goes on to the end, for the whole at the track's size it also reads
+/// (0.7 s on a 1080p spring, where the look alone cost 0.6 s and the track's decode as much).
 const LOOKED_AT: usize = 90;
 const WITHIN: usize = 480;
 const WIDTH: usize = 480;
@@ -22,30 +23,50 @@ const MIN_VOTES: usize = 8;
 /// How much less one weave must comb than the other for a pair to vote.
 const CLEARLY: f64 = 0.8;
 
-/// What the picture says: the moving pairs of frames looked at, and their votes.
+/// What the picture says: the moving pairs of frames looked at, and their votes; and the whole
+/// recording at [`TRACK_SIDE`] decoded in the same pass (none where it could not be written to
+/// a temporary file: the look alone is its purpose).
 pub(super) fn look(
     path: &Path,
     (w, h): (usize, usize),
     frames: Option<usize>,
-) -> Result<Look, VideoError> {
+) -> Result<(Look, Option<SmallFrames>), VideoError> {
     if h < 8 || w == 0 {
-        return Ok(Look::Unknown);
+        return Ok((Look::Unknown, None));
     }
     let every = frames.map_or(2, |n| (n.min(WITHIN) / (LOOKED_AT / 2)).max(2));
+    let whole = small_size((w, h), TRACK_SIDE);
     let w = w.min(WIDTH);
-    let mut cmd = tool("ffmpeg")?;
+    let looked = format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area");
+    let scratch = tempfile::tempdir().ok();
+    let kept = scratch.as_ref().map(|d| d.path().join("whole.gray"));
+    let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
-        .arg(path)
-        .args([
-            "-map",
-            "0:v:0",
-            "-vf",
-            &format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area"),
-            "-fps_mode",
-            "passthrough",
-            "-frames:v",
-            &LOOKED_AT.to_string(),
-        ]);
+        .arg(path);
+    match &kept {
+        // One decode, split: the whole at the track's size to the file (every frame, as
+        // `small_frames` reads it), the pairs looked at to the pipe.
+        Some(file) => {
+            let split = format!(
+                "[0:v:0]split=2[a][b];[a]{}[whole];[b]{looked}[looked]",
+                small_filter(whole)
+            );
+            cmd.args(["-filter_complex", &split, "-map", "[whole]"])
+                .args(&EVERY_FRAME[2..])
+                .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
+                .arg(file)
+                .args(["-map", "[looked]"]);
+        }
+        None => {
+            cmd.args(["-map", "0:v:0", "-vf", &looked]);
+        }
+    }
+    cmd.args([
+        "-fps_mode",
+        "passthrough",
+        "-frames:v",
+        &LOOKED_AT.to_string(),
+    ]);
     let (mut child, mut stdout) = gray_frames(cmd, path)?;
     let (mut moving, mut votes) = (0usize, [0usize; 2]);
     let mut prev: Option<Vec<u8>> = None;
@@ -71,8 +92,17 @@ pub(super) fn look(
         }
         prev = Some(buf.clone());
     }
-    let _ = child.wait();
-    Ok(judge(moving, votes))
+    drop(stdout);
+    let done = child.wait().is_ok_and(|s| s.success());
+    let whole = kept
+        .filter(|_| done)
+        .and_then(|file| std::fs::read(file).ok())
+        .filter(|p| !p.is_empty() && p.len() % (whole.0 * whole.1) == 0)
+        .map(|pixels| SmallFrames {
+            pixels,
+            size: whole,
+        });
+    Ok((judge(moving, votes), whole))
 }
 
 /// What the picture says of a recording.
@@ -205,5 +235,39 @@ mod tests {
         );
         assert_eq!(judge(40, [15, 15]), Look::Progressive, "no agreement");
         assert_eq!(judge(40, [2, 15]), Look::Progressive, "too few vote");
+    }
+
+    #[test]
+    fn the_whole_decoded_beside_the_look_is_the_tracks_own_decode() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("moving.mp4");
+        let rendered = tool("ffmpeg")
+            .args([
+                "-v",
+                "error",
+                "-y",
+                "-f",
+                "lavfi",
+                "-i",
+                "testsrc=size=480x270:rate=25",
+            ])
+            .args(["-frames:v", "30", "-pix_fmt", "yuv420p"])
+            .arg(&file)
+            .status()
+            .is_ok_and(|s| s.success());
+        if !rendered {
+            return; // no ffmpeg here
+        }
+        let info = crate::video::probe_as(&file, super::super::FieldsChoice::Frames).unwrap();
+        let (_, whole) = look(&file, (480, 270), Some(30)).unwrap();
+        let whole = whole.expect("the whole read beside the look");
+        // Nothing kept for this file (`fields::find` keeps; `look` only reads): decoded afresh.
+        let fresh = crate::video::small_frames(&file, &info, (None, None), TRACK_SIDE).unwrap();
+        assert_eq!(whole.size, fresh.size);
+        assert_eq!((whole.len(), whole.size), (30, (320, 180)));
+        assert!(
+            whole.pixels == fresh.pixels,
+            "byte for byte the same frames"
+        );
     }
 }
