@@ -55,19 +55,36 @@ impl Patch {
     /// The normalised cross-correlation of this patch with `frame` centred at (cx, cy)
     /// (inside): (nΣpq − ΣpΣq) / √((nΣp² − (Σp)²)(nΣq² − (Σq)²)), every sum an exact integer
     /// (a byte row's sums fit in 32 bits: 255² × 66 000 < 2³², no picture is that wide).
+    #[cfg(test)]
     fn score(&self, frame: &[u8], w: usize, (cx, cy): (usize, usize)) -> f64 {
         let half = self.half;
+        let (mut sum, mut squares) = (0i64, 0i64);
+        for y in cy - half..=cy + half {
+            let row = &frame[y * w + cx - half..y * w + cx + half + 1];
+            sum += row.iter().map(|&p| i64::from(p)).sum::<i64>();
+            squares += row
+                .iter()
+                .map(|&p| i64::from(p) * i64::from(p))
+                .sum::<i64>();
+        }
+        self.score_given(frame, w, (cx, cy), (sum, squares))
+    }
+
+    /// [`Patch::score`] where the frame's pixels under the patch sum to `sum` and their
+    /// squares to `squares` (a window's [`Boxes`]): only Σpq is summed here.
+    fn score_given(
+        &self,
+        frame: &[u8],
+        w: usize,
+        (cx, cy): (usize, usize),
+        (sum, squares): (i64, i64),
+    ) -> f64 {
+        let half = self.half;
         let side = 2 * half + 1;
-        let (mut sum, mut squares, mut cross) = (0i64, 0i64, 0i64);
+        let mut cross = 0i64;
         for (r, y) in (cy - half..=cy + half).enumerate() {
             let row = &frame[y * w + cx - half..y * w + cx + half + 1];
             let t = &self.pixels[r * side..(r + 1) * side];
-            sum += i64::from(row.iter().map(|&p| u32::from(p)).sum::<u32>());
-            squares += i64::from(
-                row.iter()
-                    .map(|&p| u32::from(p) * u32::from(p))
-                    .sum::<u32>(),
-            );
             cross += i64::from(
                 row.iter()
                     .zip(t)
@@ -81,6 +98,58 @@ impl Patch {
             return 0.0;
         }
         (n * cross - sum * self.sum) as f64 / (spread as f64 * self.spread as f64).sqrt()
+    }
+}
+
+/// A frame's pixels and their squares summed over every box of a region (summed-area tables,
+/// exact integers): the sums under the patch at each place of a search window in four reads
+/// each, where summing them cost as much as the correlation itself.
+struct Boxes {
+    /// The region's first column and row in the frame, and its width.
+    x0: usize,
+    y0: usize,
+    w: usize,
+    /// Entry (x, y): the sum over the region's columns before x and rows before y.
+    sum: Vec<i64>,
+    squares: Vec<i64>,
+}
+
+impl Boxes {
+    /// The tables of `frame` (`fw` wide) over columns `x0..x1` and rows `y0..y1`.
+    fn over(frame: &[u8], fw: usize, (x0, x1): (usize, usize), (y0, y1): (usize, usize)) -> Boxes {
+        let (w, h) = (x1 - x0, y1 - y0);
+        let mut sum = vec![0i64; (w + 1) * (h + 1)];
+        let mut squares = vec![0i64; (w + 1) * (h + 1)];
+        for y in 0..h {
+            let row = &frame[(y0 + y) * fw + x0..][..w];
+            let (mut s, mut q) = (0i64, 0i64);
+            for (x, &p) in row.iter().enumerate() {
+                s += i64::from(p);
+                q += i64::from(p) * i64::from(p);
+                let at = (y + 1) * (w + 1) + x + 1;
+                sum[at] = sum[at - (w + 1)] + s;
+                squares[at] = squares[at - (w + 1)] + q;
+            }
+        }
+        Boxes {
+            x0,
+            y0,
+            w,
+            sum,
+            squares,
+        }
+    }
+
+    /// The sums over the `side`×`side` box of the frame from column `x`, row `y`.
+    fn at(&self, (x, y): (usize, usize), side: usize) -> (i64, i64) {
+        let (x, y, stride) = (x - self.x0, y - self.y0, self.w + 1);
+        let corners = |t: &[i64]| {
+            t[(y + side) * stride + x + side]
+                - t[y * stride + x + side]
+                - t[(y + side) * stride + x]
+                + t[y * stride + x]
+        };
+        (corners(&self.sum), corners(&self.squares))
     }
 }
 
@@ -104,8 +173,19 @@ pub(super) fn best_match(
         return None;
     }
     let (sw, sh) = (x1 - x0 + 1, y1 - y0 + 1);
+    let side = 2 * half + 1;
+    let boxes = Boxes::over(
+        frame,
+        w,
+        (x0 - half, x1 + half + 1),
+        (y0 - half, y1 + half + 1),
+    );
     let scores: Vec<f64> = (0..sw * sh)
-        .map(|i| patch.score(frame, w, (x0 + i % sw, y0 + i / sw)))
+        .map(|i| {
+            let (cx, cy) = (x0 + i % sw, y0 + i / sw);
+            let sums = boxes.at((cx - half, cy - half), side);
+            patch.score_given(frame, w, (cx, cy), sums)
+        })
         .collect();
     let (best, score) = scores
         .iter()
@@ -180,6 +260,13 @@ mod tests {
             let want = defined(&frame, 40, &patch.pixels, at, 4);
             assert!((got - want).abs() < 1e-12, "{at:?}: {got} against {want}");
             assert!((-1.0..=1.0).contains(&got), "{got}");
+        }
+        // The window's tables give the sums summed directly, at every place.
+        let boxes = Boxes::over(&frame, 40, (3, 38), (2, 29));
+        for (cx, cy) in (7..34).flat_map(|x| (6..25).map(move |y| (x, y))) {
+            let sums = boxes.at((cx - 4, cy - 4), 9);
+            let got = patch.score_given(&frame, 40, (cx, cy), sums);
+            assert_eq!(got.to_bits(), patch.score(&frame, 40, (cx, cy)).to_bits());
         }
         // A flat patch has nothing to correlate.
         assert!(Patch::cut(&[9u8; 100], (10, 10), (5, 5), 2).is_none());
