@@ -19,23 +19,61 @@ pub(super) fn sample(frame: &[u8], (w, h): (usize, usize), x: f64, y: f64) -> f6
     top * (1.0 - ay) + bottom * ay
 }
 
-/// The differences of `frame` read at each point p + `shift` from `reference` at p, over the
-/// picture less `margin` pixels at each edge, less their median (a camera's exposure moves
-/// the whole picture at once), and the points they are at.
+/// [`sample`] at a point at least a pixel inside the picture on every side: the same reads and
+/// arithmetic without the clamps (which change nothing there).
+fn sample_inside(frame: &[u8], w: usize, x: f64, y: f64) -> f64 {
+    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
+    let (ax, ay) = (x - x0 as f64, y - y0 as f64);
+    let v = |xx: usize, yy: usize| f64::from(frame[yy * w + xx]);
+    let top = v(x0, y0) * (1.0 - ax) + v(x0 + 1, y0) * ax;
+    let bottom = v(x0, y0 + 1) * (1.0 - ax) + v(x0 + 1, y0 + 1) * ax;
+    top * (1.0 - ay) + bottom * ay
+}
+
+/// A reference picture and its central differences (x, y) at every pixel off its edges (0 on
+/// them, never read): what each frame's refinement against it reads, worked out once.
+pub(super) struct Reference<'a> {
+    pixels: &'a [u8],
+    size: (usize, usize),
+    gradients: Vec<(f64, f64)>,
+}
+
+impl<'a> Reference<'a> {
+    pub(super) fn new(pixels: &'a [u8], (w, h): (usize, usize)) -> Reference<'a> {
+        let mut gradients = vec![(0.0, 0.0); w * h];
+        for y in 1..h.saturating_sub(1) {
+            for x in 1..w - 1 {
+                let p = y * w + x;
+                gradients[p] = (
+                    0.5 * (f64::from(pixels[p + 1]) - f64::from(pixels[p - 1])),
+                    0.5 * (f64::from(pixels[p + w]) - f64::from(pixels[p - w])),
+                );
+            }
+        }
+        Reference {
+            pixels,
+            size: (w, h),
+            gradients,
+        }
+    }
+}
+
+/// The differences of `frame` read at each point p + `shift` from `reference` at p, row by
+/// row over the picture less `margin` pixels at each edge (`margin_for` the shift: every read
+/// inside), less their median (a camera's exposure moves the whole picture at once).
 fn differences(
     frame: &[u8],
-    reference: &[u8],
-    (w, h): (usize, usize),
+    reference: &Reference,
     (sx, sy): (f64, f64),
     margin: usize,
-) -> (Vec<f64>, Vec<usize>) {
-    let mut d = Vec::new();
-    let mut at = Vec::new();
-    for y in margin..h.saturating_sub(margin) {
-        for x in margin..w.saturating_sub(margin) {
+) -> Vec<f64> {
+    let (w, h) = reference.size;
+    let mut d = Vec::with_capacity((w - 2 * margin) * (h - 2 * margin));
+    for y in margin..h - margin {
+        for x in margin..w - margin {
             let p = y * w + x;
-            d.push(sample(frame, (w, h), x as f64 + sx, y as f64 + sy) - f64::from(reference[p]));
-            at.push(p);
+            let read = sample_inside(frame, w, x as f64 + sx, y as f64 + sy);
+            d.push(read - f64::from(reference.pixels[p]));
         }
     }
     if !d.is_empty() {
@@ -44,7 +82,7 @@ fn differences(
         let level = *sorted.select_nth_unstable_by(mid, f64::total_cmp).1;
         d.iter_mut().for_each(|v| *v -= level);
     }
-    (d, at)
+    d
 }
 
 /// The differences' robust spread (1.4826 × their median absolute value).
@@ -67,19 +105,19 @@ fn margin_for((w, h): (usize, usize), (sx, sy): (f64, f64)) -> Option<usize> {
 /// `None` where it runs off the picture.
 pub(super) fn refined(
     frame: &[u8],
-    reference: &[u8],
-    (w, h): (usize, usize),
+    reference: &Reference,
     start: (f64, f64),
 ) -> Option<(f64, f64)> {
+    let (w, h) = reference.size;
     let (mut sx, mut sy) = start;
     for _ in 0..STEPS {
         let margin = margin_for((w, h), (sx, sy))?;
-        let (d, at) = differences(frame, reference, (w, h), (sx, sy), margin);
+        let d = differences(frame, reference, (sx, sy), margin);
         let limit = 2.0 * spread(&d).max(0.5);
         let (mut a, mut b) = ([0.0f64; 3], [0.0f64; 2]);
-        for (&p, &r) in at.iter().zip(&d) {
-            let gx = 0.5 * (f64::from(reference[p + 1]) - f64::from(reference[p - 1]));
-            let gy = 0.5 * (f64::from(reference[p + w]) - f64::from(reference[p - w]));
+        let at = (margin..h - margin).flat_map(|y| (margin..w - margin).map(move |x| y * w + x));
+        for (p, &r) in at.zip(&d) {
+            let (gx, gy) = reference.gradients[p];
             let weight = if r.abs() <= limit {
                 1.0
             } else {

@@ -6,7 +6,7 @@
 //! moves or the light changes.
 
 use super::background::evenly;
-use super::lucas_kanade::{refined, sample};
+use super::lucas_kanade::{refined, sample, Reference};
 use super::pyramid::Level;
 use crate::data::largest_shift;
 use physvid_shared::video::SmallFrames;
@@ -60,6 +60,10 @@ impl Steadied {
 /// each finer from the coarser's doubled.
 fn shifts(frames: &SmallFrames, reference: &[u8], which: &[usize]) -> Vec<(f64, f64)> {
     let fixed = Level::pyramid(reference, frames.size);
+    let fixed: Vec<Reference> = fixed
+        .iter()
+        .map(|r| Reference::new(&r.pixels, r.size))
+        .collect();
     which
         .par_iter()
         .map(|&i| {
@@ -69,7 +73,7 @@ fn shifts(frames: &SmallFrames, reference: &[u8], which: &[usize]) -> Vec<(f64, 
                 if k + 1 < moving.len() {
                     shift = (2.0 * shift.0, 2.0 * shift.1);
                 }
-                shift = refined(&f.pixels, &r.pixels, f.size, shift).unwrap_or(shift);
+                shift = refined(&f.pixels, r, shift).unwrap_or(shift);
             }
             shift
         })
