@@ -152,7 +152,11 @@ pub(super) fn linear(cols: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, Vec<f64>
     let mut m = vec![0.0; k * k];
     let mut b = vec![0.0; k];
     for i in 0..k {
-        for j in 0..k {
+        // The normal matrix is symmetric: each product's sum is the same either way round.
+        for j in 0..i {
+            m[i * k + j] = m[j * k + i];
+        }
+        for j in i..k {
             m[i * k + j] = cols[i].iter().zip(&cols[j]).map(|(a, c)| a * c).sum();
         }
         b[i] = cols[i].iter().zip(y).map(|(a, c)| a * c).sum();

@@ -5,13 +5,23 @@
 use super::{covariance, from_first, linear, sum_sq, Fitted, Value};
 use physvid_shared::linalg::solve;
 
-/// The oscillation's columns at decay `z` and angular frequency `w`.
-fn basis(t: &[f64], z: f64, w: f64) -> Vec<Vec<f64>> {
-    let e: Vec<f64> = t.iter().map(|&s| (-z * s).exp()).collect();
+/// e^(−zt) at times `t`.
+fn decay(t: &[f64], z: f64) -> Vec<f64> {
+    t.iter().map(|&s| (-z * s).exp()).collect()
+}
+
+/// (cos wt, sin wt) at times `t`.
+fn turns(t: &[f64], w: f64) -> (Vec<f64>, Vec<f64>) {
+    t.iter().map(|&s| ((w * s).cos(), (w * s).sin())).unzip()
+}
+
+/// The columns 1, e^(−zt) cos wt and e^(−zt) sin wt from their `decay` and `turns`: a step
+/// in z alone or in w alone computes only what it changes (Levenberg–Marquardt's Jacobian).
+fn columns(e: &[f64], (cos, sin): &(Vec<f64>, Vec<f64>)) -> Vec<Vec<f64>> {
     vec![
-        vec![1.0; t.len()],
-        t.iter().zip(&e).map(|(&s, e)| e * (w * s).cos()).collect(),
-        t.iter().zip(&e).map(|(&s, e)| e * (w * s).sin()).collect(),
+        vec![1.0; e.len()],
+        e.iter().zip(cos).map(|(e, c)| e * c).collect(),
+        e.iter().zip(sin).map(|(e, s)| e * s).collect(),
     ]
 }
 
@@ -90,11 +100,13 @@ const ROTATION_RUN: usize = 32;
 pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fitted> {
     let n = t.len();
     let (t, span, step) = from_first(t, 8)?;
-    let residual = |z: f64, w: f64| linear(&basis(&t, z, w), u).map(|(_, r)| r);
+    let residual =
+        |e: &[f64], turns: &(Vec<f64>, Vec<f64>)| linear(&columns(e, turns), u).map(|(_, r)| r);
     let start = start.unwrap_or_else(|| [0.0, grid_frequency(&t, u, span, step)]);
-    // Levenberg–Marquardt on (ζ, ω).
+    // Levenberg–Marquardt on (ζ, ω), the decay and the turns at p kept.
     let mut p = start;
-    let mut r = residual(p[0], p[1])?;
+    let (mut e, mut wt) = (decay(&t, p[0]), turns(&t, p[1]));
+    let mut r = residual(&e, &wt)?;
     let mut s = sum_sq(&r);
     let mut lambda = 1e-3;
     for _ in 0..100 {
@@ -103,7 +115,10 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
             let h = 1e-6 * p[k].abs().max(1e-2);
             let mut q = p;
             q[k] += h;
-            let rq = residual(q[0], q[1])?;
+            let rq = match k {
+                0 => residual(&decay(&t, q[0]), &wt)?,
+                _ => residual(&e, &turns(&t, q[1]))?,
+            };
             for (c, (a, b)) in col.iter_mut().zip(rq.iter().zip(&r)) {
                 *c = (a - b) / h;
             }
@@ -126,11 +141,13 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
                 continue;
             };
             let q = [p[0] + d[0], p[1] + d[1]];
-            if let Some(rq) = residual(q[0], q[1]) {
+            let (eq, wq) = (decay(&t, q[0]), turns(&t, q[1]));
+            if let Some(rq) = residual(&eq, &wq) {
                 let sq = sum_sq(&rq);
                 if sq < s {
                     let gain = (s - sq) / s.max(1e-300);
                     p = q;
+                    (e, wt) = (eq, wq);
                     r = rq;
                     s = sq;
                     lambda = (lambda * 0.3).max(1e-12);
@@ -149,7 +166,7 @@ pub(super) fn oscillation(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Opti
     if !(w > 0.0 && w <= std::f64::consts::PI / step && z.abs() < w) {
         return None;
     }
-    let cols = basis(&t, z, w);
+    let cols = columns(&e, &wt);
     let (c, r) = linear(&cols, u)?;
     // The model's Jacobian in (c, a, b, ζ, ω).
     let (a, b) = (c[1], c[2]);
@@ -229,7 +246,7 @@ mod tests {
             .collect();
         for w in [0.4, 2.0, 5.3, 9.9, 60.0] {
             let fast = undamped_residual(&t, &u, w).unwrap();
-            let (_, r) = linear(&basis(&t, 0.0, w), &u).unwrap();
+            let (_, r) = linear(&columns(&decay(&t, 0.0), &turns(&t, w)), &u).unwrap();
             let slow = sum_sq(&r);
             assert!(
                 (fast - slow).abs() <= 1e-8 * slow.max(1.0),
