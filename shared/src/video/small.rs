@@ -73,6 +73,11 @@ pub(super) fn small_filter((w, h): (usize, usize)) -> String {
     format!("scale={w}:{h}:flags=area")
 }
 
+/// The most bytes the look's pass writes and keeps of a recording at [`TRACK_SIDE`]: a longer
+/// one's look goes alone, and the track decodes it itself as before (5 minutes at 30 frames a
+/// second of 320×180). Bounds memory and the temporary file only; no decision reads it.
+pub(super) const KEPT_AT_MOST: usize = 512 << 20;
+
 /// The whole of the last recording whose fields were looked at, progressive, at
 /// [`TRACK_SIDE`], decoded in the look's pass; and the file it is of.
 static KEPT: Mutex<Option<(FileKey, SmallFrames)>> = Mutex::new(None);
@@ -86,13 +91,31 @@ pub(super) fn keep(path: &Path, frames: SmallFrames) {
     *KEPT.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, frames));
 }
 
-/// The kept frames of `path` of this `size`, taken (none where another file's or another
-/// size's are kept, or where the file changed since).
-fn kept(path: &Path, size: (usize, usize)) -> Option<SmallFrames> {
+/// The kept frames of `path`, taken: handed back where `whole` (the whole recording is asked
+/// for) at this `size`, else let go (the track asked for a part, `--start` or `--end`: they
+/// will not be asked for); none where another file's are kept, or the file changed since.
+fn kept(path: &Path, size: (usize, usize), whole: bool) -> Option<SmallFrames> {
     let key = FileKey::of(path)?;
-    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
-    match kept.as_ref() {
-        Some((k, f)) if *k == key && f.size == size => kept.take().map(|(_, f)| f),
+    taken(
+        &mut KEPT.lock().unwrap_or_else(|e| e.into_inner()),
+        &key,
+        size,
+        whole,
+    )
+}
+
+/// [`kept`] from `slot`, for the file `key`.
+fn taken(
+    slot: &mut Option<(FileKey, SmallFrames)>,
+    key: &FileKey,
+    size: (usize, usize),
+    whole: bool,
+) -> Option<SmallFrames> {
+    match slot.as_ref() {
+        Some((k, _)) if k == key => slot
+            .take()
+            .map(|(_, f)| f)
+            .filter(|f| whole && f.size == size),
         _ => None,
     }
 }
@@ -112,9 +135,9 @@ fn decode_small(
     picture: Picture,
 ) -> Result<SmallFrames, VideoError> {
     let (w, h) = small_size((info.width, info.height), side);
-    let whole = start.is_none() && end.is_none() && info.filter().is_none();
-    if whole && side == TRACK_SIDE && picture == Picture::Grey {
-        if let Some(kept) = kept(input, (w, h)) {
+    if side == TRACK_SIDE && picture == Picture::Grey {
+        let whole = start.is_none() && end.is_none() && info.filter().is_none();
+        if let Some(kept) = kept(input, (w, h), whole) {
             return Ok(kept);
         }
     }
@@ -151,4 +174,39 @@ fn decode_small(
         pixels,
         size: (w, h),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_frames_go_to_the_whole_asked_once_and_are_let_go_for_a_part() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.mp4"), dir.path().join("b.mp4"));
+        std::fs::write(&a, b"a").unwrap();
+        std::fs::write(&b, b"bb").unwrap();
+        let (ka, kb) = (FileKey::of(&a).unwrap(), FileKey::of(&b).unwrap());
+        let frames = || SmallFrames {
+            pixels: vec![7; 2 * 4 * 3],
+            size: (4, 3),
+        };
+        // The whole, at its size: handed back, once.
+        let mut slot = Some((ka.clone(), frames()));
+        assert!(
+            taken(&mut slot, &kb, (4, 3), true).is_none(),
+            "another file's"
+        );
+        assert_eq!(
+            taken(&mut slot, &ka, (4, 3), true).map(|f| f.len()),
+            Some(2)
+        );
+        assert!(slot.is_none() && taken(&mut slot, &ka, (4, 3), true).is_none());
+        // A part of it, or another size: not handed back, and not held any longer.
+        for (size, whole) in [((4, 3), false), ((8, 6), true)] {
+            let mut slot = Some((ka.clone(), frames()));
+            assert!(taken(&mut slot, &ka, size, whole).is_none());
+            assert!(slot.is_none());
+        }
+    }
 }

@@ -2,7 +2,7 @@
 //! voting for the order in which a frame's fields were taken where the weaves with the next
 //! frame tell (see the module above for the measurements).
 
-use super::super::small::{small_filter, small_size, TRACK_SIDE};
+use super::super::small::{small_filter, small_size, KEPT_AT_MOST, TRACK_SIDE};
 use super::super::tools::{gray_frames, read_full, tool, EVERY_FRAME};
 use super::super::{SmallFrames, VideoError};
 use super::FieldOrder;
@@ -24,8 +24,9 @@ const MIN_VOTES: usize = 8;
 const CLEARLY: f64 = 0.8;
 
 /// What the picture says: the moving pairs of frames looked at, and their votes; and the whole
-/// recording at [`TRACK_SIDE`] decoded in the same pass (none where it could not be written to
-/// a temporary file: the look alone is its purpose).
+/// recording at [`TRACK_SIDE`] decoded in the same pass (none where its frames are not counted
+/// or would pass [`KEPT_AT_MOST`], or it could not be written to a temporary file: the look
+/// alone is its purpose).
 pub(super) fn look(
     path: &Path,
     (w, h): (usize, usize),
@@ -38,7 +39,9 @@ pub(super) fn look(
     let whole = small_size((w, h), TRACK_SIDE);
     let w = w.min(WIDTH);
     let looked = format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area");
-    let scratch = tempfile::tempdir().ok();
+    // The whole read beside where its size is known and within bounds.
+    let fits = frames.is_some_and(|n| n.saturating_mul(whole.0 * whole.1) <= KEPT_AT_MOST);
+    let scratch = tempfile::tempdir().ok().filter(|_| fits);
     let kept = scratch.as_ref().map(|d| d.path().join("whole.gray"));
     let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
