@@ -12,21 +12,32 @@ pub(super) fn sample(frame: &[u8], (w, h): (usize, usize), x: f64, y: f64) -> f6
     let y = y.clamp(0.0, (h - 1) as f64);
     let (x0, y0) = (x.floor() as usize, y.floor() as usize);
     let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
-    let (ax, ay) = (x - x0 as f64, y - y0 as f64);
+    bilinear(frame, w, (x0, x1, y0, y1), (x - x0 as f64, y - y0 as f64))
+}
+
+/// [`sample`] at a point at least a pixel inside the picture on every side, where its clamps
+/// change nothing: the same reads and arithmetic without them.
+fn sample_inside(frame: &[u8], w: usize, x: f64, y: f64) -> f64 {
+    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
+    bilinear(
+        frame,
+        w,
+        (x0, x0 + 1, y0, y0 + 1),
+        (x - x0 as f64, y - y0 as f64),
+    )
+}
+
+/// The pixels at columns x0, x1 and rows y0, y1 of `frame` (`w` wide) blended by the
+/// fractions (ax, ay) of the way from the first to the second.
+fn bilinear(
+    frame: &[u8],
+    w: usize,
+    (x0, x1, y0, y1): (usize, usize, usize, usize),
+    (ax, ay): (f64, f64),
+) -> f64 {
     let v = |xx: usize, yy: usize| f64::from(frame[yy * w + xx]);
     let top = v(x0, y0) * (1.0 - ax) + v(x1, y0) * ax;
     let bottom = v(x0, y1) * (1.0 - ax) + v(x1, y1) * ax;
-    top * (1.0 - ay) + bottom * ay
-}
-
-/// [`sample`] at a point at least a pixel inside the picture on every side: the same reads and
-/// arithmetic without the clamps (which change nothing there).
-fn sample_inside(frame: &[u8], w: usize, x: f64, y: f64) -> f64 {
-    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
-    let (ax, ay) = (x - x0 as f64, y - y0 as f64);
-    let v = |xx: usize, yy: usize| f64::from(frame[yy * w + xx]);
-    let top = v(x0, y0) * (1.0 - ax) + v(x0 + 1, y0) * ax;
-    let bottom = v(x0, y0 + 1) * (1.0 - ax) + v(x0 + 1, y0 + 1) * ax;
     top * (1.0 - ay) + bottom * ay
 }
 
