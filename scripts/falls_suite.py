@@ -15,7 +15,9 @@ constant (3/4) was set once, not tuned on them. The six in colour (a red or blue
 of skin in the shade, one ball of the hand's own colour) were drawn after the colour reading
 (`estimator/src/data/tinted.rs`) was written, to measure it; its one later change (the release
 read on the colour's part of the path alone) came from the shared ball at a coarser size, and
-left these rows as they were.
+left these rows as they were. Since the track's route, the release is the vertex of the
+constant acceleration the ball's track holds wherever the track sees it, through the bend that
+a tilted camera draws (`estimator/src/track/laws/acceleration.rs`).
 
 usage: falls_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
@@ -142,7 +144,9 @@ def main():
         err = g / G - 1
         grade = r["verdict"]["grade"]
         checks = ", ".join(x["check"] for x in r["verdict"]["reasons"]) or "–"
-        read = "colour" if d.get("colour") else "grey"
+        by_track = any("the vertex of the constant acceleration its track holds" in w
+                       for w in r.get("warnings", []))
+        read = "track" if by_track else "colour" if d.get("colour") else "grey"
         rows.append((name, rel, d.get("release"), read, d.get("crowded"), g, err, grade, checks))
         print(f"{name}: release {d.get('release')} g {g:.4f} ({100 * err:+.2f} %) {grade}",
               file=sys.stderr)
@@ -153,9 +157,11 @@ def main():
         "",
         "Rendered by numpy, not gen (see the script's docstring); `estimate --model free-fall` "
         "with a reference at rest and one in the fall, no trim. Release in frames (drawn: the "
-        "frame given); read by: the ball's grey difference, or its colour where that is less "
-        "crowded (`Descent::colour`); crowded: the share of the early frames where something "
-        "beside the ball is measured in that reading (`Descent::crowded`).",
+        "frame given); read by: the vertex of the constant acceleration the ball's track holds "
+        "(through its bend where the camera is tilted, `track::laws::acceleration`), else the "
+        "ball's grey difference, or its colour where that is less crowded "
+        "(`Descent::colour`); crowded: the share of the early frames where something beside "
+        "the ball is measured in the picture's reading (`Descent::crowded`).",
         "",
         "| scene | drawn release | release read | read by | crowded | g | error | grade | checks |",
         "|---|---|---|---|---|---|---|---|---|",

@@ -13,13 +13,13 @@ use serde::Serialize;
 
 /// Fewest frames of a descent whose bend is fitted (the bend and the release trade off on
 /// short ones).
-const MIN_FRAMES: usize = 24;
+pub(crate) const MIN_FRAMES: usize = 24;
 /// How much smaller than the plain parabola's the bent one's residuals must be to be kept
 /// (a path drawn without perspective fits both alike: one more parameter takes a few % off).
-const MIN_GAIN: f64 = 1.5;
+pub(crate) const MIN_GAIN: f64 = 1.5;
 /// The least the map's denominator may come to over the path against its most (no pole near
 /// the frame; the picture's scale changing at most tenfold along the path).
-const LEAST_DENOMINATOR: f64 = 0.3;
+pub(crate) const LEAST_DENOMINATOR: f64 = 0.3;
 
 /// A whole descent fitted: its release, and its bend where one shows.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -33,7 +33,8 @@ impl TrackRoute {
     /// ((seconds of the file's timeline, metres)) where no stick or plane scales it: where its
     /// chosen law is a constant acceleration that holds and at least two readings fall within
     /// its span, the readings' least-squares line against the object's distance along the
-    /// acceleration there gives the pixels a metre (`by_readings`). The readings are the
+    /// acceleration there gives the pixels a metre (`by_readings`; on a path seen in perspective,
+    /// at its vertex's scale, as its acceleration is). The readings are the
     /// latent's calibration too, so the two routes' accelerations are two measurements on one
     /// scale. As it was otherwise.
     pub fn with_readings(mut self, times: &[(f64, f64)]) -> TrackRoute {
@@ -47,10 +48,21 @@ impl TrackRoute {
         let (Some(first), Some(last)) = (at.first(), at.last()) else {
             return self;
         };
+        // Seen in perspective (a bend kept, `laws::acceleration`), the distance the readings
+        // give is the parabola's, ½a(t − r)², at the scale of its vertex r: the picture's own
+        // position is bent away from it.
+        let value = |name: &str| l.values.iter().find(|v| v.name == name).map(|v| v.value);
+        let straight = match (value("bend"), value("acceleration"), value("vertex")) {
+            (Some(_), Some(a), Some(r)) => Some((a, self.file_time(r))),
+            _ => None,
+        };
         let inside: Vec<(f64, f64)> = times
             .iter()
             .filter(|(t, _)| (first.0..=last.0).contains(t))
             .filter_map(|&(t, value)| {
+                if let Some((a, r)) = straight {
+                    return Some((0.5 * a * (t - r).powi(2), value));
+                }
                 // Through the three fitted samples about it: the law's parabola itself.
                 let k = at.windows(2).position(|w| (w[0].0..=w[1].0).contains(&t))?;
                 let k = k.min(at.len().checked_sub(3)?);
@@ -189,28 +201,37 @@ pub(crate) mod tests {
             .iter()
             .map(|s| 200.0 - 150.0 * s + 200.0 * s * s)
             .collect();
+        seen(t, x, y, 2)
+    }
+
+    /// The route of a track at times `t` (the file's a second later) through `x`, `y`, its
+    /// constant acceleration fitted from sample `first` on.
+    fn seen(t: Vec<f64>, x: Vec<f64>, y: Vec<f64>, first: usize) -> TrackRoute {
+        let n = t.len();
         let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
         let law = TrackLaw::ConstantAcceleration;
-        let f = law.fit(&t, &y, &xy, None).unwrap();
+        let f = law
+            .fit(&t[first..], &y[first..], &xy[first..], None)
+            .unwrap();
         let span = LawSpan {
             law,
             holds: true,
-            first_s: t[2],
-            last_s: t[19],
-            samples: 18,
+            first_s: t[first],
+            last_s: t[n - 1],
+            samples: n - first,
             values: f.values,
             halves: Vec::new(),
             rms_px: 0.0,
             si: Vec::new(),
             periods: None,
             curve: Vec::new(),
-            first: 2,
+            first,
         };
         TrackRoute {
             track: Track {
                 file_s: t.iter().map(|s| s + 1.0).collect(),
                 t,
-                quality: vec![1.0; 20],
+                quality: vec![1.0; n],
                 along: y.clone(),
                 x,
                 y,
@@ -218,7 +239,7 @@ pub(crate) mod tests {
                 noise: 0.1,
                 size: 6.0,
                 picture: (400, 300),
-                frames: 20,
+                frames: n,
                 threshold: 10.0,
                 on_plane: Vec::new(),
                 region: None,
@@ -291,5 +312,24 @@ pub(crate) mod tests {
         let r = tossed().with_stick(stick).with_readings(&typed);
         assert_eq!(r.by_readings, None);
         assert!((r.accelerating().unwrap().si[0].value - 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn readings_scale_a_fall_seen_in_perspective_at_its_vertex() {
+        // A fall from rest at 0.1 s at 2 m/s², 200 px a metre where it starts, drawn a quarter
+        // smaller by its end (p = 50 + 200·z/(1 + 0.5·z)): the readings' metres against the
+        // parabola straightened through the bend, not against the picture's bent positions.
+        let t: Vec<f64> = (6..40).map(|i| i as f64 / 60.0).collect();
+        let z = |s: f64| (s - 0.1f64).powi(2);
+        let y = t
+            .iter()
+            .map(|&s| 50.0 + 200.0 * z(s) / (1.0 + 0.5 * z(s)))
+            .collect();
+        let r = seen(t.clone(), vec![30.0; t.len()], y, 0);
+        assert!(r.laws[0].values.iter().any(|v| v.name == "bend"));
+        let typed: Vec<(f64, f64)> = [1.2, 1.4, 1.6].iter().map(|&f| (f, z(f - 1.0))).collect();
+        let r = r.with_readings(&typed);
+        let a = &r.accelerating().unwrap().si[0];
+        assert!((a.value - 2.0).abs() < 0.01, "{a:?}");
     }
 }
