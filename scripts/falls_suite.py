@@ -4,20 +4,21 @@ and estimated with no trim: where the release and the impact are read, and what 
 the ball does to g.
 
 A dark ball (or a light one on a dark striped wall) held until frame 30 (60 in the 120-fps
-scene), then falling 1.2 m to a floor and lying there; the hand that held it pulled up, pulled
+scene), then falling 1.2 m to a floor and lying there (or bouncing back up, two scenes); the hand that held it pulled up, pulled
 sideways, still beside it, two fingers opening beside and below it, or absent; some filmed by a
 camera tilted to the fall (rows below the rest = scale*h/(1 + tilt*h)), some with pixel noise.
 Each scene is written as NAME.mkv (ffv1, lossless) and run as README's users would:
 `estimate NAME.mkv --model free-fall --reference T0s=0,T2s=H2`, a reference at rest and one
-20 frames (at 60 fps) into the fall. The scenes were drawn to try a release read past the hand
-(dropped); the late release of the one without a hand showed the impact's frame, whose rule's
+20 frames (at 60 fps) into the fall, and again with no `--model` (unaided). The scenes were
+drawn to try a release read past the hand (dropped); the late release of the one without a hand showed the impact's frame, whose rule's
 constant (3/4) was set once, not tuned on them. The six in colour (a red or blue ball, a hand
 of skin in the shade, one ball of the hand's own colour) were drawn after the colour reading
 (`estimator/src/data/tinted.rs`) was written, to measure it; its one later change (the release
 read on the colour's part of the path alone) came from the shared ball at a coarser size, and
 left these rows as they were. Since the track's route, the release is the vertex of the
 constant acceleration the ball's track holds wherever the track sees it, through the bend that
-a tilted camera draws (`estimator/src/track/laws/acceleration.rs`).
+a tilted camera draws (`estimator/src/track/laws/acceleration.rs`); the two bouncing scenes
+were drawn after that, to measure the readings choosing the span (`track/read_at.rs`).
 
 usage: falls_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
@@ -57,6 +58,10 @@ SCENES = {
     "red ball, skin fingers opening, tilted, noise": dict(
         hand="open", tilt=0.3, noise=2, seed=5, w=80, h=240, scale=160, colour=RED, blur=0.5),
     "ball the hand's colour, fingers opening": dict(hand="open", colour=SKIN_BALL, blur=0.5),
+    # Bouncing on the floor (two seconds: the fall and three bounces).
+    "bouncing, no hand": dict(hand="none", bounce=0.6, n=150),
+    "bouncing, fingers opening, tilted, noise": dict(
+        hand="open", bounce=0.6, n=150, tilt=0.3, noise=2, seed=5, w=80, h=240, scale=160),
 }
 
 
@@ -78,8 +83,9 @@ def hand_blobs(hand, k, rel, opening, cx, top):
 
 def render(path, hand, fps=60, w=64, h=256, scale=190.0, radius=5.5, top=14.0, rel=30, n=100,
            wall="shade", ball=45, tilt=0.0, handv=120, noise=0.0, seed=0, opening=6, colour=None,
-           blur=0.0):
-    """Writes the scene to `path`; returns the references (T0s=0,T2s=H2)."""
+           blur=0.0, bounce=0.0):
+    """Writes the scene to `path`; returns the references (T0s=0,T2s=H2). With `bounce` (the
+    floor's restitution), the ball bounces back up from the floor instead of lying there."""
     rng = np.random.default_rng(seed)
     release = rel / fps
     ys, xs = np.mgrid[0:h, 0:w] + 0.5
@@ -87,6 +93,12 @@ def render(path, hand, fps=60, w=64, h=256, scale=190.0, radius=5.5, top=14.0, r
     def at(t):
         s = max(t - release, 0.0)
         fallen = min(G * s * s / 2, 1.2)
+        # Bounces: each flight from the floor leaves at `bounce` times the speed it came in.
+        hit, v = np.sqrt(2 * 1.2 / G), np.sqrt(2 * G * 1.2)
+        while bounce and s > hit and v > 0.5:
+            s, v = s - hit, bounce * v
+            hit = 2 * v / G
+            fallen = 1.2 - max(v * min(s, hit) - G * min(s, hit) ** 2 / 2, 0.0)
         return w / 2, top + scale * fallen / (1 + tilt * fallen)
 
     for k in range(n):
@@ -147,11 +159,28 @@ def main():
         by_track = any("the vertex of the constant acceleration its track holds" in w
                        for w in r.get("warnings", []))
         read = "track" if by_track else "colour" if d.get("colour") else "grey"
-        rows.append((name, rel, d.get("release"), read, d.get("crowded"), g, err, grade, checks))
-        print(f"{name}: release {d.get('release')} g {g:.4f} ({100 * err:+.2f} %) {grade}",
-              file=sys.stderr)
+        # Unaided: the same readings, no model named.
+        alone = os.path.join(a.out, f"alone{i}")
+        done = subprocess.run([a.estimate, video, "--reference", refs, "--out", alone,
+                               "--quiet"], capture_output=True)
+        unaided = ("refused", None, "–")
+        if done.returncode in (0, 1) and os.path.exists(os.path.join(alone, "report.json")):
+            u = json.load(open(os.path.join(alone, "report.json")))
+            gu = next((p["estimate"] for p in u["parameters"] if p["name"] == "g"), None)
+            unaided = (u["model"], gu, u["verdict"]["grade"])
+        rows.append((name, rel, d.get("release"), read, d.get("crowded"), g, err, grade, checks,
+                     unaided))
+        print(f"{name}: release {d.get('release')} g {g:.4f} ({100 * err:+.2f} %) {grade}; "
+              f"unaided {unaided}", file=sys.stderr)
     within = sum(abs(r[6]) <= TOLERANCE for r in rows)
     wrong_ok = sum(abs(r[6]) > TOLERANCE and r[7] == "ok" for r in rows)
+
+    def right(unaided):
+        model, g, _ = unaided
+        return model == "free-fall" and g is not None and abs(g / G - 1) <= TOLERANCE
+
+    alone_right = sum(right(r[9]) for r in rows)
+    alone_wrong_ok = sum(not right(r[9]) and r[9][2] == "ok" for r in rows)
     lines = [
         "# Falls from a hand (`scripts/falls_suite.py`)",
         "",
@@ -161,18 +190,23 @@ def main():
         "(through its bend where the camera is tilted, `track::laws::acceleration`), else the "
         "ball's grey difference, or its colour where that is less crowded "
         "(`Descent::colour`); crowded: the share of the early frames where something beside "
-        "the ball is measured in the picture's reading (`Descent::crowded`).",
+        "the ball is measured in the picture's reading (`Descent::crowded`). Unaided: the same "
+        "readings and no `--model`: the model chosen, its g and grade.",
         "",
-        "| scene | drawn release | release read | read by | crowded | g | error | grade | checks |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| scene | drawn release | release read | read by | crowded | g | error | grade | checks "
+        "| unaided: model | g | grade |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for name, rel, release, read, crowded, g, err, grade, checks in rows:
+    for name, rel, release, read, crowded, g, err, grade, checks, unaided in rows:
+        model, gu, grade_u = unaided
+        gu = "–" if gu is None else f"{gu:.4f} ({100 * (gu / G - 1):+.2f} %)"
         lines.append(f"| {name} | {rel} | {release:.2f} | {read} | {crowded:.2f} | {g:.4f} | "
-                     f"{100 * err:+.2f} % | {grade} | {checks} |")
+                     f"{100 * err:+.2f} % | {grade} | {checks} | {model} | {gu} | {grade_u} |")
     lines += [
         "",
         f"Within {100 * TOLERANCE:.0f} %: {within} of {len(rows)}; outside it and graded ok: "
-        f"{wrong_ok}.",
+        f"{wrong_ok}. Unaided, free fall chosen and within {100 * TOLERANCE:.0f} %: "
+        f"{alone_right} of {len(rows)}; any other answer graded ok: {alone_wrong_ok}.",
         "",
         f"Made by `scripts/falls_suite.py` in {time.time() - started:.0f} s.",
     ]

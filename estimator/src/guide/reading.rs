@@ -28,7 +28,8 @@ fn on_video(req: &Request) -> bool {
 }
 
 /// The track of a video file, on the plane or the stick's scale where one is given, else on
-/// the readings' (`TrackRoute::with_readings`).
+/// the readings' (`TrackRoute::with_readings`), its law's span one the readings lie in
+/// (`TrackRoute::through_readings`).
 fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
     if !on_video(req) {
         return None;
@@ -40,7 +41,9 @@ fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
         Ok(route) => route.map(|r| match (req.calibration.plane, req.calibration.stick) {
             (Some(p), _) => r.on_plane(p),
             (None, Some(s)) => r.with_stick(s),
-            (None, None) => r.with_readings(&req.calibration.times),
+            (None, None) => r
+                .through_readings(&req.calibration.times)
+                .with_readings(&req.calibration.times),
         }),
         Err(e) => {
             warnings.push(format!("the object's track could not be read: {e}"));

@@ -57,23 +57,7 @@ fn spans(
     // Each law on a thread of the pool (in the order of `laws`).
     let laws = laws
         .par_iter()
-        .filter_map(|&law| {
-            let s = longest(&samples, law, least_window(law, t.len()), sigma)?;
-            Some(LawSpan {
-                halves: segment::halves(&samples, law, &s),
-                law,
-                holds: s.holds,
-                first_s: t[s.first],
-                last_s: t[s.last - 1],
-                samples: s.last - s.first,
-                rms_px: s.fitted.rms(),
-                si: Vec::new(),
-                periods: s.fitted.periods,
-                values: s.fitted.values,
-                curve: s.fitted.curve,
-                first: s.first,
-            })
-        })
+        .filter_map(|&law| span(&samples, law, sigma, &[]))
         .collect::<Vec<_>>();
     let refit = |law: TrackLaw, a: usize, b: usize| samples.fit(law, a, b, None).map(|f| f.rms());
     Fitted {
@@ -83,6 +67,41 @@ fn spans(
         noise: sigma,
         laws,
     }
+}
+
+/// The span where `law` holds on `samples` (noise `sigma`), grown from the window it explains
+/// best, of those that hold one of the samples `through` where any are named.
+fn span(samples: &Samples, law: TrackLaw, sigma: f64, through: &[usize]) -> Option<LawSpan> {
+    let t = samples.t;
+    let s = longest(samples, law, least_window(law, t.len()), sigma, through)?;
+    Some(LawSpan {
+        halves: segment::halves(samples, law, &s),
+        law,
+        holds: s.holds,
+        first_s: t[s.first],
+        last_s: t[s.last - 1],
+        samples: s.last - s.first,
+        rms_px: s.fitted.rms(),
+        si: Vec::new(),
+        periods: s.fitted.periods,
+        values: s.fitted.values,
+        curve: s.fitted.curve,
+        first: s.first,
+    })
+}
+
+/// `law`'s span on the positions `xy` (and `along` them, with `noise`) at times `t`, grown from
+/// a window that holds one of the samples `through` (where a user read the motion).
+pub(super) fn through(
+    t: &[f64],
+    along: &[f64],
+    xy: &[(f64, f64)],
+    law: TrackLaw,
+    noise: f64,
+    through: &[usize],
+) -> Option<LawSpan> {
+    let samples = Samples { t, u: along, xy };
+    span(&samples, law, noise, through)
 }
 
 /// The positions along the path's principal direction (from its mean), and that direction.

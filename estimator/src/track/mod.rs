@@ -23,6 +23,7 @@ pub(crate) mod metres;
 mod patch;
 mod plane;
 mod pyramid;
+mod read_at;
 mod reading;
 mod rod;
 mod route;

@@ -101,8 +101,16 @@ pub fn halves(s: &Samples, law: TrackLaw, span: &Span) -> Vec<Vec<Value>> {
 /// The longest span where `law` explains `s` within `noise`: the window of `least` samples whose
 /// motion it explains best, grown at either end (by halves, eighths, then single samples) while the
 /// span's residuals stay within [`SPREADS`] noise and each sample added within
-/// [`POINT_SPREADS`]. `None` where the track is shorter than `least` or the law fits no window.
-pub fn longest(s: &Samples, law: TrackLaw, least: usize, noise: f64) -> Option<Span> {
+/// [`POINT_SPREADS`]; where samples are named `through` (a user's readings), of the windows
+/// that hold one of them. `None` where the track is shorter than `least` or the law fits no
+/// window.
+pub fn longest(
+    s: &Samples,
+    law: TrackLaw,
+    least: usize,
+    noise: f64,
+    through: &[usize],
+) -> Option<Span> {
     let n = s.t.len();
     if n < least || least < 2 {
         return None;
@@ -110,6 +118,11 @@ pub fn longest(s: &Samples, law: TrackLaw, least: usize, noise: f64) -> Option<S
     let step = (least / 3).max(1);
     let mut starts: Vec<usize> = (0..=n - least).step_by(step).collect();
     starts.push(n - least);
+    if !through.is_empty() {
+        starts = (0..=n - least)
+            .filter(|i| through.iter().any(|j| (*i..i + least).contains(j)))
+            .collect();
+    }
     // The seed: the window whose motion the law explains best (least residual for its spread;
     // a still stretch explains nothing).
     let (mut first, mut last) = starts
@@ -209,7 +222,7 @@ mod tests {
         let sigma = noise(u).unwrap();
         (
             sigma,
-            longest(&s, TrackLaw::Oscillation, 40, sigma).unwrap(),
+            longest(&s, TrackLaw::Oscillation, 40, sigma, &[]).unwrap(),
         )
     }
 
