@@ -33,8 +33,9 @@ impl TrackRoute {
     /// ((seconds of the file's timeline, metres)) where no stick or plane scales it: where its
     /// chosen law is a constant acceleration that holds and at least two readings fall within
     /// its span, the readings' least-squares line against the object's distance along the
-    /// acceleration there gives the pixels a metre (`by_readings`; on a path seen in perspective,
-    /// at its vertex's scale, as its acceleration is). The readings are the
+    /// acceleration there (the law's, from its vertex) gives the pixels a metre (`by_readings`; on
+    /// a path seen in perspective, at its vertex's scale, as its acceleration is), and readings
+    /// at rest before a release the track puts before its span count too. The readings are the
     /// latent's calibration too, so the two routes' accelerations are two measurements on one
     /// scale. As it was otherwise.
     pub fn with_readings(mut self, times: &[(f64, f64)]) -> TrackRoute {
@@ -48,36 +49,24 @@ impl TrackRoute {
         let (Some(first), Some(last)) = (at.first(), at.last()) else {
             return self;
         };
-        // Seen in perspective (a bend kept, `laws::acceleration`), the distance the readings
-        // give is the parabola's, ½a(t − r)², at the scale of its vertex r: the picture's own
-        // position is bent away from it.
+        // The distance a reading gives is the law's own, ½a(t − r)² from its vertex r: seen in
+        // perspective (a bend kept, `laws::acceleration`), at the scale of the vertex, the
+        // picture's own positions bent away from it. With the vertex before the span (nothing
+        // seen rising to it: a release from rest), a reading before the vertex is at rest there.
         let value = |name: &str| l.values.iter().find(|v| v.name == name).map(|v| v.value);
-        let straight = match (value("bend"), value("acceleration"), value("vertex")) {
-            (Some(_), Some(a), Some(r)) => Some((a, self.file_time(r))),
-            _ => None,
+        let (Some(a), Some(r)) = (value("acceleration"), value("vertex")) else {
+            return self;
         };
+        let r = self.file_time(r);
+        let rest = r <= first.0;
         let inside: Vec<(f64, f64)> = times
             .iter()
-            .filter(|(t, _)| (first.0..=last.0).contains(t))
-            .filter_map(|&(t, value)| {
-                if let Some((a, r)) = straight {
-                    return Some((0.5 * a * (t - r).powi(2), value));
-                }
-                // Through the three fitted samples about it: the law's parabola itself.
-                let k = at.windows(2).position(|w| (w[0].0..=w[1].0).contains(&t))?;
-                let k = k.min(at.len().checked_sub(3)?);
-                let p = &at[k..k + 3];
-                let px = (0..3)
-                    .map(|i| {
-                        let others = (0..3).filter(|&j| j != i);
-                        p[i].1
-                            * others
-                                .map(|j| (t - p[j].0) / (p[i].0 - p[j].0))
-                                .product::<f64>()
-                    })
-                    .sum::<f64>();
-                px.is_finite().then_some((px, value))
+            .filter(|(t, _)| (first.0..=last.0).contains(t) || (rest && *t < first.0))
+            .map(|&(t, value)| {
+                let from = if rest { (t - r).max(0.0) } else { t - r };
+                (0.5 * a * from * from, value)
             })
+            .filter(|p| p.0.is_finite())
             .collect();
         if inside.len() < 2 {
             return self;

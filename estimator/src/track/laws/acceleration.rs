@@ -12,7 +12,9 @@ use crate::data::perspective::{LEAST_DENOMINATOR, MIN_FRAMES, MIN_GAIN};
 
 /// The constant acceleration fitted to the picture positions `xy` at times `t`: its size (px/s²
 /// of the displayed frame) and direction.
-pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
+/// Where `near` is the shape of a bent fit (its bend and vertex, `Fitted::shape`) and the span
+/// is too short to fit a bend of its own (a half of a bent span), the bend is held at `near`'s.
+pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>) -> Option<Fitted> {
     let n = t.len();
     if n < 6 {
         return None;
@@ -68,14 +70,31 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
         },
         unit: "deg",
     };
-    if a > 0.0 && n >= MIN_FRAMES {
-        let along: Vec<f64> = (0..n).map(|i| x[i] * dx + y[i] * dy).collect();
-        let plain: Vec<f64> = (0..n).map(|i| along[i] - curve[i]).collect();
-        if let Some(mut bent) = bent(t, &along, vertex, &plain) {
-            bent.values.insert(1, direction);
+    let held = near.filter(|s| s[0] != 0.0 && n < MIN_FRAMES);
+    // A held bend starts from the vertex it was found with, and the later part of a path bent
+    // hard may slow in the picture, its plain acceleration pointing back: both ways are tried.
+    let (from, ways) = match held {
+        Some(s) => (s[1], &[1.0, -1.0][..]),
+        None => (vertex, &[1.0][..]),
+    };
+    for &way in ways
+        .iter()
+        .filter(|_| a > 0.0 && (n >= MIN_FRAMES || held.is_some()))
+    {
+        let (ex, ey) = (way * dx, way * dy);
+        let along: Vec<f64> = (0..n).map(|i| x[i] * ex + y[i] * ey).collect();
+        let plain: Vec<f64> = (0..n).map(|i| way * (along[i] * way - curve[i])).collect();
+        if let Some(mut bent) = bent(t, &along, (from, &plain), held.map(|s| s[0])) {
+            bent.values.insert(
+                1,
+                Value {
+                    value: ey.atan2(ex).to_degrees(),
+                    ..direction
+                },
+            );
             // Across the acceleration, the plain fit's residuals.
             bent.residuals
-                .extend((0..n).map(|i| ry[i] * dx - rx[i] * dy));
+                .extend((0..n).map(|i| ry[i] * ex - rx[i] * ey));
             return Some(bent);
         }
     }
@@ -105,13 +124,15 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)]) -> Option<Fitted> {
 }
 
 /// The path `along` the acceleration at times `t` fitted as a parabola seen in perspective,
-/// c + s·v/(1 + b·v) with v = (t − r)², from the plain parabola's vertex `r0` (its residuals
-/// `plain`): its acceleration at the vertex (2s), vertex and bend (the picture's scale where
-/// the path is farthest from its vertex against at it, less one, in per cent), with the fitted
-/// path and its residuals along. `None` where it fits no better than [`MIN_GAIN`] times the plain one, or
-/// only with a pole near the span (the scale changing more than the denominator allows).
-fn bent(t: &[f64], along: &[f64], r0: f64, plain: &[f64]) -> Option<Fitted> {
+/// c + s·v/(1 + b·v) with v = (t − r)², from a vertex and the plain parabola's residuals
+/// (`plain`), or with its bend `held`: its acceleration at the vertex (2s), vertex and bend (the
+/// picture's scale where the path is farthest from its vertex against at it, less one, in per
+/// cent), with the fitted path and its residuals along. `None` where a bend of its own fits no
+/// better than [`MIN_GAIN`] times the plain parabola, or only with a pole near the span (the
+/// scale changing more than the denominator allows).
+fn bent(t: &[f64], along: &[f64], plain: (f64, &[f64]), held: Option<f64>) -> Option<Fitted> {
     let n = t.len();
+    let (r0, plain) = plain;
     let rms = |r: &[f64]| (sum_sq(r) / r.len() as f64).sqrt();
     let farthest = |r: f64| t.iter().map(|s| (s - r).powi(2)).fold(0.0, f64::max);
     // For a vertex `r` and bend `b`: the weights v/(1 + b·v), or none near a pole.
@@ -131,41 +152,59 @@ fn bent(t: &[f64], along: &[f64], r0: f64, plain: &[f64]) -> Option<Fitted> {
     let ones = vec![1.0; n];
     let solved = |p: &[f64]| linear(&[ones.clone(), weights(p[0], p[1])?], along);
     let residual = |p: &[f64]| solved(p).map(|(_, r)| r);
-    let big_v = farthest(r0).max(f64::MIN_POSITIVE);
-    let (p, r) = [-0.5, 0.0, 0.5]
-        .iter()
-        .filter_map(|bv| least_squares(&[r0, bv / big_v], &residual))
-        .min_by(|a, b| sum_sq(&a.1).total_cmp(&sum_sq(&b.1)))?;
+    let p = match held {
+        Some(b) => {
+            let (p, _) = least_squares(&[r0], &|p: &[f64]| residual(&[p[0], b]))?;
+            [p[0], b]
+        }
+        None => {
+            let big_v = farthest(r0).max(f64::MIN_POSITIVE);
+            let (p, r) = [-0.5, 0.0, 0.5]
+                .iter()
+                .filter_map(|bv| least_squares(&[r0, bv / big_v], &residual))
+                .min_by(|a, b| sum_sq(&a.1).total_cmp(&sum_sq(&b.1)))?;
+            if p[1] == 0.0 || rms(&r) * MIN_GAIN > rms(plain) {
+                return None;
+            }
+            [p[0], p[1]]
+        }
+    };
     let (cs, _) = solved(&p)?;
-    let [vertex, b] = [p[0], p[1]];
+    let [vertex, b] = p;
     let (c, s) = (cs[0], cs[1]);
-    if b == 0.0 || s <= 0.0 || rms(&r) * MIN_GAIN > rms(plain) {
+    if s <= 0.0 {
         return None;
     }
-    // Standard errors from the whole model's Jacobian (r, b, c, s).
+    // Standard errors from the whole model's Jacobian (r, b, c, s; b left out where held).
     let whole = |q: &[f64]| -> Option<Vec<f64>> {
-        let w = weights(q[0], q[1])?;
-        Some(
-            along
-                .iter()
-                .zip(&w)
-                .map(|(p, w)| p - q[2] - q[3] * w)
-                .collect(),
-        )
+        let (r, b, c, s) = match held {
+            Some(b) => (q[0], b, q[1], q[2]),
+            None => (q[0], q[1], q[2], q[3]),
+        };
+        let w = weights(r, b)?;
+        Some(along.iter().zip(&w).map(|(p, w)| p - c - s * w).collect())
     };
-    let q = [vertex, b, c, s];
+    let q = match held {
+        Some(_) => vec![vertex, c, s],
+        None => vec![vertex, b, c, s],
+    };
+    let k = q.len();
     let residuals = whole(&q)?;
     let cov = covariance(&jacobian(&q, &residuals, &whole)?, &residuals)?;
-    let err = |k: usize| cov[k * 4 + k].max(0.0).sqrt();
+    let err = |i: usize| cov[i * k + i].max(0.0).sqrt();
     // In per cent, as the descent's perspective is named.
     let scale = |b: f64| 100.0 * (1.0 / (1.0 + b * farthest(vertex)).powi(2) - 1.0);
+    let bend_err = match held {
+        Some(_) => 0.0,
+        None => (scale(b + err(1)) - scale(b)).abs(),
+    };
     let curve = along.iter().zip(&residuals).map(|(p, e)| p - e).collect();
     Some(Fitted {
         values: vec![
             Value {
                 name: "acceleration",
                 value: 2.0 * s,
-                error: 2.0 * err(3),
+                error: 2.0 * err(k - 1),
                 unit: "px/s^2",
             },
             Value {
@@ -177,14 +216,14 @@ fn bent(t: &[f64], along: &[f64], r0: f64, plain: &[f64]) -> Option<Fitted> {
             Value {
                 name: "bend",
                 value: scale(b),
-                error: (scale(b + err(1)) - scale(b)).abs(),
+                error: bend_err,
                 unit: "%",
             },
         ],
         residuals,
         curve,
         periods: None,
-        shape: [0.0, 0.0],
+        shape: [b, vertex],
     })
 }
 
@@ -199,7 +238,7 @@ mod tests {
             .iter()
             .map(|&s| (10.0 + 60.0 * s, 200.0 - 150.0 * s + 0.5 * 400.0 * s * s))
             .collect();
-        let f = acceleration(&t, &xy).unwrap();
+        let f = acceleration(&t, &xy, None).unwrap();
         let a = f.value("acceleration").unwrap();
         assert!((a.value - 400.0).abs() < 1e-6, "{a:?}");
         assert!((f.value("direction").unwrap().value - 90.0).abs() < 1e-6);
@@ -229,7 +268,7 @@ mod tests {
     #[test]
     fn a_fall_seen_in_perspective_gives_its_release_through_the_bend() {
         let (t, xy) = foreshortened(0.01);
-        let f = acceleration(&t, &xy).unwrap();
+        let f = acceleration(&t, &xy, None).unwrap();
         let vertex = f.value("vertex").unwrap().value;
         assert!((vertex - 0.5).abs() < 0.003, "{f:?}");
         assert!(
@@ -252,9 +291,29 @@ mod tests {
     }
 
     #[test]
+    fn a_half_of_a_bent_fall_holds_its_bend() {
+        let (t, xy) = foreshortened(0.01);
+        let whole = acceleration(&t, &xy, None).unwrap();
+        let a = whole.value("acceleration").unwrap().value;
+        // Each half, too short for a bend of its own, read through the whole's: the same
+        // acceleration at the vertex, where a plain parabola on the later half gives far less.
+        for (from, to) in [(0, 18), (18, 36)] {
+            let half = acceleration(&t[from..to], &xy[from..to], Some(whole.shape)).unwrap();
+            let h = half.value("acceleration").unwrap().value;
+            assert!((h / a - 1.0).abs() < 0.02, "{half:?}");
+            assert_eq!(half.shape[0], whole.shape[0]);
+        }
+        let plain = acceleration(&t[18..36], &xy[18..36], None).unwrap();
+        assert!(
+            plain.value("acceleration").unwrap().value < 0.5 * a,
+            "{plain:?}"
+        );
+    }
+
+    #[test]
     fn a_fall_seen_square_on_keeps_the_plain_parabola() {
         let (t, xy) = foreshortened(0.0);
-        let f = acceleration(&t, &xy).unwrap();
+        let f = acceleration(&t, &xy, None).unwrap();
         assert_eq!(f.value("bend"), None, "{f:?}");
         assert!(
             (f.value("vertex").unwrap().value - 0.5).abs() < 0.003,

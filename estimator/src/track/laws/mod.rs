@@ -90,7 +90,7 @@ impl TrackLaw {
     ) -> Option<Fitted> {
         match self {
             TrackLaw::Oscillation => oscillation(t, u, near.map(|f| f.shape)),
-            TrackLaw::ConstantAcceleration => acceleration(t, xy),
+            TrackLaw::ConstantAcceleration => acceleration(t, xy, near.map(|f| f.shape)),
             TrackLaw::Swing => swing(t, u, xy, near.map(|f| f.shape)),
             TrackLaw::AngularOscillation => angular(t, u, xy, near.map(|f| f.shape)),
             TrackLaw::Decay => decay(t, u, near.map(|f| f.shape)),
@@ -131,7 +131,8 @@ pub struct Fitted {
     pub curve: Vec<f64>,
     /// How many periods the span holds (the oscillation), for the law to be seen at all.
     pub periods: Option<f64>,
-    /// The nonlinear parameters found (the oscillation's ζ and ω), to start a nearby fit.
+    /// The nonlinear parameters found (the oscillation's ζ and ω; the acceleration's bend, 0
+    /// for none, and vertex), to start a nearby fit.
     pub shape: [f64; 2],
 }
 
