@@ -74,10 +74,28 @@ fn si_acceleration(l: &LawSpan) -> Option<Value> {
 /// later half disagrees by the consistency check's own rule (`consistency::apart`, each half's
 /// error at least the whole span's): the picture's scale changes along the path (a camera tilted
 /// to the motion draws its far part smaller, and a fall's later, faster part then accelerates
-/// less in the picture), which one stick cannot carry; doubtful, naming `--plane`.
+/// less in the picture), which one stick cannot carry; doubtful, naming `--plane`. Where the
+/// law was read through a bend, the bend's change of scale over the span, beyond [`APART`].
 fn one_stick(check: &'static str, route: &TrackRoute, l: &LawSpan) -> Option<Reason> {
     if route.plane.is_some() || route.stick.is_none() {
         return None;
+    }
+    // Where the law itself is read through a perspective bend (`track::laws::acceleration`),
+    // its halves agree by construction: the bend says how far the scale changes.
+    if let Some(bend) = l.values.iter().find(|v| v.name == "bend") {
+        let change = bend.value.abs() / 100.0;
+        return (change > APART).then(|| {
+            let detail = format!(
+                "the object's track is seen in perspective: the picture's scale changes by {} % \
+                 along its span ({}–{} s, the bend its constant acceleration is read through), \
+                 which one stick cannot carry; give --plane with four corners of a rectangle in \
+                 the plane of the motion",
+                approx(bend.value),
+                approx(l.first_s),
+                approx(l.last_s)
+            );
+            Reason::new(check, Grade::Doubtful, detail).measured(change, APART)
+        });
     }
     let of = |values: &[Value]| values.iter().find(|v| v.name == "acceleration").cloned();
     let [first, second] = l.halves.as_slice() else {
