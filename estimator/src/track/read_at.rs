@@ -1,21 +1,29 @@
 //! Where the user read the motion: a `--reference` reading's time lies where the law holds, so
-//! where the track's chosen law holds more than once (a ball's drop, then each bounce's arc), the
-//! span kept is one the readings lie in, not the longest (`TrackRoute::through_readings`).
+//! where the track's constant acceleration holds more than once (a ball's drop, then each
+//! bounce's arc), the span kept is one the readings lie in, not the longest
+//! (`TrackRoute::through_readings`).
 
+use super::laws::TrackLaw;
 use super::{fit, Reading, TrackRoute};
 
 impl TrackRoute {
-    /// The route with its chosen law's span grown from a window that holds one of the readings
-    /// `times` ((seconds of the file's timeline, value)), where no reading lies in the span
-    /// (give or take a sample: a reading at rest just before a release) and one lies within the
-    /// track, and the law holds there too; as it was otherwise. Positions in the picture only:
-    /// not a brightness, not the plane of a rectangle.
+    /// The route with its chosen law's span, a constant acceleration's, grown from a window that
+    /// holds one of the readings `times` ((seconds of the file's timeline, value)), where no
+    /// reading lies in the span (give or take a sample: a reading at rest just before a
+    /// release) and one lies within the track, and the law holds there too; as it was
+    /// otherwise. Positions in the picture only: not a brightness, not the plane of a rectangle.
     pub fn through_readings(mut self, times: &[(f64, f64)]) -> TrackRoute {
         let t = &self.track;
         if t.reading == Reading::Brightness || !t.on_plane.is_empty() || t.file_s.len() < 2 {
             return self;
         }
-        let Some(l) = self.chosen_span() else {
+        // A constant acceleration holds piecewise (a drop, then each bounce); an oscillation
+        // or a swing holds over one stretch, which a reading taken elsewhere (the mass held
+        // still before it was let go) only calibrates.
+        let Some(l) = self
+            .chosen_span()
+            .filter(|l| l.law == TrackLaw::ConstantAcceleration)
+        else {
             return self;
         };
         let f = &t.file_s;
