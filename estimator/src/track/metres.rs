@@ -45,10 +45,9 @@ impl TrackRoute {
         let Some(l) = self.accelerating() else {
             return self;
         };
-        let at = self.along_at(l, (l.first..l.first + l.samples).collect(), 1.0);
-        let (Some(first), Some(last)) = (at.first(), at.last()) else {
-            return self;
-        };
+        // The span on the file's timeline.
+        let f = &self.track.file_s;
+        let (first, last) = (f[l.first], f[l.first + l.samples - 1]);
         // The distance a reading gives is the law's own, ½a(t − r)² from its vertex r: seen in
         // perspective (a bend kept, `laws::acceleration`), at the scale of the vertex, the
         // picture's own positions bent away from it. With the vertex before the span (nothing
@@ -58,10 +57,10 @@ impl TrackRoute {
             return self;
         };
         let r = self.file_time(r);
-        let rest = r <= first.0;
+        let rest = r <= first;
         let inside: Vec<(f64, f64)> = times
             .iter()
-            .filter(|(t, _)| (first.0..=last.0).contains(t) || (rest && *t < first.0))
+            .filter(|(t, _)| (first..=last).contains(t) || (rest && *t < first))
             .map(|&(t, value)| {
                 let from = if rest { (t - r).max(0.0) } else { t - r };
                 (0.5 * a * from * from, value)

@@ -115,14 +115,16 @@ pub fn longest(
     if n < least || least < 2 {
         return None;
     }
-    let step = (least / 3).max(1);
-    let mut starts: Vec<usize> = (0..=n - least).step_by(step).collect();
-    starts.push(n - least);
-    if !through.is_empty() {
-        starts = (0..=n - least)
+    let starts: Vec<usize> = if through.is_empty() {
+        let step = (least / 3).max(1);
+        let mut every = (0..=n - least).step_by(step).collect::<Vec<_>>();
+        every.push(n - least);
+        every
+    } else {
+        (0..=n - least)
             .filter(|i| through.iter().any(|j| (*i..i + least).contains(j)))
-            .collect();
-    }
+            .collect()
+    };
     // The seed: the window whose motion the law explains best (least residual for its spread;
     // a still stretch explains nothing).
     let (mut first, mut last) = starts

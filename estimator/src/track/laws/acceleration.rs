@@ -77,25 +77,25 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>)
         Some(s) => (s[1], &[1.0, -1.0][..]),
         None => (vertex, &[1.0][..]),
     };
-    for &way in ways
-        .iter()
-        .filter(|_| a > 0.0 && (n >= MIN_FRAMES || held.is_some()))
-    {
-        let (ex, ey) = (way * dx, way * dy);
-        let along: Vec<f64> = (0..n).map(|i| x[i] * ex + y[i] * ey).collect();
-        let plain: Vec<f64> = (0..n).map(|i| way * (along[i] * way - curve[i])).collect();
-        if let Some(mut bent) = bent(t, &along, (from, &plain), held.map(|s| s[0])) {
-            bent.values.insert(
-                1,
-                Value {
-                    value: ey.atan2(ex).to_degrees(),
-                    ..direction
-                },
-            );
-            // Across the acceleration, the plain fit's residuals.
-            bent.residuals
-                .extend((0..n).map(|i| ry[i] * ex - rx[i] * ey));
-            return Some(bent);
+    if a > 0.0 && (n >= MIN_FRAMES || held.is_some()) {
+        // The plain parabola's residuals along its acceleration (their size is either way's).
+        let plain: Vec<f64> = (0..n).map(|i| x[i] * dx + y[i] * dy - curve[i]).collect();
+        for &way in ways {
+            let (ex, ey) = (way * dx, way * dy);
+            let along: Vec<f64> = (0..n).map(|i| x[i] * ex + y[i] * ey).collect();
+            if let Some(mut bent) = bent(t, &along, (from, &plain), held.map(|s| s[0])) {
+                bent.values.insert(
+                    1,
+                    Value {
+                        value: ey.atan2(ex).to_degrees(),
+                        ..direction
+                    },
+                );
+                // Across the acceleration, the plain fit's residuals.
+                bent.residuals
+                    .extend((0..n).map(|i| ry[i] * ex - rx[i] * ey));
+                return Some(bent);
+            }
         }
     }
     let mut residuals = rx;
