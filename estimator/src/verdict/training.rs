@@ -1,9 +1,10 @@
 //! Training itself: a latent that collapsed, parameters that never left their start, a run
 //! that never improved after its first epochs or was still improving when it was stopped, and
-//! a loss that became NaN.
+//! a loss that became NaN. A run stopped while still improving is a note where the object's
+//! track corroborates its rate (`routes::corroborated`).
 
 use super::law::CLEAN_UNEXPLAINED;
-use super::{Check, Grade, Reason};
+use super::{routes, Check, Grade, Reason};
 use crate::analysis::Run;
 use crate::physics::Settles;
 use crate::train::{EarlierAnswer, StopReason};
@@ -118,22 +119,28 @@ impl Check for Training {
         match r.stop {
             StopReason::MaxEpochs => {
                 let moved = r.earlier.as_ref().map(|e| moved_since(r, e));
+                // Where the track corroborates the rate, the latent's values still moving is
+                // its encoder's (`routes::corroborated`); a damping the routes disagree on is
+                // `routes`' to doubt.
                 match moved {
                     Some((change, _)) if change <= 1.0 => {}
-                    _ => out.push(Reason::new(
-                        name,
-                        Grade::Doubtful,
-                        format!(
-                            "the validation error was still improving after --epochs {}{}: the \
-                             answer may not have converged; raise --epochs",
-                            r.config.epochs,
-                            moved.map_or(String::new(), |(change, epoch)| format!(
-                                ", and the answer moved by {} times the model's convergence \
-                                 band since epoch {epoch}",
-                                approx(change)
-                            ))
-                        ),
-                    )),
+                    _ => out.push(
+                        Reason::new(
+                            name,
+                            Grade::Doubtful,
+                            format!(
+                                "the validation error was still improving after --epochs {}{}: \
+                                 the answer may not have converged; raise --epochs",
+                                r.config.epochs,
+                                moved.map_or(String::new(), |(change, epoch)| format!(
+                                    ", and the answer moved by {} times the model's convergence \
+                                     band since epoch {epoch}",
+                                    approx(change)
+                                ))
+                            ),
+                        )
+                        .unless(routes::corroborated(r)),
+                    ),
                 }
             }
             StopReason::NonFiniteLoss { epoch } => out.push(Reason::new(

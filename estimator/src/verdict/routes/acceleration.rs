@@ -2,7 +2,7 @@
 //! on a plane, or by the `--reference` readings along its line): the latent's acceleration in SI against the track's, a plane's perspective
 //! named, and by one stick, a track whose own halves disagree.
 
-use super::{separation, APART, ERRORS};
+use super::{separation, with_error, APART, ERRORS};
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
@@ -138,12 +138,11 @@ fn apart(
     }
     let detail = format!(
         "the object's track, in metres {by}, accelerates at {} ± {} m/s^2; the latent's {} is \
-         {} ± {} m/s^2 ({} {}): one of the two is wrong; look at the track in report.html",
+         {} m/s^2 ({} {}): one of the two is wrong; look at the track in report.html",
         approx(a.value),
         approx(a.error),
         p.name,
-        approx(p.estimate),
-        approx(p.standard_error.unwrap_or(f64::NAN)),
+        with_error(p),
         approx(measured),
         if limit == ERRORS {
             "joint standard errors apart"

@@ -2,8 +2,9 @@
 //! agree, and its whole rate is the latent's within the routes' limit. The law and the rate are
 //! then measured twice, once with no encoder between the picture and the law; what the latent's
 //! own evidence finds against it at the doubtful tier (its halves' gains, a noisy law fit, a
-//! share of the picture it leaves to a shaking camera or a hand) is its encoder's, not the
-//! answer's, and the checks that find it say so in a note (`Grade::Ok`) instead of doubting.
+//! share of the picture it leaves to a shaking camera or a hand, values still moving when
+//! training stopped) is its encoder's, not the answer's, and the checks that find it say so in
+//! a note (`Grade::Ok`) instead of doubting.
 
 use super::separation;
 use crate::analysis::parameters::ParameterResult;

@@ -102,6 +102,14 @@ impl Check for Routes {
     }
 }
 
+/// The latent's value `p` with its standard error, or saying it has none.
+pub(super) fn with_error(p: &ParameterResult) -> String {
+    match p.standard_error {
+        Some(se) => format!("{} ± {}", approx(p.estimate), approx(se)),
+        None => format!("{} (no standard error)", approx(p.estimate)),
+    }
+}
+
 /// Where the latent's `p` and the track's `v` (the same value) lie further apart than
 /// `separation` allows: doubtful, naming both, and the answer: the track's, or both weighed
 /// where they agree within the track's error `weighed` (its halves' included: `guide::combine`).
@@ -141,22 +149,33 @@ fn differs(
             v.unit
         ),
     };
+    // The latent's value with its error, and how far apart the two lie: in joint standard
+    // errors, or (where the latent's has none: `separation`) as a share alone.
+    let latent = with_error(p);
+    let apart = match p.standard_error {
+        Some(_) => format!(
+            "{} % away ({} joint standard errors)",
+            approx(100.0 * share),
+            approx(if joint > 0.0 {
+                gap / joint
+            } else {
+                f64::INFINITY
+            })
+        ),
+        None => format!(
+            "{} % away (over {} %)",
+            approx(100.0 * share),
+            approx(100.0 * APART)
+        ),
+    };
     Some(
         Reason::new(
             check,
             Grade::Doubtful,
             format!(
-                "{track}{of_track}; the latent's {} is {} ± {}, {} % away ({} joint standard \
-                 errors): one of the two is wrong; {answer}; look at the track in report.html",
+                "{track}{of_track}; the latent's {} is {latent}, {apart}: one of the two is \
+                 wrong; {answer}; look at the track in report.html",
                 p.name,
-                approx(p.estimate),
-                approx(p.standard_error.unwrap_or(f64::NAN)),
-                approx(100.0 * share),
-                approx(if joint > 0.0 {
-                    gap / joint
-                } else {
-                    f64::INFINITY
-                })
             ),
         )
         .measured(measured, limit),
@@ -193,5 +212,21 @@ mod tests {
         // Apart by the fit's error, together by the halves': both weighed, and said so.
         let r = differs("routes", &p, &v, "the track", 0.05).unwrap();
         assert!(r.detail.contains("weighs both"), "{}", r.detail);
+    }
+
+    #[test]
+    fn a_latent_value_without_an_error_is_named_by_its_share_not_a_nan() {
+        // A 10-fps swing's: the latent's damping 0.00125 with no error, the track's 0.187.
+        let p = ParameterResult::si("damping", 0.00125, "1/s", None);
+        let v = Value {
+            name: "damping",
+            value: 0.187,
+            error: 0.022,
+            unit: "1/s",
+        };
+        let r = differs("routes", &p, &v, "the track", 0.022).expect("99 % apart");
+        assert!(!r.detail.contains("NaN"), "{}", r.detail);
+        assert!(r.detail.contains("(no standard error)"), "{}", r.detail);
+        assert!(r.detail.contains("over 2 %"), "{}", r.detail);
     }
 }
