@@ -75,8 +75,9 @@ impl Kept {
 }
 
 /// Finds the descent in `decoded` (cut with `opts` from `input`; its release read by the
-/// object's colour where that is less crowded, `tinted`) and keeps only it where `--start` /
-/// `--end` do not say otherwise and a clip still fits, saying so in `warnings`.
+/// object's colour where that is less crowded, `tinted`, unless the track's replaces it) and
+/// keeps only it where `--start` / `--end` do not say otherwise and a clip still fits, saying
+/// so in `warnings`.
 pub fn trim_to_descent(
     input: &Path,
     decoded: &mut DecodedVideo,
@@ -89,6 +90,11 @@ pub fn trim_to_descent(
     let by_track = tracked.and_then(|t| t.release).is_some();
     let mut colour = None;
     let found = descent::find(&decoded.frames, decoded.size).map(|(grey, seen)| {
+        // The track's release replaces the picture's, read in colour or in grey alike
+        // (`tracked::descent`): the colour decode would be read for nothing.
+        if by_track {
+            return grey;
+        }
         match tinted::in_colour(input, decoded, opts, &grey, &seen) {
             Some(c) if c.crowded < grey.crowded => {
                 colour = Some(format!(
