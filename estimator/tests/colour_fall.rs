@@ -1,7 +1,8 @@
 //! A ball dropped from a hand, filmed in colour (its colour stored at half the resolution, as
 //! phones store it): where the hand, pulled up as it lets go, crowds the ball's start in grey,
-//! the ball's own colour reads its path and the release (`data::tinted`); a ball of the hand's
-//! colour is either read right or its answer flagged.
+//! the ball's own colour reads its path and the release (`data::tinted`), or the vertex of the
+//! law its track holds replaces that release; a ball of the hand's colour is either read right
+//! or its answer flagged.
 
 mod util;
 
@@ -86,7 +87,13 @@ fn a_red_ball_is_read_by_its_colour_past_the_hand_that_drops_it() {
     }
     let (r, err) = drop_run([185.0, 40.0, 35.0], SKIN);
     let d = &r["recording"]["descent"];
-    assert_eq!(d["colour"], true, "{d}\n{err}");
+    // Read past the crowded grey: by the ball's colour, or by the vertex of the law its track
+    // holds, which replaces the picture's release (and then no colour decode is made).
+    let by_track = r["warnings"].as_array().unwrap().iter().any(|w| {
+        w.as_str()
+            .is_some_and(|w| w.contains("the vertex of the constant acceleration its track holds"))
+    });
+    assert!(d["colour"] == true || by_track, "{d}\n{err}");
     let release = d["release"].as_f64().unwrap();
     assert!((release - RELEASE).abs() < 0.3, "release {release}");
     let g = estimate_of(&r, "g");
