@@ -186,16 +186,20 @@ fn differs(
 mod tests {
     use super::*;
 
+    fn value(name: &'static str, value: f64, error: f64) -> Value {
+        Value {
+            name,
+            value,
+            error,
+            unit: "1/s",
+        }
+    }
+
     #[test]
     fn a_damping_the_routes_disagree_on_is_named_with_both() {
         // A clutter render's: the latent's γ1 −0.034 ± 0.032, the track's 0.0793 ± 0.00056.
         let p = ParameterResult::si("gamma1", -0.034, "1/s", Some(0.032));
-        let v = Value {
-            name: "gamma1",
-            value: 0.0793,
-            error: 0.00056,
-            unit: "1/s",
-        };
+        let v = value("gamma1", 0.0793, 0.00056);
         let r = differs("routes", &p, &v, "the track", 0.00056).expect("3.5 errors apart");
         assert_eq!(r.grade, Grade::Doubtful);
         assert!(
@@ -218,12 +222,7 @@ mod tests {
     fn a_latent_value_without_an_error_is_named_by_its_share_not_a_nan() {
         // A 10-fps swing's: the latent's damping 0.00125 with no error, the track's 0.187.
         let p = ParameterResult::si("damping", 0.00125, "1/s", None);
-        let v = Value {
-            name: "damping",
-            value: 0.187,
-            error: 0.022,
-            unit: "1/s",
-        };
+        let v = value("damping", 0.187, 0.022);
         let r = differs("routes", &p, &v, "the track", 0.022).expect("99 % apart");
         assert!(!r.detail.contains("NaN"), "{}", r.detail);
         assert!(r.detail.contains("(no standard error)"), "{}", r.detail);
