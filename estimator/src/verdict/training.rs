@@ -119,7 +119,7 @@ impl Check for Training {
         match r.stop {
             StopReason::MaxEpochs => {
                 let moved = r.earlier.as_ref().map(|e| moved_since(r, e));
-                // Where the track corroborates the rate, the latent's values still moving is
+                // Where the track corroborates the rate, the latent's values still moving are
                 // its encoder's (`routes::corroborated`); a damping the routes disagree on is
                 // `routes`' to doubt.
                 match moved {
