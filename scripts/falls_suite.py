@@ -24,6 +24,7 @@ usage: falls_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
 import argparse, json, os, subprocess, sys, time
 import numpy as np
+from suite_table import finish
 
 G = 9.81
 TOLERANCE = 0.03  # falls: the verdict's and README's bar
@@ -207,14 +208,8 @@ def main():
         f"Within {100 * TOLERANCE:.0f} %: {within} of {len(rows)}; outside it and graded ok: "
         f"{wrong_ok}. Unaided, free fall chosen and within {100 * TOLERANCE:.0f} %: "
         f"{alone_right} of {len(rows)}; any other answer graded ok: {alone_wrong_ok}.",
-        "",
-        f"Made by `scripts/falls_suite.py` in {time.time() - started:.0f} s.",
     ]
-    text = "\n".join(lines) + "\n"
-    if a.md:
-        with open(a.md, "w") as f:
-            f.write(text)
-    print(text)
+    finish(lines, "falls_suite.py", started, a.md)
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ usage: swings_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
 import argparse, json, os, subprocess, sys, time
 import numpy as np
+from suite_table import finish
 
 TOLERANCE = 0.03
 SMALL_DEG = 20.0
@@ -274,14 +275,8 @@ def main():
         "",
         f"Right: {right} of {len(rows)}; right and graded ok: {right_ok}; wrong and graded ok: "
         f"{wrong_ok}.",
-        "",
-        f"Made by `scripts/swings_suite.py` in {time.time() - started:.0f} s.",
     ]
-    text = "\n".join(lines) + "\n"
-    if a.md:
-        with open(a.md, "w") as f:
-            f.write(text)
-    print(text)
+    finish(lines, "swings_suite.py", started, a.md)
 
 
 if __name__ == "__main__":
