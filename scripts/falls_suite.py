@@ -22,9 +22,9 @@ were drawn after that, to measure the readings choosing the span (`track/read_at
 
 usage: falls_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
-import argparse, json, os, subprocess, sys, time
+import json, os, subprocess, sys, time
 import numpy as np
-from suite_table import finish
+from suite_table import arguments, finish
 
 G = 9.81
 TOLERANCE = 0.03  # falls: the verdict's and README's bar
@@ -137,12 +137,7 @@ def render(path, hand, fps=60, w=64, h=256, scale=190.0, radius=5.5, top=14.0, r
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("estimate")
-    ap.add_argument("out")
-    ap.add_argument("--md", help="write the table here (markdown)")
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = arguments(__doc__)
     started = time.time()
     rows = []
     for i, (name, spec) in enumerate(SCENES.items()):

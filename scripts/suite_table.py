@@ -1,6 +1,18 @@
-"""The end every rendered suite's table shares (`falls_suite.py`, `swings_suite.py`): the line
-naming the script and its time, the table printed, and written to `--md` where given."""
-import time
+"""What every rendered suite shares (`falls_suite.py`, `swings_suite.py`): its arguments (the
+estimate binary, a folder for the scenes and runs, `--md`), and its table's end: the line naming
+the script and its time, the table printed, and written to `--md` where given."""
+import argparse, os, time
+
+
+def arguments(doc):
+    """The suite's arguments (described by its docstring `doc`), its output folder made."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("estimate")
+    ap.add_argument("out")
+    ap.add_argument("--md", help="write the table here (markdown)")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    return a
 
 
 def finish(lines, script, started, md):

@@ -17,9 +17,9 @@ pendulum, or gamma0 for an oscillator chosen on a swing small enough for it: und
 
 usage: swings_suite.py ESTIMATE OUT_DIR [--md FILE]
 """
-import argparse, json, os, subprocess, sys, time
+import json, os, subprocess, sys, time
 import numpy as np
-from suite_table import finish
+from suite_table import arguments, finish
 
 TOLERANCE = 0.03
 SMALL_DEG = 20.0
@@ -218,12 +218,7 @@ def rate(report):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("estimate")
-    ap.add_argument("out")
-    ap.add_argument("--md", help="write the table here (markdown)")
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = arguments(__doc__)
     started = time.time()
     rows = []
     for i, (name, spec) in enumerate(SCENES.items()):
