@@ -111,7 +111,7 @@ pub fn trim_to_descent(
             _ => grey,
         }
     });
-    warnings.extend(colour.filter(|_| !by_track));
+    warnings.extend(colour);
     let geometry = tracked::Geometry::of(decoded, opts, timeline_fps);
     let Some(d) = (match tracked {
         Some(t) => tracked::descent(found, &t, &geometry),

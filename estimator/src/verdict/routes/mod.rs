@@ -120,9 +120,7 @@ fn differs(
     track: &str,
     weighed: f64,
 ) -> Option<Reason> {
-    let gap = (p.estimate - v.value).abs();
-    let joint = p.standard_error.unwrap_or(0.0).hypot(v.error);
-    let share = gap / v.value.abs().max(f64::MIN_POSITIVE);
+    let share = (p.estimate - v.value).abs() / v.value.abs().max(f64::MIN_POSITIVE);
     let (measured, limit) = separation(p, v);
     if measured <= limit {
         return None;
@@ -149,20 +147,16 @@ fn differs(
             v.unit
         ),
     };
-    // The latent's value with its error, and how far apart the two lie: in joint standard
-    // errors, or (where the latent's has none: `separation`) as a share alone.
+    // How far apart the two lie: in joint standard errors, or (where the latent's value has
+    // none: `separation`) as a share alone.
     let latent = with_error(p);
-    let apart = match p.standard_error {
-        Some(_) => format!(
+    let apart = match limit == ERRORS {
+        true => format!(
             "{} % away ({} joint standard errors)",
             approx(100.0 * share),
-            approx(if joint > 0.0 {
-                gap / joint
-            } else {
-                f64::INFINITY
-            })
+            approx(measured)
         ),
-        None => format!(
+        false => format!(
             "{} % away (over {} %)",
             approx(100.0 * share),
             approx(100.0 * APART)
