@@ -26,6 +26,7 @@
 //! # }
 //! ```
 
+pub mod agreement;
 pub mod analysis;
 pub mod batch;
 pub mod calibration;

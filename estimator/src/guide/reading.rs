@@ -29,7 +29,8 @@ fn on_video(req: &Request) -> bool {
 
 /// The track of a video file, on the plane or the stick's scale where one is given, else on
 /// the readings' (`TrackRoute::with_readings`), its law's span one the readings lie in
-/// (`TrackRoute::through_readings`).
+/// (`TrackRoute::through_readings`); none where its acceleration holds no reading
+/// (`TrackRoute::holds_readings`).
 fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
     if !on_video(req) {
         return None;
@@ -38,13 +39,26 @@ fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
     let found = video::probe_as(input, r.fields)
         .and_then(|info| track::follow(input, &info, (r.start, r.end), r.fps));
     match found {
-        Ok(route) => route.map(|r| match (req.calibration.plane, req.calibration.stick) {
-            (Some(p), _) => r.on_plane(p),
-            (None, Some(s)) => r.with_stick(s),
-            (None, None) => r
-                .through_readings(&req.calibration.times)
-                .with_readings(&req.calibration.times),
-        }),
+        Ok(route) => route
+            .map(|r| match (req.calibration.plane, req.calibration.stick) {
+                (Some(p), _) => r.on_plane(p),
+                (None, Some(s)) => r.with_stick(s),
+                (None, None) => r
+                    .through_readings(&req.calibration.times)
+                    .with_readings(&req.calibration.times),
+            })
+            .filter(|r| {
+                let holds = r.holds_readings(&req.calibration.times);
+                if !holds {
+                    warnings.push(
+                        "the object's track was not used: its constant acceleration holds none of \
+                     the times the motion was measured at (--reference), so it follows \
+                     something else"
+                            .to_string(),
+                    );
+                }
+                holds
+            }),
         Err(e) => {
             warnings.push(format!("the object's track could not be read: {e}"));
             None

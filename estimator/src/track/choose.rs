@@ -2,17 +2,24 @@
 //! ties settled by penalised likelihood on common samples.
 
 use super::laws::TrackLaw;
-use super::LawSpan;
+use super::{rate_of, LawSpan};
+use crate::agreement::apart;
 
 /// The law that holds over the longest time; an oscillation only where its span holds at least
 /// one period (else nothing oscillated) and its amplitude does not grow by more than
 /// [`GROWING_ERRORS`] standard errors of its damping (a hand shaking the object drives it; a
-/// free motion loses energy); of spans within a tenth of the longest's length, the law of the
-/// least penalised likelihood (`penalised`) on the longest span's samples, where `refit` gives
-/// another law's residual there (pixels rms; `None` where it fits none).
+/// free motion loses energy) and its rate refitted on the span's earlier and later half agrees
+/// by the verdict's own rule (`agreement::apart`: a hand left on a spring, read with it, makes one
+/// that changes); an acceleration only where `uniform` motion does not explain its
+/// span (samples `first..last`) as well, as a person walking behind the object, even one cut by
+/// the picture's edge as they step in: nothing there needs a force. Of spans within
+/// a tenth of the longest's length, the law of the least penalised likelihood (`penalised`) on
+/// the longest span's samples, where `refit` gives another law's residual there (pixels rms;
+/// `None` where it fits none).
 pub(super) fn choose(
     laws: &[LawSpan],
     refit: &dyn Fn(TrackLaw, usize, usize) -> Option<f64>,
+    uniform: &dyn Fn(usize, usize) -> bool,
 ) -> Option<TrackLaw> {
     let free = |l: &LawSpan| {
         l.values
@@ -20,7 +27,25 @@ pub(super) fn choose(
             .find(|v| v.name == "gamma1" || v.name == "damping")
             .is_none_or(|d| d.value >= -GROWING_ERRORS * d.error)
     };
-    let seen = |l: &&LawSpan| l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l);
+    // A rate in time (a frequency, a decay's) is the same under any fixed view of the picture:
+    // one whose halves disagree changes over the span. (An acceleration in pixels is not: the
+    // picture's scale changes along a path seen in perspective, as the tossed ball's halves
+    // 3.7 % apart show.)
+    let alike = |l: &LawSpan| {
+        let rate = |v: &[_]| rate_of(v).map(|r| [r.value, r.error]);
+        let [a, b] = l.halves.as_slice() else {
+            return true;
+        };
+        rate(a)
+            .zip(rate(b))
+            .is_none_or(|(a, b)| apart([a[0], b[0]], [a[1], b[1]]).is_none())
+    };
+    let lawful = |l: &LawSpan| {
+        l.law != TrackLaw::ConstantAcceleration || !uniform(l.first, l.first + l.samples)
+    };
+    let seen = |l: &&LawSpan| {
+        l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l) && alike(l) && lawful(l)
+    };
     let long = laws
         .iter()
         .filter(seen)
@@ -60,6 +85,7 @@ const GROWING_ERRORS: f64 = 3.0;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::track::laws::Value;
 
     fn span(law: TrackLaw, seconds: f64, rms_px: f64) -> LawSpan {
         LawSpan {
@@ -80,6 +106,7 @@ mod tests {
 
     #[test]
     fn of_spans_alike_in_length_the_law_that_follows_closer_than_its_freedom_costs() {
+        let none = |_: usize, _: usize| false;
         let laws = [
             span(TrackLaw::Oscillation, 7.8, 0.97),
             span(TrackLaw::AngularOscillation, 7.8, 0.47),
@@ -88,7 +115,10 @@ mod tests {
             laws.iter().find(|l| l.law == law).map(|l| l.rms_px)
         };
         // Half the residual for three more parameters over 157 samples: the angle's.
-        assert_eq!(choose(&laws, &own), Some(TrackLaw::AngularOscillation));
+        assert_eq!(
+            choose(&laws, &own, &none),
+            Some(TrackLaw::AngularOscillation)
+        );
         // 2 % less residual does not pay for them (5 % would: e^(3 ln 157 / 314) = 1.049).
         let close = [
             laws[0].clone(),
@@ -97,7 +127,7 @@ mod tests {
         let own = |law: TrackLaw, _: usize, _: usize| {
             close.iter().find(|l| l.law == law).map(|l| l.rms_px)
         };
-        assert_eq!(choose(&close, &own), Some(TrackLaw::Oscillation));
+        assert_eq!(choose(&close, &own, &none), Some(TrackLaw::Oscillation));
         // A shorter span is weighed by its fit refitted on the longest's samples.
         let swing = [
             span(TrackLaw::AngularOscillation, 5.1, 0.04),
@@ -107,9 +137,58 @@ mod tests {
             TrackLaw::Swing => Some(0.2),
             _ => None,
         };
-        assert_eq!(choose(&swing, &refit), Some(TrackLaw::AngularOscillation));
+        assert_eq!(
+            choose(&swing, &refit, &none),
+            Some(TrackLaw::AngularOscillation)
+        );
         // A span under nine tenths of the longest is not weighed at all.
         let short = [swing[0].clone(), span(TrackLaw::Swing, 4.0, 0.01)];
-        assert_eq!(choose(&short, &refit), Some(TrackLaw::AngularOscillation));
+        assert_eq!(
+            choose(&short, &refit, &none),
+            Some(TrackLaw::AngularOscillation)
+        );
+    }
+
+    #[test]
+    fn an_acceleration_is_not_followed_where_uniform_motion_explains_its_span() {
+        let mut walk = span(TrackLaw::ConstantAcceleration, 8.0, 0.4);
+        walk.periods = None;
+        let laws = [walk, span(TrackLaw::Oscillation, 7.0, 0.1)];
+        let refit = |_: TrackLaw, _: usize, _: usize| None;
+        // The longer span's law where a line at constant speed leaves more than its noise…
+        let none = |_: usize, _: usize| false;
+        assert_eq!(
+            choose(&laws, &refit, &none),
+            Some(TrackLaw::ConstantAcceleration)
+        );
+        // …and not where one explains it as well.
+        let all = |_: usize, _: usize| true;
+        assert_eq!(choose(&laws, &refit, &all), Some(TrackLaw::Oscillation));
+    }
+
+    #[test]
+    fn an_oscillation_is_not_followed_where_its_rate_changes_over_its_span() {
+        let gamma0 = |value: f64, error: f64| {
+            vec![Value {
+                name: "gamma0",
+                value,
+                error,
+                unit: "1/s^2",
+            }]
+        };
+        let mut long = span(TrackLaw::Oscillation, 7.0, 0.1);
+        // 4 % apart at 5.3 joint errors: the rule's first tier.
+        long.halves = vec![gamma0(43.3, 0.3), gamma0(45.1, 0.1)];
+        let laws = [long.clone(), span(TrackLaw::AngularOscillation, 5.0, 0.1)];
+        let refit = |_: TrackLaw, _: usize, _: usize| None;
+        let none = |_: usize, _: usize| false;
+        assert_eq!(
+            choose(&laws, &refit, &none),
+            Some(TrackLaw::AngularOscillation)
+        );
+        // Halves alike: the longer span's.
+        long.halves = vec![gamma0(44.9, 0.3), gamma0(45.1, 0.1)];
+        let laws = [long, laws[1].clone()];
+        assert_eq!(choose(&laws, &refit, &none), Some(TrackLaw::Oscillation));
     }
 }

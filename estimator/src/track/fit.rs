@@ -60,8 +60,9 @@ fn spans(
         .filter_map(|&law| span(&samples, law, sigma, &[]))
         .collect::<Vec<_>>();
     let refit = |law: TrackLaw, a: usize, b: usize| samples.fit(law, a, b, None).map(|f| f.rms());
+    let uniform = |a: usize, b: usize| super::uniform::uniform(&samples, a, b, sigma);
     Fitted {
-        chosen: super::choose::choose(&laws, &refit),
+        chosen: super::choose::choose(&laws, &refit, &uniform),
         along,
         axis,
         noise: sigma,

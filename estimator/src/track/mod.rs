@@ -30,6 +30,7 @@ mod route;
 pub mod segment;
 mod steady;
 pub mod template;
+mod uniform;
 
 pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 /// A route with one law for other modules' tests.

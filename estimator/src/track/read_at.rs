@@ -1,7 +1,8 @@
 //! Where the user read the motion: a `--reference` reading's time lies where the law holds, so
 //! where the track's constant acceleration holds more than once (a ball's drop, then each
 //! bounce's arc), the span kept is one the readings lie in, not the longest
-//! (`TrackRoute::through_readings`).
+//! (`TrackRoute::through_readings`); a route whose acceleration holds none of the readings
+//! follows something else (`TrackRoute::holds_readings`).
 
 use super::laws::TrackLaw;
 use super::{fit, Reading, TrackRoute};
@@ -56,6 +57,29 @@ impl TrackRoute {
             }
         }
         self
+    }
+
+    /// Whether the route's chosen constant acceleration is the motion the user read at `times`
+    /// ((seconds of the file's timeline, value)): at least one reading lies in its span (give
+    /// or take a sample), or before it where its vertex is (at rest before a release). True
+    /// without readings or without an acceleration chosen. One that holds none follows another
+    /// thing (a jar's sloshing surface, not its level), and its law and release are not the
+    /// reading's.
+    pub fn holds_readings(&self, times: &[(f64, f64)]) -> bool {
+        let Some(l) = self.accelerating() else {
+            return true;
+        };
+        let f = &self.track.file_s;
+        if times.is_empty() || f.len() < 2 {
+            return true;
+        }
+        let step = (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64;
+        let (first, last) = (f[l.first], f[l.first + l.samples - 1]);
+        let vertex = l.values.iter().find(|v| v.name == "vertex");
+        let rest = vertex.is_some_and(|v| self.file_time(v.value) <= first);
+        times
+            .iter()
+            .any(|&(t, _)| (first - step..=last + step).contains(&t) || (rest && t < first))
     }
 }
 
@@ -137,5 +161,18 @@ mod tests {
         assert_eq!(again.chosen_span().unwrap().first_s, arc.first_s);
         let outside = bouncing().through_readings(&[(5.0, 0.0)]);
         assert_eq!(outside.chosen_span().unwrap().first_s, arc.first_s);
+    }
+
+    #[test]
+    fn a_route_holds_readings_in_its_span_or_at_rest_before_its_release() {
+        let arc = bouncing();
+        // The kicked arc (from 0.45 s, its apex within it): read in it, or with nothing read.
+        assert!(arc.holds_readings(&[(0.6, 0.0), (1.0, 0.1)]));
+        assert!(arc.holds_readings(&[]));
+        // Read only before it and after it: another motion's readings.
+        assert!(!arc.holds_readings(&[(0.1, 0.0), (5.0, 0.1)]));
+        // The drop re-read through its readings: at rest before its release holds.
+        let drop = bouncing().through_readings(&[(0.15, 0.0), (0.35, 0.02)]);
+        assert!(drop.holds_readings(&[(0.1, 0.0)]));
     }
 }

@@ -6,7 +6,7 @@
 use super::laws::{Fitted, TrackLaw, Value};
 
 /// A span's residuals may be this many times the track's noise (root mean square)…
-const SPREADS: f64 = 3.0;
+pub(super) const SPREADS: f64 = 3.0;
 /// …and no point added to it this many times.
 const POINT_SPREADS: f64 = 6.0;
 

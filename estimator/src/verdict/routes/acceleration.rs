@@ -3,11 +3,12 @@
 //! named, and by one stick, a track whose own halves disagree.
 
 use super::{separation, with_error, APART, ERRORS};
+use crate::agreement;
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
 use crate::track::{LawSpan, TrackRoute};
-use crate::verdict::{consistency, Grade, Reason};
+use crate::verdict::{Grade, Reason};
 use physvid_shared::cli::approx;
 
 /// The names a constant acceleration goes by among the models' values in SI (the fall's g, the
@@ -71,7 +72,7 @@ fn si_acceleration(l: &LawSpan) -> Option<Value> {
 }
 
 /// By one stick (no plane), where the track's acceleration refitted on its span's earlier and
-/// later half disagrees by the consistency check's own rule (`consistency::apart`, each half's
+/// later half disagrees by the consistency check's own rule (`agreement::apart`, each half's
 /// error at least the whole span's): the picture's scale changes along the path (a camera tilted
 /// to the motion draws its far part smaller, and a fall's later, faster part then accelerates
 /// less in the picture), which one stick cannot carry; doubtful, naming `--plane`. Where the
@@ -105,7 +106,7 @@ fn one_stick(check: &'static str, route: &TrackRoute, l: &LawSpan) -> Option<Rea
     // As the consistency check has it: a half pins the value no better than the whole span.
     let floor = of(&l.values).map_or(0.0, |w| w.error);
     let errors = [a.error.max(floor), b.error.max(floor)];
-    let (z, limit) = consistency::apart([a.value, b.value], errors)?;
+    let (z, limit) = agreement::apart([a.value, b.value], errors)?;
     let detail = format!(
         "the object's track accelerates at {} ± {} px/s^2 over the earlier half of its span and \
          {} ± {} over the later ({} standard errors apart): the picture's scale changes along \

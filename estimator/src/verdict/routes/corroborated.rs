@@ -7,11 +7,11 @@
 //! a note (`Grade::Ok`) instead of doubting.
 
 use super::separation;
+use crate::agreement::apart;
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
 use crate::track::{rate_of, TrackRoute, RATE_NAMES};
-use crate::verdict::consistency::apart;
 use physvid_shared::cli::approx;
 
 /// Whether the track corroborates the latent's rate `p`: it guides the run
