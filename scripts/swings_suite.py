@@ -75,6 +75,25 @@ SCENES = {
                                             colour=True, shake=1.0, seed=14),
     "pendulum, 90 deg, 15 fps, 6 s": dict(kind="pendulum", g_over_l=17.9, c=0.2, angle=90,
                                           fps=15, length=6.0),
+    # Drawn after uniform motion and the rate's halves entered the track's choice of law (the
+    # eleventh session), to check them on scenes they were not made on; run once.
+    "pendulum, 12 deg, walker, noise": dict(kind="pendulum", g_over_l=14.0, c=0.03, angle=12,
+                                            walker=True, noise=2, seed=21),
+    "pendulum, 25 deg, walker, 25 fps": dict(kind="pendulum", g_over_l=11.0, c=0.04, angle=25,
+                                             walker=True, fps=25, seed=22),
+    "pendulum, long, 6 deg, walker": dict(kind="pendulum", g_over_l=1.5, c=0.01, angle=6,
+                                          walker=True, length=12.0),
+    "spring, walker behind, hand stays": dict(kind="spring", gamma0=33.0, gamma1=0.04, pull=30,
+                                              walker=True, hand_stays=True, seed=23),
+    "spring, hand stays, 20 fps": dict(kind="spring", gamma0=30.0, gamma1=0.05, pull=35,
+                                       hand_stays=True, fps=20),
+    "spring, hand stays, stiff": dict(kind="spring", gamma0=80.0, gamma1=0.08, pull=25,
+                                      hand_stays=True),
+    "spring, hand stays, 24 fps, blur": dict(kind="spring", gamma0=50.0, gamma1=0.05, pull=30,
+                                             hand_stays=True, fps=24, blur=0.5),
+    "pendulum, 15 deg, 24 fps, walker, colour": dict(kind="pendulum", g_over_l=16.0, c=0.05,
+                                                     angle=15, fps=24, walker=True,
+                                                     colour=True),
 }
 
 
