@@ -2,18 +2,18 @@
 //! ties settled by penalised likelihood on common samples.
 
 use super::laws::TrackLaw;
-use super::{rate_of, LawSpan};
+use super::LawSpan;
 use crate::agreement::apart;
 
 /// The law that holds over the longest time; an oscillation only where its span holds at least
 /// one period (else nothing oscillated) and its amplitude does not grow by more than
 /// [`GROWING_ERRORS`] standard errors of its damping (a hand shaking the object drives it; a
 /// free motion loses energy) and its rate refitted on the span's earlier and later half agrees
-/// by the verdict's own rule (`agreement::apart`: a hand left on a spring, read with it, makes one
-/// that changes); an acceleration only where `uniform` motion does not explain its
-/// span (samples `first..last`) as well, as a person walking behind the object, even one cut by
-/// the picture's edge as they step in: nothing there needs a force. Of spans within
-/// a tenth of the longest's length, the law of the least penalised likelihood (`penalised`) on
+/// by the verdict's own rule (`agreement::apart`: a hand left on a spring, read with it, makes
+/// one that changes); an acceleration only where `uniform` motion does not explain its span
+/// (samples `first..last`) as well, as a person walking behind the object, even one cut by the
+/// picture's edge as they step in: nothing there needs a force. Of spans within a tenth of the
+/// longest's length, the law of the least penalised likelihood (`penalised`) on
 /// the longest span's samples, where `refit` gives another law's residual there (pixels rms;
 /// `None` where it fits none).
 pub(super) fn choose(
@@ -32,23 +32,21 @@ pub(super) fn choose(
     // picture's scale changes along a path seen in perspective, as the tossed ball's halves
     // 3.7 % apart show.)
     let alike = |l: &LawSpan| {
-        let rate = |v: &[_]| rate_of(v).map(|r| [r.value, r.error]);
-        let [a, b] = l.halves.as_slice() else {
-            return true;
-        };
-        rate(a)
-            .zip(rate(b))
-            .is_none_or(|(a, b)| apart([a[0], b[0]], [a[1], b[1]]).is_none())
+        l.rate_halves()
+            .is_none_or(|[a, b]| apart([a.value, b.value], [a.error, b.error]).is_none())
     };
     let lawful = |l: &LawSpan| {
         l.law != TrackLaw::ConstantAcceleration || !uniform(l.first, l.first + l.samples)
     };
-    let seen = |l: &&LawSpan| {
-        l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l) && alike(l) && lawful(l)
-    };
-    let long = laws
+    // Each span's tests once (the uniform motion's is a fit).
+    let seen: Vec<&LawSpan> = laws
         .iter()
-        .filter(seen)
+        .filter(|l| {
+            l.holds && l.periods.is_none_or(|p| p >= 1.0) && free(l) && alike(l) && lawful(l)
+        })
+        .collect();
+    let long = *seen
+        .iter()
         .max_by(|a, b| (a.last_s - a.first_s).total_cmp(&(b.last_s - b.first_s)))?;
     let (first, n) = (long.first, long.samples);
     let score = |l: &LawSpan| {
@@ -60,8 +58,7 @@ pub(super) fn choose(
         rms.map_or(f64::INFINITY, |r| penalised(l.law, r, n))
     };
     // Each score once: a refit is a nonlinear fit.
-    laws.iter()
-        .filter(seen)
+    seen.iter()
         .filter(|l| l.last_s - l.first_s >= 0.9 * (long.last_s - long.first_s))
         .map(|l| (score(l), l.law))
         .min_by(|a, b| a.0.total_cmp(&b.0))
@@ -177,7 +174,7 @@ mod tests {
             }]
         };
         let mut long = span(TrackLaw::Oscillation, 7.0, 0.1);
-        // 4 % apart at 5.3 joint errors: the rule's first tier.
+        // 4 % apart at 5.7 joint errors: the rule's first tier.
         long.halves = vec![gamma0(43.3, 0.3), gamma0(45.1, 0.1)];
         let laws = [long.clone(), span(TrackLaw::AngularOscillation, 5.0, 0.1)];
         let refit = |_: TrackLaw, _: usize, _: usize| None;

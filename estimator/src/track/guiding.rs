@@ -29,6 +29,15 @@ impl LawSpan {
         rate_of(&self.values)
     }
 
+    /// Its rate refitted on the span's earlier and later half (`segment::halves`); `None`
+    /// where either half gives none.
+    pub fn rate_halves(&self) -> Option<[&Value; 2]> {
+        match self.halves.as_slice() {
+            [a, b] => Some([rate_of(a)?, rate_of(b)?]),
+            _ => None,
+        }
+    }
+
     /// How much of its course the span holds: an oscillation's periods, a decay's e-folds
     /// (its rate times the span's length); `None` for a law that has neither.
     pub fn extent(&self) -> Option<(f64, &'static str)> {

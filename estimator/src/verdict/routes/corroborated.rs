@@ -11,7 +11,7 @@ use crate::agreement::apart;
 use crate::analysis::parameters::ParameterResult;
 use crate::analysis::Run;
 use crate::track::laws::Value;
-use crate::track::{rate_of, TrackRoute, RATE_NAMES};
+use crate::track::{TrackRoute, RATE_NAMES};
 use physvid_shared::cli::approx;
 
 /// Whether the track corroborates the latent's rate `p`: it guides the run
@@ -29,11 +29,8 @@ pub(in crate::verdict) fn corroborates(r: &Run, p: &ParameterResult) -> bool {
 /// [`corroborates`] by the track `route`: its rate where it corroborates `p`.
 fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> Option<Value> {
     let span = route.guiding()?;
-    let rate = |values: &[Value]| rate_of(values).cloned();
-    let (Some(g), [first, second]) = (rate(&span.values), span.halves.as_slice()) else {
-        return None;
-    };
-    let (a, b) = (rate(first)?, rate(second)?);
+    let g = span.rate()?.clone();
+    let [a, b] = span.rate_halves()?;
     let (measured, limit) = separation(p, &g);
     // Halves without finite errors cannot be weighed (`apart` leaves them be): no corroboration.
     (RATE_NAMES.contains(&p.name.as_str())
