@@ -288,6 +288,7 @@ mod tests {
             values: Vec::new(),
             halves: Vec::new(),
             rms_px: 0.4,
+            follow: 0.0,
             si: Vec::new(),
             periods: Some(2.5),
             curve: Vec::new(),

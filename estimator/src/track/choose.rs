@@ -12,10 +12,10 @@ use crate::agreement::apart;
 /// by the verdict's own rule (`agreement::apart`: a hand left on a spring, read with it, makes
 /// one that changes); an acceleration only where `uniform` motion does not explain its span
 /// (samples `first..last`) as well, as a person walking behind the object, even one cut by the
-/// picture's edge as they step in: nothing there needs a force. Of spans within a tenth of the
-/// longest's length, the law of the least penalised likelihood (`penalised`) on
-/// the longest span's samples, where `refit` gives another law's residual there (pixels rms;
-/// `None` where it fits none).
+/// picture's edge as they step in: nothing there needs a force. Of spans alike in length
+/// ([`ALIKE`]), the law of the least penalised likelihood (`penalised`) on the longest span's
+/// samples, where `refit` gives another law's residual there (pixels rms; `None` where it fits
+/// none), charged for its rate's drift between its span's halves (`drift`).
 pub(super) fn choose(
     laws: &[LawSpan],
     refit: &dyn Fn(TrackLaw, usize, usize) -> Option<f64>,
@@ -55,11 +55,11 @@ pub(super) fn choose(
         } else {
             refit(l.law, first, first + n)
         };
-        rms.map_or(f64::INFINITY, |r| penalised(l.law, r, n))
+        rms.map_or(f64::INFINITY, |r| penalised(l.law, r, n) + drift(l))
     };
     // Each score once: a refit is a nonlinear fit.
     seen.iter()
-        .filter(|l| l.last_s - l.first_s >= 0.9 * (long.last_s - long.first_s))
+        .filter(|l| l.last_s - l.first_s >= ALIKE * (long.last_s - long.first_s))
         .map(|l| (score(l), l.law))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, law)| law)
@@ -74,6 +74,30 @@ fn penalised(law: TrackLaw, rms: f64, samples: usize) -> f64 {
     let n = samples.max(2) as f64;
     (rms * rms).max(1e-12).ln() + law.freedom() as f64 * n.ln() / n
 }
+
+/// What a law's rate changing over its span costs it, on the scale of `penalised` (a sample's
+/// share of the likelihood): a law's constants are constant, and halves whose rates differ by
+/// z standard errors (widened for residuals that follow one another) are z²/2 of evidence against
+/// it, shared over the span's samples worth n (1 − ρ)/(1 + ρ) independent ones (ρ its residuals'
+/// lag-one correlation, as the errors are widened by). A pendulum's swing read as the angle's
+/// oscillation fits its span as closely at 25° (the sine's third harmonic is a twentieth of a
+/// pixel), but that oscillation's rate rises as the swing dies down; the pendulum's stays.
+fn drift(l: &LawSpan) -> f64 {
+    let Some([a, b]) = l.rate_halves() else {
+        return 0.0;
+    };
+    let error = a.error.hypot(b.error);
+    if error.is_nan() || error <= 0.0 {
+        return 0.0;
+    }
+    let z = (b.value - a.value) / error;
+    let worth = l.samples.max(2) as f64 * (1.0 - l.follow) / (1.0 + l.follow);
+    z * z / worth
+}
+
+/// Spans at least this share of the longest's length are alike in length: laws (and a thing's
+/// readings, `object::chosen`) are weighed among them by how they follow the track.
+pub(super) const ALIKE: f64 = 0.9;
 
 /// An oscillation whose damping is below zero by more than this many standard errors grows:
 /// something drives it.
@@ -94,6 +118,7 @@ mod tests {
             values: Vec::new(),
             halves: Vec::new(),
             rms_px,
+            follow: 0.0,
             si: Vec::new(),
             periods: Some(2.5),
             curve: Vec::new(),
@@ -187,5 +212,43 @@ mod tests {
         long.halves = vec![gamma0(44.9, 0.3), gamma0(45.1, 0.1)];
         let laws = [long, laws[1].clone()];
         assert_eq!(choose(&laws, &refit, &none), Some(TrackLaw::Oscillation));
+    }
+
+    #[test]
+    fn of_laws_alike_in_fit_the_one_whose_rate_stays_over_its_span() {
+        let rate = |name: &'static str, value: f64| {
+            vec![Value {
+                name,
+                value,
+                error: 0.004,
+                unit: "1/s^2",
+            }]
+        };
+        // The 25° swing read by its rod (the swings suite): the angle's oscillation follows it
+        // 15 % closer, but its rate rises 0.2 % (4 errors) as the swing dies down, in residuals
+        // that follow one another (ρ 0.7: 107 samples worth 19); the pendulum's stays.
+        let mut angle = span(TrackLaw::AngularOscillation, 5.3, 0.053);
+        angle.halves = vec![rate("gamma0", 10.767), rate("gamma0", 10.789)];
+        angle.follow = 0.7;
+        let mut swing = span(TrackLaw::Swing, 5.3, 0.062);
+        swing.halves = vec![rate("g_over_l", 10.998), rate("g_over_l", 10.997)];
+        swing.follow = 0.65;
+        let laws = [angle.clone(), swing.clone()];
+        let own = |law: TrackLaw, _: usize, _: usize| {
+            laws.iter().find(|l| l.law == law).map(|l| l.rms_px)
+        };
+        let none = |_: usize, _: usize| false;
+        assert_eq!(choose(&laws, &own, &none), Some(TrackLaw::Swing));
+        // With residuals that do not follow one another (107 worth 107), the closer fit.
+        angle.follow = 0.0;
+        swing.follow = 0.0;
+        let laws = [angle, swing];
+        let own = |law: TrackLaw, _: usize, _: usize| {
+            laws.iter().find(|l| l.law == law).map(|l| l.rms_px)
+        };
+        assert_eq!(
+            choose(&laws, &own, &none),
+            Some(TrackLaw::AngularOscillation)
+        );
     }
 }

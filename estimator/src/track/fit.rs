@@ -83,6 +83,7 @@ fn span(samples: &Samples, law: TrackLaw, sigma: f64, through: &[usize]) -> Opti
         last_s: t[s.last - 1],
         samples: s.last - s.first,
         rms_px: s.fitted.rms(),
+        follow: super::laws::lag_one(&s.fitted.residuals),
         si: Vec::new(),
         periods: s.fitted.periods,
         values: s.fitted.values,

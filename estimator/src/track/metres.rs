@@ -210,6 +210,7 @@ pub(crate) mod tests {
             values: f.values,
             halves: Vec::new(),
             rms_px: 0.0,
+            follow: 0.0,
             si: Vec::new(),
             periods: None,
             curve: Vec::new(),

@@ -20,6 +20,7 @@ mod light;
 pub mod link;
 mod lucas_kanade;
 pub(crate) mod metres;
+mod object;
 mod patch;
 mod plane;
 mod pyramid;
@@ -139,9 +140,10 @@ const LEAST_EXTENT: f64 = 2.0;
 /// Follows the object of `input` (trimmed to `span`) and fits each law where it holds: of the
 /// [`TRIED`] longest-lived things that move, the one a law explains the most motion of; of
 /// the readings of that same thing (its blobs, its picture's matches, linked one way or
-/// another), the one whose law holds the longest, and of those alike, the reading by its
-/// rod's axes (a shaking camera moves the centroids, not the axes: `rod`); `None` where
-/// nothing lives long enough to follow.
+/// another), the one whose law holds the longest, and of those alike in length (within
+/// `choose::ALIKE` of it), the reading by its rod's axes (a shaking camera moves the centroids,
+/// not the axes, and a swing's centroid is not on its arc: `rod`); `None` where nothing lives
+/// long enough to follow.
 pub fn follow(
     input: &Path,
     info: &VideoInfo,
@@ -149,42 +151,7 @@ pub fn follow(
     fps: Option<f64>,
 ) -> Result<Option<TrackRoute>, VideoError> {
     let all = candidates(input, info, span, fps)?;
-    Ok(chosen(&all).cloned())
-}
-
-/// Of the readings `all`, the object's (`follow`); a brightness whose decay guides the latent
-/// before any reading of a thing that moves (`candidates` reads it only where none guides),
-/// and readings of steadied frames (kept only where they guide) before those as shot.
-fn chosen(all: &[TrackRoute]) -> Option<&TrackRoute> {
-    let light = |c: &&TrackRoute| c.track.reading == Reading::Brightness && c.guiding().is_some();
-    if let Some(l) = all.iter().find(light) {
-        return Some(l);
-    }
-    // Readings of steadied frames are kept only where they guide, and only where nothing read
-    // as shot does: they come first.
-    let steadied: Vec<&TrackRoute> = all.iter().filter(|c| c.track.steadied.is_some()).collect();
-    let all: Vec<&TrackRoute> = if steadied.is_empty() {
-        all.iter().collect()
-    } else {
-        steadied
-    };
-    let by = |a: &&TrackRoute, b: &&TrackRoute| {
-        a.explained()
-            .total_cmp(&b.explained())
-            .then(a.track.t.len().cmp(&b.track.t.len()))
-    };
-    let most = all.iter().copied().max_by(by)?;
-    let longest = all
-        .iter()
-        .copied()
-        .filter(|c| c.explained() > 0.0 && most.same_thing(c))
-        .max_by(|a, b| {
-            let rod = |c: &TrackRoute| c.track.reading == Reading::Rod;
-            let held = a.held_s().total_cmp(&b.held_s());
-            held.then(rod(a).cmp(&rod(b))).then(by(a, b))
-        })
-        .unwrap_or(most);
-    Some(longest)
+    Ok(object::chosen(&all).cloned())
 }
 
 /// [`follow`] on the video file `input`, probed first (the Python package's `track`).

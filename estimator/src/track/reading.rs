@@ -7,7 +7,8 @@
 
 use super::template::{self, Match};
 use super::{
-    background, blobs, chosen, fit, link, rod, Track, TrackRoute, LEAST_EXTENT, LEAST_FRAMES, TRIED,
+    background, blobs, fit, link, object::chosen, rod, Track, TrackRoute, LEAST_EXTENT,
+    LEAST_FRAMES, TRIED,
 };
 use physvid_shared::video::{SmallFrames, VideoInfo};
 use rayon::prelude::*;

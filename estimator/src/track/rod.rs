@@ -3,7 +3,7 @@
 //! long axis, which a shaking camera does not turn (it moves the whole picture, the centroid
 //! with it, by pixels); the pivot is where the axes meet, and each sighting is put on the
 //! circle about it at its axis's angle. A reading of its own beside the centroids': the law
-//! that holds longer chooses between them, and of readings alike, this one (`track::chosen`).
+//! that holds longer chooses between them, and of readings alike, this one (`object::chosen`).
 
 use super::blobs::Blob;
 use super::link::Tracklet;
@@ -101,7 +101,7 @@ mod tests {
     use crate::track::laws::swing::circle;
     use crate::track::laws::TrackLaw;
     use crate::track::reading::{readings, Clock, Reading};
-    use crate::track::{chosen, TrackRoute};
+    use crate::track::{object::chosen, TrackRoute};
     use physvid_shared::video::SmallFrames;
 
     /// A rod swinging about (50, 10), 40 px long, its centroid 30 px below the pivot, seen by

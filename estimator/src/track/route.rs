@@ -25,6 +25,9 @@ pub struct LawSpan {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub halves: Vec<Vec<Value>>,
     pub rms_px: f64,
+    /// The lag-one correlation of its residuals (`laws::lag_one`).
+    #[serde(skip)]
+    pub follow: f64,
     /// The values in SI units where a stick gives the scale (`metres`): the pixel lengths in
     /// metres; empty without one.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -280,6 +283,7 @@ pub(crate) mod tests {
             values: Vec::new(),
             halves: Vec::new(),
             rms_px: 0.1,
+            follow: 0.0,
             si: Vec::new(),
             periods: Some(3.0),
             curve: Vec::new(),

@@ -169,6 +169,17 @@ pub(super) fn linear(cols: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, Vec<f64>
     Some((c, r))
 }
 
+/// The lag-one correlation of residuals `r`, clamped to 0–0.9: how far they follow one another
+/// (n of them are worth n (1 − ρ)/(1 + ρ) independent ones).
+pub fn lag_one(r: &[f64]) -> f64 {
+    let ss: f64 = r.iter().map(|v| v * v).sum();
+    if ss > 0.0 {
+        (r.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / ss).clamp(0.0, 0.9)
+    } else {
+        0.0
+    }
+}
+
 /// The covariance of parameters whose model has the Jacobian columns `cols`, from residuals
 /// `r`: s²·(JᵀJ)⁻¹, s² widened by (1 + ρ)/(1 − ρ) for the residuals' lag-one correlation ρ.
 pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
@@ -184,11 +195,7 @@ pub(super) fn covariance(cols: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
         }
     }
     let ss: f64 = r.iter().map(|v| v * v).sum();
-    let rho = if ss > 0.0 {
-        (r.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / ss).clamp(0.0, 0.9)
-    } else {
-        0.0
-    };
+    let rho = lag_one(r);
     let s2 = ss / (n - k) as f64 * (1.0 + rho) / (1.0 - rho);
     let mut inv = vec![0.0; k * k];
     for j in 0..k {

@@ -240,6 +240,7 @@ mod tests {
                 vec![acceleration(288.7, 19.8)],
             ],
             rms_px: 0.5,
+            follow: 0.0,
             si: vec![Value {
                 unit: "m/s^2",
                 ..acceleration(si, 0.038)
