@@ -94,6 +94,21 @@ SCENES = {
     "pendulum, 15 deg, 24 fps, walker, colour": dict(kind="pendulum", g_over_l=16.0, c=0.05,
                                                      angle=15, fps=24, walker=True,
                                                      colour=True),
+    # Drawn after the twelfth session's change (a law's rate that drifts over its span charged
+    # for it, a thing's rod preferred among readings held alike), to check it on swings of 20-35
+    # degrees, where the pendulum and the oscillator fit alike; run once.
+    "pendulum, 22 deg": dict(kind="pendulum", g_over_l=13.0, c=0.05, angle=22, seed=31),
+    "pendulum, 28 deg, light damping": dict(kind="pendulum", g_over_l=10.0, c=0.01, angle=28,
+                                            seed=32),
+    "pendulum, 35 deg, 24 fps, noise": dict(kind="pendulum", g_over_l=20.0, c=0.08, angle=35,
+                                            fps=24, noise=2, seed=33),
+    "pendulum, 25 deg, 60 fps, blur": dict(kind="pendulum", g_over_l=16.0, c=0.04, angle=25,
+                                           fps=60, blur=0.5, seed=34),
+    "pendulum, 30 deg, walker, colour, 25 fps": dict(kind="pendulum", g_over_l=12.0, c=0.03,
+                                                     angle=30, walker=True, colour=True,
+                                                     fps=25, seed=35),
+    "pendulum, 24 deg, undamped": dict(kind="pendulum", g_over_l=14.0, c=0.0, angle=24,
+                                       seed=36),
 }
 
 
