@@ -97,7 +97,7 @@ fn drift(l: &LawSpan) -> f64 {
 
 /// Spans at least this share of the longest's length are alike in length: laws (and a thing's
 /// readings, `object::chosen`) are weighed among them by how they follow the track.
-pub(super) const ALIKE: f64 = 0.9;
+pub const ALIKE: f64 = 0.9;
 
 /// An oscillation whose damping is below zero by more than this many standard errors grows:
 /// something drives it.

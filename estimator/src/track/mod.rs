@@ -33,6 +33,7 @@ mod steady;
 pub mod template;
 mod uniform;
 
+pub use choose::ALIKE;
 pub use guiding::{rate_of, GUIDING_ERROR, GUIDING_PERIODS, RATE_NAMES};
 /// A route with one law for other modules' tests.
 #[cfg(test)]

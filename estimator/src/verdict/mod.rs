@@ -5,6 +5,7 @@
 //! README's "Reading the verdict" describes them, and docs/verdict.md justifies their
 //! thresholds by measurement.
 
+mod amplitude;
 mod calibration;
 mod consistency;
 pub mod grade;
@@ -74,6 +75,7 @@ pub static CHECKS: &[&dyn Check] = &[
     &plausible::Plausible,
     &calibration::References,
     &routes::Routes,
+    &amplitude::Amplitude,
 ];
 
 #[cfg(test)]
