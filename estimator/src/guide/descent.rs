@@ -25,7 +25,7 @@ pub(super) fn direction(span: &LawSpan) -> f64 {
 pub(super) fn tracked_motion(route: &TrackRoute, span: &LawSpan, direction: f64) -> TrackedMotion {
     let value = |name: &str| span.values.iter().find(|v| v.name == name);
     let vertex = value("vertex").filter(|v| {
-        let frame = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
+        let frame = span.held_s() / (span.samples.max(2) - 1) as f64;
         let slack = frame.max(3.0 * v.error);
         (span.first_s - slack..=span.last_s + slack).contains(&v.value)
     });

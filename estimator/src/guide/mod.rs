@@ -66,7 +66,7 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let rate = span.rate().map(|v| v.value).filter(|v| *v > 0.0);
     if let (TrackLaw::Decay, None, Some(rate)) = (span.law, r.stride, rate) {
         let frames = r.frames_per_clip.unwrap_or(model.table5_clip().0).max(2);
-        let step = (span.last_s - span.first_s) / (span.samples.max(2) - 1) as f64;
+        let step = span.held_s() / (span.samples.max(2) - 1) as f64;
         let stride = (1.0 / rate / ((frames - 1) as f64 * step)).ceil().max(1.0);
         g.load.recording.stride = Some(stride as usize);
     }

@@ -47,7 +47,7 @@ pub(super) fn choose(
         .collect();
     let long = *seen
         .iter()
-        .max_by(|a, b| (a.last_s - a.first_s).total_cmp(&(b.last_s - b.first_s)))?;
+        .max_by(|a, b| a.held_s().total_cmp(&b.held_s()))?;
     let (first, n) = (long.first, long.samples);
     let score = |l: &LawSpan| {
         let rms = if l.law == long.law {
@@ -59,7 +59,7 @@ pub(super) fn choose(
     };
     // Each score once: a refit is a nonlinear fit.
     seen.iter()
-        .filter(|l| l.last_s - l.first_s >= ALIKE * (long.last_s - long.first_s))
+        .filter(|l| l.held_s() >= ALIKE * long.held_s())
         .map(|l| (score(l), l.law))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, law)| law)

@@ -29,6 +29,11 @@ impl LawSpan {
         rate_of(&self.values)
     }
 
+    /// The span's length (seconds).
+    pub fn held_s(&self) -> f64 {
+        self.last_s - self.first_s
+    }
+
     /// Its rate refitted on the span's earlier and later half (`segment::halves`); `None`
     /// where either half gives none.
     pub fn rate_halves(&self) -> Option<[&Value; 2]> {
@@ -44,7 +49,7 @@ impl LawSpan {
         match self.law {
             TrackLaw::Decay => {
                 let g = self.rate()?;
-                Some((g.value * (self.last_s - self.first_s), "e-folds"))
+                Some((g.value * self.held_s(), "e-folds"))
             }
             _ => self.periods.map(|p| (p, "periods")),
         }

@@ -125,7 +125,7 @@ impl TrackRoute {
 
     /// How long the chosen law holds (s; 0 where none was chosen).
     pub fn held_s(&self) -> f64 {
-        self.chosen_span().map_or(0.0, |l| l.last_s - l.first_s)
+        self.chosen_span().map_or(0.0, LawSpan::held_s)
     }
 
     /// Whether `other` follows the same thing: at the frames both saw, their positions lie

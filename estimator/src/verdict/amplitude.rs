@@ -43,8 +43,7 @@ fn undecided(check: &'static str, route: &TrackRoute) -> Option<Reason> {
         .iter()
         .find(|l| l.law == TrackLaw::Swing && l.holds)?;
     let noise = route.track.noise;
-    let held = |l: &crate::track::LawSpan| l.last_s - l.first_s;
-    if held(swing) < ALIKE * held(angle) || angle.rms_px > noise || swing.rms_px > noise {
+    if swing.held_s() < ALIKE * angle.held_s() || angle.rms_px > noise || swing.rms_px > noise {
         return None;
     }
     let (g0, gl) = (angle.rate()?, swing.rate()?);
