@@ -22,6 +22,9 @@ pub struct Blob {
     /// …and how much longer it is along that axis than across it: the ratio of the second
     /// moments along and across (1 for a disc or a square; (L/W)² for a thin bar).
     pub elongation: f64,
+    /// The pixels of the region it lies in before the opening (its rod or string with it),
+    /// whose axis is `axis`: whole where the opening broke a thin rod into pieces.
+    pub region_area: f64,
 }
 
 #[cfg(test)]
@@ -34,6 +37,7 @@ impl Blob {
             y,
             axis: 0.0,
             elongation: 1.0,
+            region_area: area,
         }
     }
 }
@@ -59,12 +63,13 @@ pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
     // Each blob's pixels and moments, and those of the region it lies in before the opening
     // (the opening only takes pixels away, so a blob lies in one).
     let mut blob = vec![(0usize, Moments::default()); count];
-    let mut region = vec![Moments::default(); reach_count];
+    let mut region = vec![(0usize, Moments::default()); reach_count];
     let mut within = vec![0; count];
     for i in 0..w * h {
         let (x, y, d) = ((i % w) as f64, (i / w) as f64, diff[i]);
         if let Some(r) = reached[i] {
-            region[r].add(x, y, d);
+            region[r].0 += 1;
+            region[r].1.add(x, y, d);
             if let Some(l) = labels[i] {
                 blob[l].0 += 1;
                 blob[l].1.add(x, y, d);
@@ -76,9 +81,10 @@ pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
         .zip(within)
         .filter(|(b, _)| b.0 >= LEAST_AREA && b.1.weight > 0.0)
         .map(|((area, m), r)| {
-            let (axis, elongation) = region[r].axis();
+            let (axis, elongation) = region[r].1.axis();
             Blob {
                 area: area as f64,
+                region_area: region[r].0 as f64,
                 x: m.sums[0] / m.weight,
                 y: m.sums[1] / m.weight,
                 axis,

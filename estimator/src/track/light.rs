@@ -120,8 +120,8 @@ pub(super) fn brightness(
         .zip(&rest)
         .map(|(l, r)| l * usual / r.max(1.0))
         .collect();
-    let scale = clock.scale;
-    let at = ((cx + 0.5) * scale, (cy + 0.5) * scale);
+    let (sx, sy) = clock.scale;
+    let at = ((cx + 0.5) * sx, (cy + 0.5) * sy);
     let t = clock.t.to_vec();
     let fitted = fit::levels(&t, u, at);
     let track = Track {
@@ -132,12 +132,12 @@ pub(super) fn brightness(
         along: fitted.along,
         axis: fitted.axis,
         noise: fitted.noise,
-        size: (inside as f64).sqrt() * scale,
+        size: (inside as f64).sqrt() * sx,
         picture: clock.picture,
         frames: n,
         threshold: bg.threshold,
         on_plane: Vec::new(),
-        region: Some((lo.0 * scale, lo.1 * scale, hi.0 * scale, hi.1 * scale)),
+        region: Some((lo.0 * sx, lo.1 * sy, hi.0 * sx, hi.1 * sy)),
         steadied: None,
         reading: Reading::Brightness,
         t,

@@ -15,11 +15,11 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// The routes of one picture of the recording (its grey or its chroma, over its background
-/// `bg`): the [`TRIED`]
-/// tracklets that move the most and the first's pieces rejoined (`link::rejoined`), each read
-/// as its blobs' centroids, as those of its whole blobs alone (`whole`), by its rod's axes
-/// (`rod`) and as its picture's matches; and the matches of the thing whose reading `chosen`
-/// keeps carried on past its tracklet's ends (`template::beyond`).
+/// `bg`): the [`TRIED`] tracklets that move the most and the first's pieces rejoined
+/// (`link::rejoined`), each read as its blobs' centroids, as those of its whole blobs alone
+/// (`whole`), by its rod's axes where its regions are whole (`rod`) and as its picture's
+/// matches; and the matches of the thing whose reading `chosen` keeps carried on past its
+/// tracklet's ends (`template::beyond`).
 pub(super) fn readings(
     frames: &SmallFrames,
     bg: &background::Background,
@@ -38,7 +38,7 @@ pub(super) fn readings(
         .map(|t| {
             let all = centroids(t);
             let whole = whole(&all);
-            let rod = rod::rod(whole.as_deref().unwrap_or(&all), t);
+            let rod = rod::rod(&all, t);
             let matches = template::refine(frames, t);
             let size = t.usual_area().sqrt();
             let routes = [
@@ -93,7 +93,8 @@ pub enum Reading {
     Centroids,
     /// The centroids of its whole blobs alone (`whole`).
     Whole,
-    /// Its whole blobs' long axes about the pivot they meet at (`rod`).
+    /// Its blobs' long axes about the pivot they meet at, where their regions are whole
+    /// (`rod`).
     Rod,
     /// Its picture's matches with a patch of it (`template`).
     Matches,
@@ -105,7 +106,9 @@ pub enum Reading {
 pub(super) struct Clock<'a> {
     pub t: &'a [f64],
     pub file: &'a [f64],
-    pub scale: f64,
+    /// The displayed picture's pixels to a pixel of the frames read, across and down: apart
+    /// where the frames' sides were rounded (a 360×200 picture read at 320×178).
+    pub scale: (f64, f64),
     pub picture: (usize, usize),
     /// How far the object may move in a frame (pixels of the frames read).
     pub reach: f64,
@@ -151,7 +154,7 @@ impl<'a> Clock<'a> {
         Clock {
             t,
             file: t,
-            scale: 1.0,
+            scale: (1.0, 1.0),
             picture,
             reach,
         }
@@ -186,7 +189,7 @@ fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
 /// is off the object's. Set on the others' rod and bob (docs/status.md: the track right on 25
 /// of 36 renders held out one at a time, 22 without this reading); the shared springs and
 /// pendulum keep their spans.
-const WHOLE: f64 = 0.8;
+pub(super) const WHOLE: f64 = 0.8;
 
 /// The centroid reading `sightings` without its cut or merged blobs ([`WHOLE`]): gaps where
 /// the object was not seen whole, a reading of its own beside the one that keeps them (a blob
@@ -217,8 +220,8 @@ pub(super) fn route_of(
     let scale = clock.scale;
     let t: Vec<f64> = matches.iter().map(|(k, _)| clock.t[*k]).collect();
     let file_s: Vec<f64> = matches.iter().map(|(k, _)| clock.file[*k]).collect();
-    let x: Vec<f64> = matches.iter().map(|(_, m)| (m.x + 0.5) * scale).collect();
-    let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale).collect();
+    let x: Vec<f64> = matches.iter().map(|(_, m)| (m.x + 0.5) * scale.0).collect();
+    let y: Vec<f64> = matches.iter().map(|(_, m)| (m.y + 0.5) * scale.1).collect();
     let quality = matches.iter().map(|(_, m)| m.score).collect();
     let xy: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
     let fitted = fit::fit(&t, &xy);
@@ -231,7 +234,7 @@ pub(super) fn route_of(
         along: fitted.along,
         axis: fitted.axis,
         noise: fitted.noise,
-        size: size * scale,
+        size: size * scale.0,
         picture: clock.picture,
         frames: n,
         threshold,

@@ -7,6 +7,7 @@
 
 use super::blobs::Blob;
 use super::link::Tracklet;
+use super::reading::WHOLE;
 use super::template::Match;
 
 /// A blob has a direction where its second moment along its long axis is at least this many
@@ -42,7 +43,11 @@ fn pivot(sightings: &[(usize, Match)], blobs: &[&Blob]) -> Option<(f64, f64)> {
 
 /// The `sightings` of `tracklet` (its centroids, frame by frame) read by their blobs' long axes:
 /// each put at their mean distance from the pivot (`pivot`) along its blob's axis (turned to
-/// point from the pivot towards the sighting). `None` where the blobs are not long (their
+/// point from the pivot towards the sighting). Only those whose region (the rod with its bob,
+/// before the opening) is whole are kept: within [`WHOLE`] of its usual size. The opening
+/// breaks a thin rod into pieces at some of its tilts, leaving its bob's blob alone, smaller
+/// than usual, while the region, and the axis read from it, stay whole; a hand or clutter
+/// merged with the rod makes the region larger. `None` where the blobs are not long (their
 /// median [`ELONGATED`]), their axes meet at no pivot above the whole path, or a sighting's
 /// blob is not the tracklet's.
 pub(super) fn rod(
@@ -56,6 +61,18 @@ pub(super) fn rod(
             tracklet.blobs.get(i)
         })
         .collect::<Option<_>>()?;
+    let mut regions: Vec<f64> = blobs.iter().map(|b| b.region_area).collect();
+    if regions.is_empty() {
+        return None;
+    }
+    let mid = regions.len() / 2;
+    let usual = *regions.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let (sightings, blobs): (Vec<(usize, Match)>, Vec<&Blob>) = sightings
+        .iter()
+        .zip(blobs)
+        .filter(|(_, b)| b.region_area.min(usual) >= WHOLE * b.region_area.max(usual))
+        .map(|(s, b)| (*s, b))
+        .unzip();
     let mut long: Vec<f64> = blobs.iter().map(|b| b.elongation).collect();
     if long.is_empty() {
         return None;
@@ -64,7 +81,7 @@ pub(super) fn rod(
     if *long.select_nth_unstable_by(mid, f64::total_cmp).1 < ELONGATED {
         return None;
     }
-    let (cx, cy) = pivot(sightings, &blobs)?;
+    let (cx, cy) = pivot(&sightings, &blobs)?;
     // The pivot above the whole path (the picture's y runs down), as a swing's.
     if sightings.iter().any(|(_, m)| m.y <= cy) {
         return None;
@@ -104,42 +121,48 @@ mod tests {
     use crate::track::{object::chosen, TrackRoute};
     use physvid_shared::video::SmallFrames;
 
+    /// The swing's angle at frame `k` (radians from the vertical).
+    fn theta(k: usize) -> f64 {
+        0.6 * (k as f64 * 0.2).cos()
+    }
+
     /// A rod swinging about (50, 10), 40 px long, its centroid 30 px below the pivot, seen by
     /// a camera that shakes by up to ±3 px: the centroids wander, the axes do not.
+    fn swinging(k: usize) -> Blob {
+        let (s, c) = theta(k).sin_cos();
+        let (dx, dy) = (3.0 * (k as f64 * 2.7).sin(), 3.0 * (k as f64 * 1.9).cos());
+        Blob {
+            area: 60.0,
+            x: 50.0 + 30.0 * s + dx,
+            y: 10.0 + 30.0 * c + dy,
+            // The axis from the picture's x: the rod points down at θ from the vertical.
+            axis: (c).atan2(s),
+            elongation: 12.0,
+            region_area: 60.0,
+        }
+    }
+
+    /// Each blob's sighting at its centroid.
+    fn sighted(frames: &[usize], blobs: &[Blob]) -> Vec<(usize, Match)> {
+        frames
+            .iter()
+            .zip(blobs)
+            .map(|(&k, b)| {
+                let m = Match {
+                    x: b.x,
+                    y: b.y,
+                    score: 1.0,
+                };
+                (k, m)
+            })
+            .collect()
+    }
+
     #[test]
     fn a_shaken_rod_is_read_on_its_circle_at_its_axis() {
-        let theta = |k: usize| 0.6 * (k as f64 * 0.2).cos();
-        let shake = |k: usize| (3.0 * (k as f64 * 2.7).sin(), 3.0 * (k as f64 * 1.9).cos());
         let frames: Vec<usize> = (0..40).collect();
-        let blobs: Vec<Blob> = frames
-            .iter()
-            .map(|&k| {
-                let (s, c) = theta(k).sin_cos();
-                let (dx, dy) = shake(k);
-                Blob {
-                    area: 60.0,
-                    x: 50.0 + 30.0 * s + dx,
-                    y: 10.0 + 30.0 * c + dy,
-                    // The axis from the picture's x: the rod points down at θ from the vertical.
-                    axis: (c).atan2(s),
-                    elongation: 12.0,
-                }
-            })
-            .collect();
-        let sightings: Vec<(usize, Match)> = frames
-            .iter()
-            .zip(&blobs)
-            .map(|(&k, b)| {
-                (
-                    k,
-                    Match {
-                        x: b.x,
-                        y: b.y,
-                        score: 1.0,
-                    },
-                )
-            })
-            .collect();
+        let blobs: Vec<Blob> = frames.iter().map(|&k| swinging(k)).collect();
+        let sightings = sighted(&frames, &blobs);
         let tracklet = Tracklet { frames, blobs };
         let read = rod(&sightings, &tracklet).unwrap();
         let ((cx, cy), _) =
@@ -162,6 +185,38 @@ mod tests {
                 .collect(),
         };
         assert!(rod(&sightings, &round).is_none());
+    }
+
+    /// A rod the opening broke at some tilts, its blob there its bob's alone (half its usual
+    /// area, centred further out), is read in every frame, its region being whole; a frame
+    /// whose region merged with a hand (twice its size, its axis turned) is left out.
+    #[test]
+    fn a_rod_broken_by_the_opening_is_read_and_one_merged_with_a_hand_is_not() {
+        let frames: Vec<usize> = (0..40).collect();
+        let blobs: Vec<Blob> = frames
+            .iter()
+            .map(|&k| {
+                let mut b = swinging(k);
+                if k % 3 == 0 {
+                    let (s, c) = theta(k).sin_cos();
+                    (b.area, b.x, b.y) = (30.0, b.x + 8.0 * s, b.y + 8.0 * c);
+                }
+                if k == 20 {
+                    (b.region_area, b.axis) = (130.0, b.axis + 0.3);
+                }
+                b
+            })
+            .collect();
+        let sightings = sighted(&frames, &blobs);
+        let read = rod(&sightings, &Tracklet { frames, blobs }).unwrap();
+        assert_eq!(read.len(), 39);
+        assert!(read.iter().all(|(k, _)| *k != 20));
+        let ((cx, cy), _) =
+            circle(&read.iter().map(|(_, m)| (m.x, m.y)).collect::<Vec<_>>()).unwrap();
+        for (k, m) in &read {
+            let at = (m.x - cx).atan2(m.y - cy);
+            assert!((at - theta(*k)).abs() < 1e-6, "frame {k}: {at}");
+        }
     }
 
     /// A shaken camera's frames of a black rod and bob swinging as θ'' + 0.08 θ' + 4.0016 θ = 0
