@@ -73,12 +73,16 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     // Started from the track's answer alone (the oscillator's values by the same names): the
     // starts read off the frames and a retry at half the frequency are the unguided run's
     // ways to a rate the track here measures (a latent that learned a slow drift had fitted
-    // better at a quarter of γ0, and its probe won).
+    // better at a quarter of γ0, and its probe won). A value outside the model's bounds (an
+    // undamped swing's damping measured a hair below zero) leaves the model's own start.
     g.training.single_start = true;
     g.init = span
         .values
         .iter()
-        .filter(|v| model.parameters().iter().any(|p| p.name == v.name))
+        .filter(|v| {
+            let p = model.parameters().iter().find(|p| p.name == v.name);
+            p.is_some_and(|p| p.bounds.contains(v.value))
+        })
         .map(|v| (v.name.to_string(), v.value))
         .collect();
     g.load.recording.start = Some(first);
@@ -244,6 +248,36 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
 mod tests {
     use super::*;
     use crate::track::metres::tests::tossed;
+
+    /// An undamped swing's track: its damping measured a hair below zero, outside the
+    /// pendulum's bounds (positive). The latent starts from the track's g/L and the pendulum's
+    /// own damping, where it was refused ("--init damping=-2.3e-5: must be > 0").
+    #[test]
+    fn a_start_outside_the_model_s_bounds_is_the_model_s_own() {
+        let (mut route, _) = crate::track::test_route();
+        let value = |name: &'static str, value: f64, error: f64| crate::track::laws::Value {
+            name,
+            value,
+            error,
+            unit: "",
+        };
+        route.laws[0].law = TrackLaw::Swing;
+        route.chosen = Some(TrackLaw::Swing);
+        route.laws[0].values = vec![
+            value("g_over_l", 14.0, 0.001),
+            value("damping", -2.3e-5, 1e-4),
+            value("amplitude", 24.0, 0.0),
+            value("rest", 0.0, 0.01),
+        ];
+        route.laws[0].periods = Some(4.0);
+        let req = Request::new("swing.mp4");
+        let (g, _) = guided(&req, &route, true).expect("a clear swing guides");
+        assert_eq!(g.init, vec![("g_over_l".to_string(), 14.0)]);
+        let model = g.load.model.unwrap();
+        assert_eq!(model.name(), "pendulum");
+        let start = crate::config::initial_values(model, &g.init).unwrap();
+        assert!(start.iter().all(|v| v.is_finite()), "{start:?}");
+    }
 
     #[test]
     fn with_a_stick_one_reading_fixes_the_origin() {
