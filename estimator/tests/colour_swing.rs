@@ -19,26 +19,6 @@ const PIVOT: (f64, f64) = (100.0, 10.0);
 const LENGTH: f64 = 90.0;
 const RADIUS: f64 = 6.0;
 
-/// The angle at each frame (RK4, a hundred steps a frame).
-fn angles() -> Vec<f64> {
-    let f = |a: f64, v: f64| (v, -G_OVER_L * a.sin() - DAMPING * v);
-    let h = 1.0 / (FPS as f64 * 100.0);
-    let mut s = (START_DEG.to_radians(), 0.0);
-    let mut out = Vec::with_capacity(FRAMES);
-    for _ in 0..FRAMES {
-        out.push(s.0);
-        for _ in 0..100 {
-            let k1 = f(s.0, s.1);
-            let k2 = f(s.0 + 0.5 * h * k1.0, s.1 + 0.5 * h * k1.1);
-            let k3 = f(s.0 + 0.5 * h * k2.0, s.1 + 0.5 * h * k2.1);
-            let k4 = f(s.0 + h * k3.0, s.1 + h * k3.1);
-            s.0 += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            s.1 += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-        }
-    }
-    out
-}
-
 /// 120 colour frames (200×120) of a yellow-green ball of the grey wall's brightness swinging,
 /// encoded as a lossless FFV1 video (yuv444p).
 fn film(dir: &Path) -> PathBuf {
@@ -46,7 +26,8 @@ fn film(dir: &Path) -> PathBuf {
     std::fs::create_dir_all(&frames).unwrap();
     // Luma 0.299 R + 0.587 G + 0.114 B: 152.5 for the ball, 152 for the wall.
     let (wall, ball) = ([152.0; 3], [165.0, 168.0, 40.0]);
-    for (k, a) in angles().iter().enumerate() {
+    let angles = util::swing_angles(FRAMES, FPS, G_OVER_L, DAMPING, START_DEG);
+    for (k, a) in angles.iter().enumerate() {
         let (bx, by) = (PIVOT.0 + LENGTH * a.sin(), PIVOT.1 + LENGTH * a.cos());
         let img = image::RgbImage::from_fn(200, 120, |x, y| {
             let d = (x as f64 + 0.5 - bx).hypot(y as f64 + 0.5 - by);

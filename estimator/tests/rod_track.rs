@@ -34,27 +34,6 @@ fn disc(x: f64, y: f64, c: (f64, f64), radius: f64) -> f64 {
     radius + 0.5 - (x - c.0).hypot(y - c.1)
 }
 
-/// The swing's angle at each frame: θ'' = −(g/L) sin θ − c θ' from 28° at rest (RK4, a
-/// hundred steps a frame).
-fn angles(frames: usize, g_over_l: f64) -> Vec<f64> {
-    let f = |a: f64, v: f64| (v, -g_over_l * a.sin() - 0.01 * v);
-    let h = 1.0 / (FPS as f64 * 100.0);
-    let mut s = (28f64.to_radians(), 0.0);
-    let mut out = Vec::with_capacity(frames);
-    for _ in 0..frames {
-        out.push(s.0);
-        for _ in 0..100 {
-            let k1 = f(s.0, s.1);
-            let k2 = f(s.0 + 0.5 * h * k1.0, s.1 + 0.5 * h * k1.1);
-            let k3 = f(s.0 + 0.5 * h * k2.0, s.1 + 0.5 * h * k2.1);
-            let k4 = f(s.0 + h * k3.0, s.1 + h * k3.1);
-            s.0 += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            s.1 += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-        }
-    }
-    out
-}
-
 fn follow(video: &Path) -> TrackRoute {
     follow_file(video, (None, None), None)
         .unwrap()
@@ -72,7 +51,7 @@ fn a_thin_rod_is_read_through_the_bottom_of_its_swing() {
     }
     let tmp = tempfile::tempdir().unwrap();
     let (n, g_over_l) = (120, 10.0);
-    let theta = angles(n, g_over_l);
+    let theta = util::swing_angles(n, FPS, g_over_l, 0.01, 28.0);
     let pivot = (180.0, 16.0);
     let video = film(tmp.path(), "swing", n, |k, x, y| {
         let (s, c) = theta[k].sin_cos();

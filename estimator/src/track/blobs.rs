@@ -55,7 +55,7 @@ impl Blob {
 /// still turns with it), each weighted by how much of it the object covers: its difference
 /// over the wall's own from the region's ink ([`INK`]). Weighted by the difference alone, a
 /// textured wall weighs the object's pixels by the wall behind them (±6 levels on a contrast
-/// of 145 turned a swing's rod by 1.4′ rms, 0.2′ so).
+/// of 145 turned a swing's rod by 1.7′ rms, 0.3′ so).
 pub fn blobs(frames: &SmallFrames, k: usize, bg: &Background) -> Vec<Blob> {
     let (w, h) = frames.size;
     let level = bg.level[k] as f64;
@@ -254,7 +254,7 @@ mod tests {
     /// A rod 1.5 px wide and 70 long (its ink 0.7 of the bob's) with a bob 6 px in radius at
     /// its end, hanging from (50, 8) at five tilts before a wall textured by ±30 grey levels:
     /// its region's axis is its tilt to a milliradian. Weighted by the difference from the wall
-    /// alone, the texture under the bob turns it by up to 5.
+    /// alone, the texture under the bob turns it by milliradians.
     #[test]
     fn a_rod_s_axis_before_a_textured_wall_is_its_tilt() {
         let (w, h) = (100usize, 90usize);

@@ -313,3 +313,30 @@ pub fn track_si(report: &serde_json::Value) -> f64 {
         .and_then(|l| l["si"][0]["value"].as_f64())
         .unwrap_or(f64::NAN)
 }
+
+/// A swing's angle (radians from the vertical) at each of `frames` frames at `fps`:
+/// θ'' = −(g/L) sin θ − `damping` θ' from `start_deg` at rest (RK4, a hundred steps a frame).
+pub fn swing_angles(
+    frames: usize,
+    fps: u32,
+    g_over_l: f64,
+    damping: f64,
+    start_deg: f64,
+) -> Vec<f64> {
+    let f = |a: f64, v: f64| (v, -g_over_l * a.sin() - damping * v);
+    let h = 1.0 / (fps as f64 * 100.0);
+    let mut s = (start_deg.to_radians(), 0.0);
+    let mut out = Vec::with_capacity(frames);
+    for _ in 0..frames {
+        out.push(s.0);
+        for _ in 0..100 {
+            let k1 = f(s.0, s.1);
+            let k2 = f(s.0 + 0.5 * h * k1.0, s.1 + 0.5 * h * k1.1);
+            let k3 = f(s.0 + 0.5 * h * k2.0, s.1 + 0.5 * h * k2.1);
+            let k4 = f(s.0 + h * k3.0, s.1 + h * k3.1);
+            s.0 += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+            s.1 += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        }
+    }
+    out
+}
