@@ -170,7 +170,7 @@ fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
         .iter()
         .zip(&tracklet.blobs)
         .map(|(&k, b)| {
-            let score = b.area.min(usual) / b.area.max(usual);
+            let score = alike_in_size(b.area, usual);
             (
                 k,
                 Match {
@@ -181,6 +181,11 @@ fn centroids(tracklet: &link::Tracklet) -> Vec<(usize, Match)> {
             )
         })
         .collect()
+}
+
+/// How near `size` is to `usual`: the smaller over the larger (1 for the same size).
+pub(super) fn alike_in_size(size: f64, usual: f64) -> f64 {
+    size.min(usual) / size.max(usual)
 }
 
 /// A blob whose area and its tracklet's usual area differ by more than this share of the

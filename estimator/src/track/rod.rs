@@ -7,13 +7,19 @@
 
 use super::blobs::Blob;
 use super::link::Tracklet;
-use super::reading::WHOLE;
+use super::reading::{alike_in_size, WHOLE};
 use super::template::Match;
 
 /// A blob has a direction where its second moment along its long axis is at least this many
 /// times the one across it: a bar twice as long as it is wide ((L/W)² = 4). A disc's ratio is 1
 /// and its axis is its pixels' noise.
 const ELONGATED: f64 = 4.0;
+
+/// The middle of `values` (the upper one of an even count); `None` where there are none.
+fn median(mut values: Vec<f64>) -> Option<f64> {
+    let mid = values.len() / 2;
+    (!values.is_empty()).then(|| *values.select_nth_unstable_by(mid, f64::total_cmp).1)
+}
 
 /// The point nearest every blob's axis, the line through its centroid along its long axis (least
 /// squares: Σ nnᵀ p = Σ nnᵀ c, n each axis's normal): the pivot a rod turns about, which a
@@ -61,24 +67,14 @@ pub(super) fn rod(
             tracklet.blobs.get(i)
         })
         .collect::<Option<_>>()?;
-    let mut regions: Vec<f64> = blobs.iter().map(|b| b.region_area).collect();
-    if regions.is_empty() {
-        return None;
-    }
-    let mid = regions.len() / 2;
-    let usual = *regions.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let usual = median(blobs.iter().map(|b| b.region_area).collect())?;
     let (sightings, blobs): (Vec<(usize, Match)>, Vec<&Blob>) = sightings
         .iter()
         .zip(blobs)
-        .filter(|(_, b)| b.region_area.min(usual) >= WHOLE * b.region_area.max(usual))
+        .filter(|(_, b)| alike_in_size(b.region_area, usual) >= WHOLE)
         .map(|(s, b)| (*s, b))
         .unzip();
-    let mut long: Vec<f64> = blobs.iter().map(|b| b.elongation).collect();
-    if long.is_empty() {
-        return None;
-    }
-    let mid = long.len() / 2;
-    if *long.select_nth_unstable_by(mid, f64::total_cmp).1 < ELONGATED {
+    if median(blobs.iter().map(|b| b.elongation).collect())? < ELONGATED {
         return None;
     }
     let (cx, cy) = pivot(&sightings, &blobs)?;
