@@ -129,9 +129,9 @@ class Parameter:
     """One answer: its value, standard error (None where unknown), unit, ``SI`` or ``latent``,
     and the truth with the relative error where the data set gives them; where the track
     measured the value too, ``routes`` holds each route's (``latent``, ``latent_error``: None
-    where it has none, ``track``, ``track_error``) and ``agree``: the value is both weighed by
-    their errors where they agree, else the track's; ``unlike``, where present, names the rate
-    on which the routes disagree, and the value is then the track's though its own two agree."""
+    where it has none, ``track``, ``track_error``) and ``agree``: the value is the track's, the
+    latent's its second opinion; ``unlike``, where present, names the rate on which the routes
+    disagree, so the latent's value here is no second opinion though its own two agree."""
 
     name: str
     value: float

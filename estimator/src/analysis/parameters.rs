@@ -32,10 +32,10 @@ pub struct ParameterResult {
 }
 
 /// One value as each route measured it (the track's error the larger of its fit's and half
-/// its halves' difference; the latent's `None` where it has none), and whether they agree (the
-/// value is then both weighed by their errors, else the track's). `unlike` names the rate (γ0,
-/// g/L) of the same answer where they disagree on it: the latent followed another motion than
-/// the track, so the track's is reported here too, though this value's two agree.
+/// its halves' difference; the latent's `None` where it has none), and whether they agree; the
+/// answer is the track's, the latent's its second opinion (`guide::combine`). `unlike` names
+/// the rate (γ0, g/L) of the same answer where the routes disagree on it: the latent followed
+/// another motion than the track, so its value here is no second opinion, though the two agree.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RouteValues {
     pub latent: f64,
@@ -54,8 +54,9 @@ fn agreed() -> bool {
 }
 
 impl ParameterResult {
-    /// Where the value is both routes' or the track's: each one's, in a phrase ("both routes,
-    /// the latent's 0.117 ± 0.03 and the track's 0.076 ± 0.0015, weighed by their errors").
+    /// Where the value is the track's with the latent's beside it: each one's, in a phrase
+    /// ("the track's 0.0812 ± 0.0079; the latent's 0.0629 ± 0.0038 agrees with it, 2.1 joint
+    /// errors apart").
     pub fn routes_phrase(&self) -> Option<String> {
         let r = self.routes.as_ref()?;
         let latent = match r.latent_error {
@@ -63,27 +64,21 @@ impl ParameterResult {
             None => format!("{} (no standard error)", sig(r.latent)),
         };
         let track = format!("{} ± {}", sig(r.track), significant(r.track_error));
-        // How many joint errors apart they lie: more than one widens the mean's error.
+        // How many joint errors apart they lie, where more than one.
         let apart = r
             .latent_error
             .map(|e| (r.latent - r.track).abs() / e.hypot(r.track_error))
-            .filter(|a| *a > 1.0);
-        let widened = match apart {
-            Some(a) => format!(
-                " (its error ×{}: they lie that many errors apart)",
-                significant(a)
-            ),
-            None => String::new(),
-        };
+            .filter(|a| *a > 1.0)
+            .map(|a| format!(", {} joint errors apart", significant(a)))
+            .unwrap_or_default();
         Some(match (r.agree, &r.unlike) {
             (true, Some(other)) => format!(
-                "the track's {track}; the latent's {latent} not weighed in: its {other} \
+                "the track's {track}; the latent's {latent} is no second opinion: its {other} \
                  disagrees with the track's (the routes check), so it followed another motion"
             ),
-            (true, None) => format!(
-                "both routes, the latent's {latent} and the track's {track}, weighed by their \
-                 errors{widened}"
-            ),
+            (true, None) => {
+                format!("the track's {track}; the latent's {latent} agrees with it{apart}")
+            }
             (false, _) => format!(
                 "the track's {track}; the latent's {latent} disagrees with it (the routes check)"
             ),
@@ -129,10 +124,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_routes_phrase_says_whose_value_and_any_widening() {
-        let mut p = ParameterResult::si("gamma1", 0.0715, "1/s", Some(0.0075));
+    fn the_routes_phrase_says_whose_value_and_how_far_the_other() {
+        let mut p = ParameterResult::si("gamma1", 0.0769, "1/s", Some(0.0042));
         assert_eq!(p.routes_phrase(), None);
-        // 2.2 joint errors apart (a shaken rod and bob): weighed, the error widened.
+        // 2.2 joint errors apart (a shaken rod and bob): they agree, and how far is said.
         let mut r = RouteValues {
             latent: 0.0609,
             latent_error: Some(0.0059),
@@ -144,27 +139,24 @@ mod tests {
         p.routes = Some(r.clone());
         let both = p.routes_phrase().unwrap();
         assert!(
-            both.starts_with("both routes, the latent's 0.0609000 ± 0.0059"),
+            both.starts_with("the track's 0.0769000 ± 0.0042; the latent's 0.0609000 ± 0.0059"),
             "{both}"
         );
         assert!(
-            both.ends_with("(its error ×2.2: they lie that many errors apart)"),
+            both.ends_with("agrees with it, 2.2 joint errors apart"),
             "{both}"
         );
-        // Within one joint error: no widening.
+        // Within one joint error: no distance.
         r.latent = 0.0760;
         p.routes = Some(r.clone());
-        assert!(p
-            .routes_phrase()
-            .unwrap()
-            .ends_with("weighed by their errors"));
-        // Another value of the answer disagrees: this one is the track's, and says why.
+        assert!(p.routes_phrase().unwrap().ends_with("agrees with it"));
+        // Another value of the answer disagrees: this one's latent is no second opinion.
         r.unlike = Some("gamma0".into());
         p.routes = Some(r.clone());
         assert!(p
             .routes_phrase()
             .unwrap()
-            .contains("not weighed in: its gamma0 disagrees"));
+            .contains("no second opinion: its gamma0 disagrees"));
         r.unlike = None;
         r.agree = false;
         r.latent_error = None;

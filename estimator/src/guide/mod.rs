@@ -220,8 +220,8 @@ pub fn steadied(req: &Request, route: &TrackRoute) -> Option<(Request, String)> 
 
 /// `report` with the track and the route's warnings set on its run, its verdict judged again
 /// with them (the model choice's close call kept), then each value both routes measured made
-/// one (`combine`: both weighed where they agree, else the track's) and the answer's own
-/// checks judged again on it (`verdict::rejudge_answer`).
+/// the track's (`combine`: the latent's kept beside it as its second opinion) and the answer's
+/// own checks judged again on it (`verdict::rejudge_answer`).
 pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
     report.run.warnings.extend(warnings);
     if let Some(route) = route {

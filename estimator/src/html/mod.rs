@@ -28,7 +28,7 @@ struct Row {
     name: String,
     estimate: String,
     error_bar: String,
-    /// Each route's value where the estimate combines both (`ParameterResult::routes_phrase`).
+    /// Each route's value where the track measured it too (`ParameterResult::routes_phrase`).
     routes: String,
     unit: String,
     truth: String,

@@ -38,8 +38,8 @@ pub fn judge(run: &Run) -> Verdict {
 static ANSWER_CHECKS: &[&dyn Check] = &[&uncertainty::Determined, &plausible::Plausible];
 
 /// `verdict` with the reasons of the checks that judge the answer's values (`ANSWER_CHECKS`)
-/// judged again on `run`, whose values changed after the judgement (`guide::combine`: both
-/// routes' values weighed together); every other reason stands.
+/// judged again on `run`, whose values changed after the judgement (`guide::combine`: the
+/// track's values in the latent's place); every other reason stands.
 pub fn rejudge_answer(verdict: Verdict, run: &Run) -> Verdict {
     let names: Vec<&str> = ANSWER_CHECKS.iter().map(|c| c.name()).collect();
     let kept = verdict
