@@ -94,7 +94,12 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
         .as_array()
         .unwrap()
         .iter()
-        .any(|r| r["check"] == "routes");
+        .any(|r| {
+            r["check"] == "routes"
+                && r["detail"]
+                    .as_str()
+                    .is_some_and(|d| d.contains("the latent's gamma0 is"))
+        });
     let r = &p["routes"];
     let f = |k: &str| r[k].as_f64().unwrap();
     assert_eq!(f("track"), g0, "{r}");
