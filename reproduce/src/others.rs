@@ -175,8 +175,9 @@ pub fn make(r: &Runner) -> anyhow::Result<Table> {
     }
     t.note(rates(&answers));
     t.note(format!(
-        "The track alone (its chosen law's values, the second route's answer beside the \
-         latent's): right on {} of {} renders.",
+        "The track alone (its chosen law's values, whether or not it guides the run; where it \
+         guides, the answer is the track's, the latent's its second opinion): right on {} of {} \
+         renders.",
         answers.iter().filter(|a| a.track_right()).count(),
         answers.len()
     ));
