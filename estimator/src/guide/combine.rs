@@ -7,12 +7,12 @@
 //! on the same frames, started from the track's answer, and its stated errors understate its
 //! spread (the others' occlusion-3 render: its damping 0.0629 ± 0.0038 for 0.08, weighed with
 //! the track's right 0.0812 ± 0.0079, gave an answer 17 % off graded ok). Each route's own
-//! value is kept beside the answer (`ParameterResult::routes`), with whether they agree (by
-//! the routes check's own rule: the rate by the track's fit's error) and,
-//! where they disagree on the rate (γ0, g/L), the rate's name on every value (`unlike`): a
-//! latent at another rate followed another motion, and its damping, however close, is no
-//! second opinion on this one's. A value the model derives from one that changed (the
-//! pendulum's length from g/L) is carried with it.
+//! value is kept beside the answer (`ParameterResult::routes`), with whether they agree (by the
+//! routes check's own rule, `routes::compared`: the rate by the track's fit's error) and, where
+//! they disagree on the rate (γ0, g/L), the rate's name on every value (`unlike`): a latent at
+//! another rate followed another motion, and its damping, however close, is no second opinion
+//! on this one's. A value the model derives from one that changed (the pendulum's length from
+//! g/L) is carried with it.
 //! The track's error is the larger of its fit's and half the difference of its span's halves
 //! (a bias that changes over the span, as a light circling the scene gives, shows there and not
 //! in the fit's residuals). The verdict is judged on the latent's own values before this, and
