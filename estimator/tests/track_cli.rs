@@ -111,6 +111,14 @@ fn the_track_finds_the_free_oscillation_and_guides_the_latent_there() {
     } else {
         assert!(disagree, "{report}");
     }
+    // The track's law held against the same frames as the latent (`guide::followed`): the
+    // disc alone moves, so its law explains most of what changes.
+    let track_share = report["evidence"]["track_fold"]["explained_share"].as_f64();
+    assert!(
+        track_share.is_some_and(|e| e > 0.5),
+        "{}",
+        report["evidence"]
+    );
 }
 
 #[test]

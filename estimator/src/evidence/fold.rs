@@ -53,42 +53,94 @@ pub struct Fold {
     pub variance_share: f64,
 }
 
+/// The frames' leading principal components, one row a frame: what any one-number coordinate
+/// of the frames (the latent, the object's track) is held against.
+#[derive(Debug, Clone, Default)]
+pub struct Components {
+    /// Each frame's projections, row-major [frames, k].
+    y: Vec<f64>,
+    k: usize,
+    /// The components' shares of the frames' variance.
+    shares: Vec<f64>,
+    /// Whether the rows are frames in time order.
+    timed: bool,
+}
+
+impl Components {
+    /// The leading principal components of `frames` [M, D] (in time order when `timed`);
+    /// `None` when the frames do not vary.
+    pub fn of(frames: &Tensor, timed: bool) -> Option<Components> {
+        let (v, shares) = tch::no_grad(|| principal_directions(frames, COMPONENTS))?;
+        let y = tch::no_grad(|| project(frames, &v));
+        let k = y.size()[1] as usize;
+        let y = Vec::<f64>::try_from(&y.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
+        Some(Components {
+            y,
+            k,
+            shares,
+            timed,
+        })
+    }
+
+    /// The frames held.
+    pub fn frames(&self) -> usize {
+        self.y.len() / self.k.max(1)
+    }
+
+    /// The rows `rows` alone, in their order (the frames where a track was read).
+    pub fn rows(&self, rows: &[usize]) -> Components {
+        let k = self.k;
+        Components {
+            y: rows
+                .iter()
+                .flat_map(|&i| self.y[i * k..(i + 1) * k].iter().copied())
+                .collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The fold of the coordinate `z` (one a row; see the module's text); `None` for fewer
+    /// than 20 rows or a `z` of another length.
+    pub fn fold(&self, z: &[f64]) -> Option<Fold> {
+        let (m, k, y) = (z.len(), self.k, &self.y);
+        if m < 20 || self.frames() != m {
+            return None;
+        }
+        let neighbours = (m / 200).clamp(3, 20);
+        let order = sorted(z);
+        let in_time: Option<Vec<usize>> = self.timed.then(|| (0..m).collect());
+        let (mut total, mut unexplained, mut folded, mut by_time, mut off_line) =
+            (0.0, 0.0, 0.0, 0.0, 0.0);
+        for c in 0..k {
+            let yc: Vec<f64> = (0..m).map(|i| y[i * k + c]).collect();
+            let (ve, f) = folding(&order, &yc, neighbours);
+            let vy = variance(&yc);
+            off_line += vy * (1.0 - affine_r2(z, &yc));
+            total += vy;
+            unexplained += ve;
+            folded += f;
+            if let Some(in_time) = &in_time {
+                by_time += folding(in_time, &yc, neighbours).1;
+            }
+        }
+        (total > 0.0).then(|| Fold {
+            folded_share: (folded - by_time).max(0.0) / total,
+            sampling_share: self.timed.then_some(by_time / total),
+            explained_share: 1.0 - unexplained / total,
+            affine_share: 1.0 - off_line / total,
+            components: k,
+            variance_share: self.shares.iter().sum(),
+        })
+    }
+}
+
 /// The fold of latent `z` (one per frame) in the principal components of `frames` [M, D]
 /// (in time order when `timed`); `None` when the frames do not vary.
 pub fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
-    let m = z.len();
-    if m < 20 || frames.size()[0] as usize != m {
+    if z.len() < 20 || frames.size()[0] as usize != z.len() {
         return None;
     }
-    let (v, shares) = tch::no_grad(|| principal_directions(frames, COMPONENTS))?;
-    let y = tch::no_grad(|| project(frames, &v));
-    let k = y.size()[1] as usize;
-    let y = Vec::<f64>::try_from(&y.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
-    let neighbours = (m / 200).clamp(3, 20);
-    let order = sorted(z);
-    let in_time: Option<Vec<usize>> = timed.then(|| (0..m).collect());
-    let (mut total, mut unexplained, mut folded, mut by_time, mut off_line) =
-        (0.0, 0.0, 0.0, 0.0, 0.0);
-    for c in 0..k {
-        let yc: Vec<f64> = (0..m).map(|i| y[i * k + c]).collect();
-        let (ve, f) = folding(&order, &yc, neighbours);
-        let vy = variance(&yc);
-        off_line += vy * (1.0 - affine_r2(z, &yc));
-        total += vy;
-        unexplained += ve;
-        folded += f;
-        if let Some(in_time) = &in_time {
-            by_time += folding(in_time, &yc, neighbours).1;
-        }
-    }
-    (total > 0.0).then(|| Fold {
-        folded_share: (folded - by_time).max(0.0) / total,
-        sampling_share: timed.then_some(by_time / total),
-        explained_share: 1.0 - unexplained / total,
-        affine_share: 1.0 - off_line / total,
-        components: k,
-        variance_share: shares.iter().sum(),
-    })
+    Components::of(frames, timed)?.fold(z)
 }
 
 /// What the neighbours in `order` leave of `y` unexplained (its variance) and the part of that

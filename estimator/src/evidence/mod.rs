@@ -14,7 +14,7 @@ use crate::network::Network;
 use crate::physics::Clips;
 use crate::windows::Windows;
 use curvature::{jacobian, sandwich, step, Variables};
-use fold::Fold;
+use fold::{Components, Fold};
 use groups::{clip_groups, distinct_rows, time_blocks};
 use halves::{split, window_halves};
 pub use halves::{Split, SplitBy};
@@ -43,8 +43,24 @@ pub struct Evidence {
     pub splits: Vec<Split>,
     /// The most folded principal component of the frames (one-number latents).
     pub fold: Option<Fold>,
+    /// The same of the object's track where it guides the run and gives the answer
+    /// (`guide::followed`): how much of the picture the answer's own coordinate explains.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub track_fold: Option<Fold>,
+    /// A recording's frames' leading components, from its kept frame `first` on (what the
+    /// latent's fold was measured on), for the track's.
+    #[serde(skip)]
+    pub picture: Option<Picture>,
     /// How the rollout explains the latent on the validation clips.
     pub law: Option<LawFit>,
+}
+
+/// A recording's frames' leading components (`fold::Components`), in time order from its kept
+/// frame `first` on.
+#[derive(Debug, Clone)]
+pub struct Picture {
+    pub first: usize,
+    pub components: Components,
 }
 
 /// How well the law explains the latent's motion within clips.
@@ -171,6 +187,8 @@ pub fn gather(
             )
         }
     };
+    let (fold, picture) = frames_fold(network, data, recording_latents).unzip();
+    let picture = picture.flatten();
     Evidence {
         covariance,
         clusters,
@@ -178,7 +196,9 @@ pub fn gather(
             .into_iter()
             .chain(split(network, data, &z, &groups, range_split))
             .collect(),
-        fold: frames_fold(network, data, recording_latents),
+        fold,
+        track_fold: None,
+        picture,
         law: LawFit::of(val.0, val.1, network.start_frames()),
     }
 }
@@ -249,11 +269,11 @@ fn frames_fold(
     network: &Network,
     data: &ClipData,
     recording_latents: Option<&[f32]>,
-) -> Option<Fold> {
+) -> Option<(Fold, Option<Picture>)> {
     if network.model.latent_dims() != 1 {
         return None;
     }
-    let (frames, z, timed) = match (&data.recording, recording_latents) {
+    let (frames, z, first) = match (&data.recording, recording_latents) {
         (Some((summary, frames)), Some(latents)) => {
             let from = match summary.descent {
                 Some(d) if d.rising => {
@@ -268,7 +288,7 @@ fn frames_fold(
                     .iter()
                     .map(|&v| v as f64)
                     .collect::<Vec<_>>(),
-                true,
+                Some(from),
             )
         }
         _ => {
@@ -284,10 +304,16 @@ fn frames_fold(
             let f = flat.index_select(0, &idx);
             let z = tch::no_grad(|| network.encoder.encode(&f.unsqueeze(0)));
             let z = Vec::<f64>::try_from(&z.to_kind(Kind::Double).contiguous().view([-1])).ok()?;
-            (f, z, false)
+            (f, z, None)
         }
     };
-    fold::fold(&frames, &z, timed)
+    if z.len() < 20 || frames.size()[0] as usize != z.len() {
+        return None;
+    }
+    let components = Components::of(&frames, first.is_some())?;
+    let fold = components.fold(&z)?;
+    let picture = first.map(|first| Picture { first, components });
+    Some((fold, picture))
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@ use crate::verdict;
 
 mod combine;
 mod descent;
+mod followed;
 mod reading;
 pub use combine::combine;
 use descent::{direction, named_by_direction, on_path, path_words, tracked_motion};
@@ -225,6 +226,7 @@ pub fn steadied(req: &Request, route: &TrackRoute) -> Option<(Request, String)> 
 pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<String>) {
     report.run.warnings.extend(warnings);
     if let Some(route) = route {
+        report.run.evidence.track_fold = followed::followed(&report.run, &route);
         report.run.track = Some(route);
         let close = report
             .model_choice

@@ -31,30 +31,84 @@ impl Check for FollowsMotion {
         "motion"
     }
     fn judge(&self, r: &Run) -> Vec<Reason> {
-        let Some(f) = &r.evidence.fold else {
-            return Vec::new();
-        };
-        let e = f.explained_share;
-        let Some(grade) = graded(e) else {
-            return Vec::new();
-        };
-        let reason = Reason::new(
-            self.name(),
-            grade,
-            format!(
-                "the latent explains only {} % of what changes in the frames (their leading \
-                 principal components): it follows a detail, not the scene's main motion \
-                 (several things moving, a background that changes, a flickering light, or \
-                 nothing of this law); crop to the object (--crop) and check the model",
-                approx(100.0 * e.max(0.0))
-            ),
-        )
-        .measured(e, DOUBTFUL_BELOW);
-        // A latent that follows almost nothing of the picture is no second measurement.
-        match grade {
-            Grade::Doubtful => vec![reason.unless(routes::corroborated(r))],
-            _ => vec![reason],
+        let latent = r.evidence.fold.as_ref().map(|f| f.explained_share);
+        let track = r.evidence.track_fold.as_ref().map(|f| f.explained_share);
+        match (latent, track) {
+            (Some(e), t) if t.is_none_or(|t| t <= e) => by_latent(self.name(), e, r),
+            (_, Some(t)) => by_track(self.name(), t, latent, routes::corroborated(r)),
+            _ => Vec::new(),
         }
+    }
+}
+
+/// The latent's share `e` of what changes in the frames, graded; at the doubtful tier a note
+/// where the track corroborates its rate.
+fn by_latent(name: &'static str, e: f64, r: &Run) -> Vec<Reason> {
+    let Some(grade) = graded(e) else {
+        return Vec::new();
+    };
+    let reason = Reason::new(
+        name,
+        grade,
+        format!(
+            "the latent explains only {} % of what changes in the frames (their leading \
+             principal components): it follows a detail, not the scene's main motion \
+             (several things moving, a background that changes, a flickering light, or \
+             nothing of this law); crop to the object (--crop) and check the model",
+            percent(e)
+        ),
+    )
+    .measured(e, DOUBTFUL_BELOW);
+    // A latent that follows almost nothing of the picture is no second measurement.
+    match grade {
+        Grade::Doubtful => vec![reason.unless(routes::corroborated(r))],
+        _ => vec![reason],
+    }
+}
+
+fn percent(share: f64) -> String {
+    approx(100.0 * share.max(0.0))
+}
+
+/// Where the answer is the track's and its law explains more of the frames than the latent
+/// does: its share `track` graded as a latent's is (at the doubtful tier a note where the track
+/// `corroborated` the latent's rate: both read the same motion, and the rest of the picture is
+/// a hand or a walker), and the latent's share, where short of the limits, a note that it is no
+/// second opinion (its values beside the track's say nothing, agree or not).
+fn by_track(
+    name: &'static str,
+    track: f64,
+    latent: Option<f64>,
+    corroborated: Option<String>,
+) -> Vec<Reason> {
+    let of_latent = latent.map_or("none".to_string(), |e| format!("{} %", percent(e)));
+    if let Some(grade) = graded(track) {
+        let why = format!(
+            "the object's track, whose values are the answer, explains only {} % of what \
+             changes in the frames (their leading principal components) and the latent {}: \
+             neither follows the scene's main motion, only a detail of it; crop to the object \
+             (--crop) and check the model",
+            percent(track),
+            of_latent
+        );
+        let reason = Reason::new(name, grade, why).measured(track, DOUBTFUL_BELOW);
+        return match grade {
+            Grade::Doubtful => vec![reason.unless(corroborated)],
+            _ => vec![reason],
+        };
+    }
+    match latent.filter(|e| graded(*e).is_some()) {
+        Some(_) => vec![Reason::new(
+            name,
+            Grade::Ok,
+            format!(
+                "the latent explains only {of_latent} of what changes in the frames where the \
+                 object's track, whose values are the answer, explains {} %: it is no second \
+                 opinion on them, whatever its values",
+                percent(track)
+            ),
+        )],
+        None => Vec::new(),
     }
 }
 
@@ -75,5 +129,36 @@ mod tests {
             assert_eq!(graded(flicker), Some(Grade::Doubtful), "{flicker}");
         }
         assert_eq!(graded(0.008), Some(Grade::Unreliable));
+    }
+
+    #[test]
+    fn where_the_track_explains_more_its_share_is_judged_and_the_latent_s_only_noted() {
+        // A 10-fps swing of 100×56 pixels: the latent learned nothing, the track's law half.
+        let noted = by_track("motion", 0.563, Some(-0.199), None);
+        assert_eq!(noted.len(), 1);
+        assert_eq!(noted[0].grade, Grade::Ok);
+        assert!(
+            noted[0].detail.contains("no second opinion"),
+            "{}",
+            noted[0].detail
+        );
+        // Both short: the track's share grades, and the reason names both.
+        let doubted = by_track("motion", 0.3, Some(0.1), None);
+        assert_eq!(doubted.len(), 1);
+        assert_eq!(doubted[0].grade, Grade::Doubtful);
+        assert!(
+            doubted[0].detail.contains("the latent 10 %"),
+            "{}",
+            doubted[0].detail
+        );
+        // At the doubtful tier, a note where the routes read the same rate; never below it.
+        let both = Some("the track measures the same rate".to_string());
+        let noted = by_track("motion", 0.3, Some(0.1), both.clone());
+        assert_eq!(noted[0].grade, Grade::Ok);
+        assert_eq!(
+            by_track("motion", 0.02, None, both)[0].grade,
+            Grade::Unreliable
+        );
+        assert!(by_track("motion", 0.9, Some(0.8), None).is_empty());
     }
 }
