@@ -134,15 +134,6 @@ impl Components {
     }
 }
 
-/// The fold of latent `z` (one per frame) in the principal components of `frames` [M, D]
-/// (in time order when `timed`); `None` when the frames do not vary.
-pub fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
-    if z.len() < 20 || frames.size()[0] as usize != z.len() {
-        return None;
-    }
-    Components::of(frames, timed)?.fold(z)
-}
-
 /// What the neighbours in `order` leave of `y` unexplained (its variance) and the part of that
 /// whose size they fix (the variance times R² of its square).
 fn folding(order: &[usize], y: &[f64], k: usize) -> (f64, f64) {
@@ -208,6 +199,11 @@ pub fn smooth_r2(x: &[f64], y: &[f64], k: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fold of `z` in the components of `frames`.
+    fn fold(frames: &Tensor, z: &[f64], timed: bool) -> Option<Fold> {
+        Components::of(frames, timed)?.fold(z)
+    }
 
     #[test]
     fn an_even_latent_folds_the_picture_and_an_odd_one_does_not() {

@@ -1,9 +1,9 @@
-//! How much of the picture the track's coordinate explains, where the track guides the run and
-//! its values are the answer (`combine`): the `motion` check's measure (`evidence::fold`), taken
-//! of the coordinate the answer was read from, on the frames the latent's was taken on. A latent
-//! that learned nothing of the picture (a 10-fps swing of 100×56 pixels: −0.20) says nothing
-//! of a track that follows it (the same frames: about half), and a track that followed a
-//! detail is caught here as a latent that did is.
+//! How much of the picture the track's law explains, where the track guides the run and its
+//! values are the answer (`combine`): the `motion` check's measure (`evidence::fold`), taken of
+//! the coordinate the answer was read from, on the frames the latent's was taken on. A latent
+//! that learned nothing of the picture (a 10-fps swing of 100×56 pixels: −0.20) says nothing of
+//! a track whose law follows it (the same frames: 0.56), and a track that followed a detail is
+//! caught here as a latent that did is.
 
 use crate::analysis::Run;
 use crate::evidence::fold::Fold;
@@ -11,10 +11,11 @@ use crate::track::TrackRoute;
 
 /// The fold of the guiding track's law (its fitted position along its axis over its span,
 /// `LawSpan::curve`: the motion the answer describes, without the reading's noise, which would
-/// shuffle the frames' neighbours) in the principal components of the run's kept frames, each frame matched to the track's sample within half a
-/// frame of it on the file's timeline (frames without one left out); `None` where the track
-/// does not guide, the frames' components were not kept (a data set, a latent of more than one
-/// number), or fewer than the fold's frames match.
+/// shuffle the frames' neighbours) in the principal components of the run's kept frames, each
+/// frame matched to the track's sample within half a frame of it on the file's timeline (frames
+/// without one left out); `None` where the track does not guide, the run has no value by its
+/// rate's name (the answer is not the track's), the frames' components were not kept (a data
+/// set, a latent of more than one number), or fewer than the fold's frames match.
 pub fn followed(run: &Run, route: &TrackRoute) -> Option<Fold> {
     let span = route.guiding()?;
     let rate = span.rate()?.name;

@@ -4,6 +4,12 @@
 //! the law describes, and the law fitted to it says nothing about the scene. Where the object's
 //! track corroborates the rate (`routes::corroborates`), a share at the doubtful tier is what
 //! the latent rightly leaves to the rest of the picture (a shaking camera, a hand): a note.
+//! Where the track guides and its values are the answer (`guide::combine`), the check asks the
+//! same of the coordinate the answer was read from, the track's law (`Evidence::track_fold`),
+//! on the same frames, and judges the larger of the two shares by the same limits: a latent
+//! short of them beside a track's law that meets them is a note (no second opinion), and a
+//! track's law that explains less than its latent (a stiff spring at 12 frames a period, whose
+//! coil looks different going up and down) is judged by the latent's.
 
 use super::{routes, Check, Grade, Reason};
 use crate::analysis::Run;
@@ -81,15 +87,16 @@ fn by_track(
     latent: Option<f64>,
     corroborated: Option<String>,
 ) -> Vec<Reason> {
-    let of_latent = latent.map_or("none".to_string(), |e| format!("{} %", percent(e)));
+    let of_latent = latent.map_or(String::new(), |e| {
+        format!(" and the latent {} %", percent(e))
+    });
     if let Some(grade) = graded(track) {
         let why = format!(
             "the object's track, whose values are the answer, explains only {} % of what \
-             changes in the frames (their leading principal components) and the latent {}: \
-             neither follows the scene's main motion, only a detail of it; crop to the object \
-             (--crop) and check the model",
+             changes in the frames (their leading principal components){of_latent}: it \
+             follows a detail of the scene, not its main motion; crop to the object (--crop) \
+             and check the model",
             percent(track),
-            of_latent
         );
         let reason = Reason::new(name, grade, why).measured(track, DOUBTFUL_BELOW);
         return match grade {
@@ -98,13 +105,14 @@ fn by_track(
         };
     }
     match latent.filter(|e| graded(*e).is_some()) {
-        Some(_) => vec![Reason::new(
+        Some(e) => vec![Reason::new(
             name,
             Grade::Ok,
             format!(
-                "the latent explains only {of_latent} of what changes in the frames where the \
+                "the latent explains only {} % of what changes in the frames where the \
                  object's track, whose values are the answer, explains {} %: it is no second \
                  opinion on them, whatever its values",
+                percent(e),
                 percent(track)
             ),
         )],
