@@ -1,9 +1,9 @@
-//! How much of the picture the track's law explains, where the track guides the run and its
-//! values are the answer (`combine`): the `motion` check's measure (`evidence::fold`), taken of
-//! the coordinate the answer was read from, on the frames the latent's was taken on. A latent
-//! that learned nothing of the picture (a 10-fps swing of 100×56 pixels: −0.20) says nothing of
-//! a track whose law follows it (the same frames: 0.56), and a track that followed a detail is
-//! caught here as a latent that did is.
+//! How much of the picture the track's law explains and folds, where the track guides the run
+//! and its values are the answer (`combine`): the `motion` and `harmonic` checks' measure
+//! (`evidence::fold`), taken of the coordinate the answer was read from, on the frames the
+//! latent's was taken on. A latent that learned nothing of the picture (a 10-fps swing of
+//! 100×56 pixels: −0.20) says nothing of a track whose law follows it (the same frames: 0.56),
+//! and a track that followed a detail is caught here as a latent that did is.
 
 use crate::analysis::Run;
 use crate::evidence::fold::Fold;
