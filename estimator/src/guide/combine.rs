@@ -31,7 +31,7 @@ use crate::verdict::routes::{compared, separation};
 /// latent's kept beside it with whether the two agree as the routes check judges them, by
 /// `v`'s own error (`routes::compared`); `None` where the track's is not a measurement (no
 /// finite value or error).
-fn combined(p: &ParameterResult, v: &Value, e: f64) -> Option<ParameterResult> {
+pub(super) fn combined(p: &ParameterResult, v: &Value, e: f64) -> Option<ParameterResult> {
     if !(e > 0.0 && e.is_finite() && v.value.is_finite()) {
         return None;
     }
@@ -113,7 +113,7 @@ fn unlike(made: &mut [(usize, ParameterResult)], rate: Option<&str>) {
 /// parameters differently at `now` (the changed values put in) than at `was` (the latent's):
 /// scaled by the ratio of the two derivations, its standard error alike (the pendulum's length,
 /// g over g/L).
-fn carry(
+pub(super) fn carry(
     model: ModelRef,
     cal: &Calibration,
     [was, now]: [&[f64]; 2],

@@ -14,10 +14,12 @@ use crate::track::laws::TrackLaw;
 use crate::track::TrackRoute;
 use crate::verdict;
 
+mod acceleration;
 mod combine;
 mod descent;
 mod followed;
 mod reading;
+use acceleration::combine_acceleration;
 pub use combine::combine;
 use descent::{direction, named_by_direction, on_path, path_words, tracked_motion};
 pub use descent::{sighted, LEVEL_DEG};
@@ -234,9 +236,9 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
             .and_then(choice::close::close_call);
         let judged = verdict::judge(&report.run).with(close);
         let route = report.run.track.take();
-        let combined = route
-            .as_ref()
-            .is_some_and(|route| combine(&mut report.run, route));
+        let combined = route.as_ref().is_some_and(|route| {
+            combine(&mut report.run, route) || combine_acceleration(&mut report.run, route)
+        });
         report.run.track = route;
         report.verdict = if combined {
             verdict::rejudge_answer(judged, &report.run)

@@ -75,6 +75,7 @@ fn spans(
 fn span(samples: &Samples, law: TrackLaw, sigma: f64, through: &[usize]) -> Option<LawSpan> {
     let t = samples.t;
     let s = longest(samples, law, least_window(law, t.len()), sigma, through)?;
+    let s = super::release::from_release(samples, law, s);
     Some(LawSpan {
         halves: segment::halves(samples, law, &s),
         law,

@@ -26,6 +26,7 @@ mod plane;
 mod pyramid;
 mod read_at;
 mod reading;
+mod release;
 mod rod;
 mod route;
 pub mod segment;

@@ -3,7 +3,7 @@
 //! best. The free motion is where the law holds: a hand holding or letting go, an impact, a
 //! bounce or an exit from the frame end it, whatever the picture does around it.
 
-use super::laws::{Fitted, TrackLaw, Value};
+use super::laws::{released, Fitted, TrackLaw, Value};
 
 /// A span's residuals may be this many times the track's noise (root mean square)…
 pub(super) const SPREADS: f64 = 3.0;
@@ -48,6 +48,8 @@ pub struct Span {
     /// Whether the law explains the span: its residuals leave at most `1 − EXPLAINED` of the
     /// motion's variance there.
     pub holds: bool,
+    /// Whether it is read from rest (`release`): its halves are too.
+    pub from_rest: bool,
 }
 
 /// The samples of a track that a law is fitted to.
@@ -83,17 +85,30 @@ impl Samples<'_> {
     pub fn fit(&self, law: TrackLaw, a: usize, b: usize, near: Option<&Fitted>) -> Option<Fitted> {
         law.fit(&self.t[a..b], &self.u[a..b], &self.xy[a..b], near)
     }
+
+    /// Whether `fitted` (of `law` on `a..b`) explains the span: its residuals leave at most
+    /// `1 − EXPLAINED` of the motion's variance there.
+    pub fn explained(&self, law: TrackLaw, a: usize, b: usize, fitted: &Fitted) -> bool {
+        let spread = self.variance(law, a, b);
+        spread > 0.0 && fitted.rms().powi(2) <= (1.0 - EXPLAINED) * spread
+    }
 }
 
 /// The values of `law` refitted on the earlier and the later half of `span` (each started from
-/// the whole span's fit): whether the law holds alike over it, measured with no encoder. Empty
-/// where a half gives no fit.
+/// the whole span's fit; from rest, from the whole's release, where it is: `release`): whether the law holds alike over
+/// it, measured with no encoder. Empty where a half gives no fit.
 pub fn halves(s: &Samples, law: TrackLaw, span: &Span) -> Vec<Vec<Value>> {
     let middle = (span.first + span.last) / 2;
     let parts = [(span.first, middle), (middle, span.last)];
     let fits: Option<Vec<Vec<Value>>> = parts
         .iter()
-        .map(|&(a, b)| Some(s.fit(law, a, b, Some(&span.fitted))?.values))
+        .map(|&(a, b)| match span.from_rest {
+            true => {
+                let vertex = span.fitted.value("vertex")?.value;
+                Some(released(&s.t[a..b], &s.xy[a..b], vertex)?.values)
+            }
+            false => Some(s.fit(law, a, b, Some(&span.fitted))?.values),
+        })
         .collect();
     fits.unwrap_or_default()
 }
@@ -174,12 +189,12 @@ pub fn longest(
         }
         break;
     }
-    let spread = s.variance(law, first, last);
     Some(Span {
         first,
         last,
-        holds: spread > 0.0 && fitted.rms().powi(2) <= (1.0 - EXPLAINED) * spread,
+        holds: s.explained(law, first, last, &fitted),
         fitted,
+        from_rest: false,
     })
 }
 
@@ -274,6 +289,7 @@ mod tests {
                 last: 240,
                 fitted: s.fit(TrackLaw::Oscillation, 0, 240, None).unwrap(),
                 holds: true,
+                from_rest: false,
             };
             let h = halves(&s, TrackLaw::Oscillation, &span);
             let g0 = |v: &[Value]| v.iter().find(|v| v.name == "gamma0").unwrap().value;

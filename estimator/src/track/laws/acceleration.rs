@@ -2,19 +2,39 @@
 //! toss, a roll; the release's velocity free): two linear fits, and the vertex along the
 //! acceleration (the release of a motion from rest, found rather than assumed). Seen in
 //! perspective (a camera tilted to the path), the path along the acceleration is a projective
-//! map of the parabola, c + s·v/(1 + b·v) with v = (t − r)² (as `data::perspective` reads a
-//! descent in the picture): on a span long enough, that bend is fitted too, and kept where it
-//! fits the path along the acceleration that much better; the vertex and the acceleration are
-//! then read through it.
+//! map of the parabola (`bent`): on a span long enough, that bend is fitted too, and kept where
+//! it fits the path along the acceleration that much better; the vertex and the acceleration
+//! are then read through it. From rest (`released`), the same read through a release before
+//! which the object is still.
 
-use super::{covariance, jacobian, least_squares, linear, sum_sq, Fitted, Value};
-use crate::data::perspective::{LEAST_DENOMINATOR, MIN_FRAMES, MIN_GAIN};
+use super::bent::bent;
+use super::{covariance, linear, Fitted, Value};
+use crate::data::perspective::MIN_FRAMES;
+
+/// A parabola fitted to positions in x and y, plain (not bent): what `finish` reads.
+pub(super) struct Plain {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    /// The residuals in x and in y.
+    pub rx: Vec<f64>,
+    pub ry: Vec<f64>,
+    /// The acceleration in x and y, and their variances.
+    pub a: (f64, f64),
+    pub a_var: (f64, f64),
+    /// The vertex (release or apex, s) and its standard error.
+    pub vertex: (f64, f64),
+}
 
 /// The constant acceleration fitted to the picture positions `xy` at times `t`: its size (px/s²
 /// of the displayed frame) and direction.
 /// Where `near` is the shape of a bent fit (its bend and vertex, `Fitted::shape`) and the span
 /// is too short to fit a bend of its own (a half of a bent span), the bend is held at `near`'s.
 pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>) -> Option<Fitted> {
+    finish(t, plain(t, xy)?, near, false)
+}
+
+/// p0 + v0 t + a t²/2 fitted to `xy` at times `t` in x and in y.
+fn plain(t: &[f64], xy: &[(f64, f64)]) -> Option<Plain> {
     let n = t.len();
     if n < 6 {
         return None;
@@ -33,11 +53,7 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>)
     let (vx, vy) = (covx[8], covy[8]);
     let (ax, ay) = (cx[2], cy[2]);
     let a = ax.hypot(ay);
-    let a_err = if a > 0.0 {
-        ((ax * ax * vx + ay * ay * vy) / (a * a)).sqrt()
-    } else {
-        vx.max(vy).sqrt()
-    };
+    let a_err = size_error((ax, ay), (vx, vy));
     let (dx, dy) = if a > 0.0 {
         (ax / a, ay / a)
     } else {
@@ -47,13 +63,60 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>)
     // rest, a toss's apex), t0 − v/a, its error from the velocity's and the acceleration's.
     let v = cx[1] * dx + cy[1] * dy;
     let v_var = dx * dx * covx[4] + dy * dy * covy[4];
-    let (vertex, vertex_err) = if a > 0.0 {
+    let vertex = if a > 0.0 {
         (
             t0 - v / a,
             (v_var / (a * a) + (v * v / (a * a * a * a)) * a_err * a_err).sqrt(),
         )
     } else {
         (f64::NAN, f64::INFINITY)
+    };
+    Some(Plain {
+        x,
+        y,
+        rx,
+        ry,
+        a: (ax, ay),
+        a_var: (vx, vy),
+        vertex,
+    })
+}
+
+/// The standard error of the size of the acceleration `(ax, ay)` whose parts have variances
+/// `(vx, vy)`.
+pub(super) fn size_error((ax, ay): (f64, f64), (vx, vy): (f64, f64)) -> f64 {
+    let a = ax.hypot(ay);
+    if a > 0.0 {
+        ((ax * ax * vx + ay * ay * vy) / (a * a)).sqrt()
+    } else {
+        vx.max(vy).sqrt()
+    }
+}
+
+/// The law's values from the plain fit `p` at times `t`: through its bend where one fits
+/// (`bent`, from rest where `from_rest`), else the plain parabola's.
+pub(super) fn finish(
+    t: &[f64],
+    p: Plain,
+    near: Option<[f64; 2]>,
+    from_rest: bool,
+) -> Option<Fitted> {
+    let n = t.len();
+    let Plain {
+        x,
+        y,
+        rx,
+        ry,
+        a: (ax, ay),
+        a_var: (vx, vy),
+        vertex: (vertex, vertex_err),
+    } = p;
+    let a = ax.hypot(ay);
+    let a_err = size_error((ax, ay), (vx, vy));
+    let (dx, dy) = if a > 0.0 {
+        (ax / a, ay / a)
+    } else {
+        (0.0, 1.0)
     };
     let curve: Vec<f64> = (0..n)
         .map(|i| (x[i] - rx[i]) * dx + (y[i] - ry[i]) * dy)
@@ -83,7 +146,8 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>)
         for &way in ways {
             let (ex, ey) = (way * dx, way * dy);
             let along: Vec<f64> = (0..n).map(|i| x[i] * ex + y[i] * ey).collect();
-            if let Some(mut bent) = bent(t, &along, (from, &plain), held.map(|s| s[0])) {
+            let bend = held.map(|s| s[0]);
+            if let Some(mut bent) = bent(t, &along, (from, &plain), bend, from_rest) {
                 bent.values.insert(
                     1,
                     Value {
@@ -120,110 +184,6 @@ pub(super) fn acceleration(t: &[f64], xy: &[(f64, f64)], near: Option<[f64; 2]>)
         curve,
         periods: None,
         shape: [0.0, 0.0],
-    })
-}
-
-/// The path `along` the acceleration at times `t` fitted as a parabola seen in perspective,
-/// c + s·v/(1 + b·v) with v = (t − r)², from a vertex and the plain parabola's residuals
-/// (`plain`), or with its bend `held`: its acceleration at the vertex (2s), vertex and bend (the
-/// picture's scale where the path is farthest from its vertex against at it, less one, in per
-/// cent), with the fitted path and its residuals along. `None` where a bend of its own fits no
-/// better than [`MIN_GAIN`] times the plain parabola, or only with a pole near the span (the
-/// scale changing more than the denominator allows).
-fn bent(t: &[f64], along: &[f64], plain: (f64, &[f64]), held: Option<f64>) -> Option<Fitted> {
-    let n = t.len();
-    let (r0, plain) = plain;
-    let rms = |r: &[f64]| (sum_sq(r) / r.len() as f64).sqrt();
-    let farthest = |r: f64| t.iter().map(|s| (s - r).powi(2)).fold(0.0, f64::max);
-    // For a vertex `r` and bend `b`: the weights v/(1 + b·v), or none near a pole.
-    let weights = |r: f64, b: f64| -> Option<Vec<f64>> {
-        let den: Vec<f64> = t.iter().map(|s| 1.0 + b * (s - r).powi(2)).collect();
-        let (lo, hi) = den
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(l, h), d| (l.min(*d), h.max(*d)));
-        (lo > 0.0 && lo >= LEAST_DENOMINATOR * hi).then(|| {
-            t.iter()
-                .zip(&den)
-                .map(|(s, d)| (s - r).powi(2) / d)
-                .collect()
-        })
-    };
-    // c and s solved for at each (r, b) (variable projection): the residuals along.
-    let ones = vec![1.0; n];
-    let solved = |p: &[f64]| linear(&[ones.clone(), weights(p[0], p[1])?], along);
-    let residual = |p: &[f64]| solved(p).map(|(_, r)| r);
-    let p = match held {
-        Some(b) => {
-            let (p, _) = least_squares(&[r0], &|p: &[f64]| residual(&[p[0], b]))?;
-            [p[0], b]
-        }
-        None => {
-            let big_v = farthest(r0).max(f64::MIN_POSITIVE);
-            let (p, r) = [-0.5, 0.0, 0.5]
-                .iter()
-                .filter_map(|bv| least_squares(&[r0, bv / big_v], &residual))
-                .min_by(|a, b| sum_sq(&a.1).total_cmp(&sum_sq(&b.1)))?;
-            if p[1] == 0.0 || rms(&r) * MIN_GAIN > rms(plain) {
-                return None;
-            }
-            [p[0], p[1]]
-        }
-    };
-    let (cs, _) = solved(&p)?;
-    let [vertex, b] = p;
-    let (c, s) = (cs[0], cs[1]);
-    if s <= 0.0 {
-        return None;
-    }
-    // Standard errors from the whole model's Jacobian (r, b, c, s; b left out where held).
-    let whole = |q: &[f64]| -> Option<Vec<f64>> {
-        let (r, b, c, s) = match held {
-            Some(b) => (q[0], b, q[1], q[2]),
-            None => (q[0], q[1], q[2], q[3]),
-        };
-        let w = weights(r, b)?;
-        Some(along.iter().zip(&w).map(|(p, w)| p - c - s * w).collect())
-    };
-    let q = match held {
-        Some(_) => vec![vertex, c, s],
-        None => vec![vertex, b, c, s],
-    };
-    let k = q.len();
-    let residuals = whole(&q)?;
-    let cov = covariance(&jacobian(&q, &residuals, &whole)?, &residuals)?;
-    let err = |i: usize| cov[i * k + i].max(0.0).sqrt();
-    // In per cent, as the descent's perspective is named.
-    let scale = |b: f64| 100.0 * (1.0 / (1.0 + b * farthest(vertex)).powi(2) - 1.0);
-    let bend_err = match held {
-        Some(_) => 0.0,
-        None => (scale(b + err(1)) - scale(b)).abs(),
-    };
-    let curve = along.iter().zip(&residuals).map(|(p, e)| p - e).collect();
-    Some(Fitted {
-        values: vec![
-            Value {
-                name: "acceleration",
-                value: 2.0 * s,
-                error: 2.0 * err(k - 1),
-                unit: "px/s^2",
-            },
-            Value {
-                name: "vertex",
-                value: vertex,
-                error: err(0),
-                unit: "s",
-            },
-            Value {
-                name: "bend",
-                value: scale(b),
-                error: bend_err,
-                unit: "%",
-            },
-        ],
-        residuals,
-        curve,
-        periods: None,
-        shape: [b, vertex],
     })
 }
 

@@ -11,14 +11,17 @@
 //! lag-one correlation).
 
 mod acceleration;
+mod bent;
 mod decay;
 mod oscillation;
+mod released;
 pub mod swing;
 
 use acceleration::acceleration;
 use decay::decay;
 use oscillation::oscillation;
 use physvid_shared::linalg::solve;
+pub(crate) use released::released;
 use serde::Serialize;
 use swing::{angular, swing};
 

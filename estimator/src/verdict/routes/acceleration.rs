@@ -13,7 +13,7 @@ use physvid_shared::cli::approx;
 
 /// The names a constant acceleration goes by among the models' values in SI (the fall's g, the
 /// slide's acceleration).
-const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
+pub const ACCELERATION_NAMES: [&str; 2] = ["g", "acceleration"];
 
 /// Where a stick or a plane puts the track's constant acceleration in metres
 /// (`TrackRoute::with_stick`, `TrackRoute::on_plane`): the latent's acceleration in SI compared
@@ -57,7 +57,7 @@ pub(super) fn accelerations(check: &'static str, r: &Run) -> Vec<Reason> {
 
 /// The track's acceleration in metres over `l`, its error the larger of its fit's and its
 /// halves' (`LawSpan::error_of`, in pixels, put in metres as its value is).
-fn si_acceleration(l: &LawSpan) -> Option<Value> {
+pub fn si_acceleration(l: &LawSpan) -> Option<Value> {
     let a = l.si.iter().find(|v| v.name == "acceleration")?;
     let halves = l
         .values

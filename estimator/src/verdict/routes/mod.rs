@@ -22,6 +22,7 @@ use physvid_shared::cli::approx;
 mod acceleration;
 mod corroborated;
 use acceleration::accelerations;
+pub use acceleration::{si_acceleration, ACCELERATION_NAMES};
 pub(super) use corroborated::{corroborates, note as corroborated};
 
 pub struct Routes;
