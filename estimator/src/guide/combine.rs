@@ -262,6 +262,7 @@ mod tests {
             periods: Some(2.5),
             curve: Vec::new(),
             first: 0,
+            from_rest: false,
         };
         let error = |span: &LawSpan, whole: Value| {
             let mut span = span.clone();

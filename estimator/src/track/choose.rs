@@ -123,6 +123,7 @@ mod tests {
             periods: Some(2.5),
             curve: Vec::new(),
             first: 0,
+            from_rest: false,
         }
     }
 

@@ -90,6 +90,7 @@ fn span(samples: &Samples, law: TrackLaw, sigma: f64, through: &[usize]) -> Opti
         values: s.fitted.values,
         curve: s.fitted.curve,
         first: s.first,
+        from_rest: s.from_rest,
     })
 }
 

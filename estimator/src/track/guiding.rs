@@ -34,6 +34,17 @@ impl LawSpan {
         self.last_s - self.first_s
     }
 
+    /// How long the object moves by the law: its span, from the release where it is read from
+    /// rest (the still frames before it are no motion held; a reading that scatters more
+    /// reaches further back into them).
+    pub fn moving_s(&self) -> f64 {
+        let release = self.values.iter().find(|v| v.name == "vertex");
+        match release.filter(|_| self.from_rest) {
+            Some(r) => self.last_s - r.value.max(self.first_s),
+            None => self.held_s(),
+        }
+    }
+
     /// Its rate refitted on the span's earlier and later half (`segment::halves`); `None`
     /// where either half gives none.
     pub fn rate_halves(&self) -> Option<[&Value; 2]> {

@@ -215,6 +215,7 @@ pub(crate) mod tests {
             periods: None,
             curve: Vec::new(),
             first,
+            from_rest: false,
         };
         TrackRoute {
             track: Track {

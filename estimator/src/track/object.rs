@@ -1,5 +1,6 @@
 //! Which reading of which thing is the object's: of the things followed, the one a law explains
-//! the most motion of, and of its readings, the one held longest or by its rod.
+//! the most motion of, and of its readings moving by its law alike long, its rod's, else the one
+//! whose positions scatter least about a smooth motion, else the longest.
 
 use super::choose::ALIKE;
 use super::{Reading, TrackRoute};
@@ -31,24 +32,31 @@ pub(super) fn chosen(all: &[TrackRoute]) -> Option<&TrackRoute> {
         .copied()
         .filter(|c| c.explained() > 0.0 && most.same_thing(c))
         .collect();
+    let moving = |c: &&TrackRoute| c.moving_s();
     let held = |c: &&TrackRoute| c.held_s();
     let Some(long) = same
         .iter()
         .copied()
-        .max_by(|a, b| held(a).total_cmp(&held(b)))
+        .max_by(|a, b| moving(a).total_cmp(&moving(b)))
     else {
         return Some(most);
     };
-    // Of the readings held alike in length (as `choose` weighs laws), the rod's, then the
-    // longest.
+    // Of the readings moving by the law alike long (as `choose` weighs laws; a span read from
+    // rest from its release), the rod's, then the one of least noise (each reading's own: what a
+    // smooth motion leaves of its points), then the one held longest. A noisier reading of the
+    // same thing holds its law longer only by its wider tolerance: a uniform cart larger than
+    // the template's patch, matched by its middle, scatters 3 px along the rail and held its
+    // parabola from 0.48 s, before its release, to 2.63 s; its centroids from the release
+    // (0.5 s) to 2.57 s at 0.1 px (`scripts/carts_suite.py`).
     let rod = |c: &&TrackRoute| c.track.reading == Reading::Rod;
     let chosen = same
         .iter()
         .copied()
-        .filter(|c| held(c) >= ALIKE * held(&long))
+        .filter(|c| moving(c) >= ALIKE * moving(&long))
         .max_by(|a, b| {
             rod(a)
                 .cmp(&rod(b))
+                .then(b.track.noise.total_cmp(&a.track.noise))
                 .then(held(a).total_cmp(&held(b)))
                 .then(by(a, b))
         })
@@ -84,11 +92,16 @@ mod tests {
             reading(Reading::Rod, 5.1),
         ];
         assert_eq!(chosen(&all).unwrap().track.reading, Reading::Centroids);
-        // Of two readings held alike neither by a rod, the longer.
+        // Of two readings held alike neither by a rod, of equal noise, the longer…
         let all = [
             reading(Reading::Matches, 5.3),
             reading(Reading::Centroids, 5.72),
         ];
         assert_eq!(chosen(&all).unwrap().track.reading, Reading::Centroids);
+        // …and of unequal noise, the steadier.
+        let mut steadier = reading(Reading::Matches, 5.3);
+        steadier.track.noise = all[1].track.noise / 2.0;
+        let all = [steadier, reading(Reading::Centroids, 5.72)];
+        assert_eq!(chosen(&all).unwrap().track.reading, Reading::Matches);
     }
 }

@@ -39,6 +39,10 @@ pub struct LawSpan {
     pub curve: Vec<f64>,
     #[serde(skip)]
     pub first: usize,
+    /// Whether a constant acceleration's span is read from rest (`release`): the object still
+    /// until its vertex, then accelerating.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub from_rest: bool,
 }
 
 impl LawSpan {
@@ -126,6 +130,11 @@ impl TrackRoute {
     /// How long the chosen law holds (s; 0 where none was chosen).
     pub fn held_s(&self) -> f64 {
         self.chosen_span().map_or(0.0, LawSpan::held_s)
+    }
+
+    /// How long its chosen law's span moves (`LawSpan::moving_s`).
+    pub fn moving_s(&self) -> f64 {
+        self.chosen_span().map_or(0.0, LawSpan::moving_s)
     }
 
     /// Whether `other` follows the same thing: at the frames both saw, their positions lie
@@ -288,6 +297,7 @@ pub(crate) mod tests {
             periods: Some(3.0),
             curve: Vec::new(),
             first: 2,
+            from_rest: false,
         };
         let route = TrackRoute {
             track,

@@ -248,6 +248,7 @@ mod tests {
             periods: None,
             curve: Vec::new(),
             first: 0,
+            from_rest: false,
         };
         let a = si_acceleration(&l).unwrap();
         let widened = 0.5 * (394.4 - 288.7) * si / px;
