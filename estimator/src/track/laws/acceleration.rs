@@ -54,11 +54,7 @@ fn plain(t: &[f64], xy: &[(f64, f64)]) -> Option<Plain> {
     let (ax, ay) = (cx[2], cy[2]);
     let a = ax.hypot(ay);
     let a_err = size_error((ax, ay), (vx, vy));
-    let (dx, dy) = if a > 0.0 {
-        (ax / a, ay / a)
-    } else {
-        (0.0, 1.0)
-    };
+    let (dx, dy) = direction((ax, ay));
     // The vertex along the acceleration: where the velocity along it is zero (a release from
     // rest, a toss's apex), t0 − v/a, its error from the velocity's and the acceleration's.
     let v = cx[1] * dx + cy[1] * dy;
@@ -80,6 +76,16 @@ fn plain(t: &[f64], xy: &[(f64, f64)]) -> Option<Plain> {
         a_var: (vx, vy),
         vertex,
     })
+}
+
+/// The unit vector along the acceleration `(ax, ay)` (down the picture where it is none).
+fn direction((ax, ay): (f64, f64)) -> (f64, f64) {
+    let a = ax.hypot(ay);
+    if a > 0.0 {
+        (ax / a, ay / a)
+    } else {
+        (0.0, 1.0)
+    }
 }
 
 /// The standard error of the size of the acceleration `(ax, ay)` whose parts have variances
@@ -113,11 +119,7 @@ pub(super) fn finish(
     } = p;
     let a = ax.hypot(ay);
     let a_err = size_error((ax, ay), (vx, vy));
-    let (dx, dy) = if a > 0.0 {
-        (ax / a, ay / a)
-    } else {
-        (0.0, 1.0)
-    };
+    let (dx, dy) = direction((ax, ay));
     let curve: Vec<f64> = (0..n)
         .map(|i| (x[i] - rx[i]) * dx + (y[i] - ry[i]) * dy)
         .collect();
