@@ -97,7 +97,7 @@ mod tests {
     }
 
     #[test]
-    fn a_span_that_reaches_back_over_the_rest_starts_at_the_release() {
+    fn a_span_that_reaches_back_over_the_rest_is_read_from_it() {
         let (t, xy) = track(false);
         let (grown, kept) = span_of(&t, &xy);
         // The law explains a few frames of rest before the release within the noise, and
