@@ -7,7 +7,8 @@
 //! (a short span the track holds, a slide seen in perspective) its answer stands, the track
 //! compared with it by the routes check as before. Carts pulled from rest
 //! (`scripts/carts_suite.py`): the track's is the answer on all six, within 0.7 %, its error
-//! 2.6–100 times smaller than the latent's, which was 3–28 % low (four of six graded ok before).
+//! 2.6–100 times smaller than the latent's, which was 3–28 % low (four of six graded ok
+//! before).
 
 use super::combine::{carry, combined};
 use crate::analysis::Run;

@@ -95,19 +95,21 @@ impl Samples<'_> {
 }
 
 /// The values of `law` refitted on the earlier and the later half of `span` (each started from
-/// the whole span's fit; from rest, from the whole's release, where it is: `release`): whether the law holds alike over
-/// it, measured with no encoder. Empty where a half gives no fit.
+/// the whole span's fit; from rest, from the whole's release, where it is: `release`): whether
+/// the law holds alike over it, measured with no encoder. Empty where a half gives no fit.
 pub fn halves(s: &Samples, law: TrackLaw, span: &Span) -> Vec<Vec<Value>> {
     let middle = (span.first + span.last) / 2;
     let parts = [(span.first, middle), (middle, span.last)];
     let fits: Option<Vec<Vec<Value>>> = parts
         .iter()
-        .map(|&(a, b)| match span.from_rest {
-            true => {
+        .map(|&(a, b)| {
+            let fitted = if span.from_rest {
                 let vertex = span.fitted.value("vertex")?.value;
-                Some(released(&s.t[a..b], &s.xy[a..b], vertex)?.values)
-            }
-            false => Some(s.fit(law, a, b, Some(&span.fitted))?.values),
+                released(&s.t[a..b], &s.xy[a..b], vertex)
+            } else {
+                s.fit(law, a, b, Some(&span.fitted))
+            };
+            Some(fitted?.values)
         })
         .collect();
     fits.unwrap_or_default()

@@ -90,7 +90,7 @@ fn direction((ax, ay): (f64, f64)) -> (f64, f64) {
 
 /// The standard error of the size of the acceleration `(ax, ay)` whose parts have variances
 /// `(vx, vy)`.
-pub(super) fn size_error((ax, ay): (f64, f64), (vx, vy): (f64, f64)) -> f64 {
+fn size_error((ax, ay): (f64, f64), (vx, vy): (f64, f64)) -> f64 {
     let a = ax.hypot(ay);
     if a > 0.0 {
         ((ax * ax * vx + ay * ay * vy) / (a * a)).sqrt()
