@@ -2,7 +2,7 @@
 //! for `--batch` and `--merge`, the batch driver).
 
 use clap::{CommandFactory, FromArgMatches};
-use estimator::error::exit_with;
+use estimator::error::{exit_code, exit_now};
 use estimator::EstimateArgs;
 use std::process::ExitCode;
 
@@ -31,5 +31,5 @@ fn main() -> ExitCode {
                 estimator::run(&args.request()?)
             }
         });
-    exit_with("estimate", result)
+    exit_now(exit_code("estimate", result))
 }

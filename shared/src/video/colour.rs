@@ -6,6 +6,7 @@ use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{bad, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
 use std::ops::Range;
 use std::path::Path;
+use std::process::Stdio;
 
 /// Frames `frames` (indices of the grey decode of `input` with `opts`: the same trim and
 /// fields, every frame as it is) in colour, [F, 3, H, W] (red, green, blue) in [0, 1], each
@@ -26,7 +27,7 @@ pub fn colour_frames(
     }
     cmd.args(EVERY_FRAME)
         .args(["-frames:v", &frames.end.to_string()]);
-    let (mut child, mut stdout) = raw_frames(cmd, input, "gbrp")?;
+    let (mut child, mut stdout) = raw_frames(cmd, input, "gbrp", Stdio::null())?;
     let plane = info.width * info.height;
     let mut buf = vec![0u8; 3 * plane];
     let crop = Crop::of(opts, info);

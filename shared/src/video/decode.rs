@@ -10,7 +10,7 @@ use super::tools::{not_started, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{bad, image_files, probe, Crop, FrameResizer, VideoError, VideoInfo, VideoOptions};
 use std::io::BufRead;
 use std::path::Path;
-use std::process::Stdio;
+use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
@@ -93,62 +93,34 @@ pub fn decode(
     }
     cmd.args(EVERY_FRAME)
         .args(["-f", "rawvideo", "-pix_fmt", "gray", "-"]);
-    cmd.stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .stdin(Stdio::null());
-    let mut child = cmd.spawn().map_err(|e| not_started("ffmpeg", input, e))?;
-    let mut stdout = child.stdout.take().expect("piped stdout");
-    let mut stderr = child.stderr.take().expect("piped stderr");
-    // ffmpeg's complaints (at `-v error` a clean file has none), each with the frames read
-    // when it came: damage in the middle of a file is reported near where it is.
-    let progress = Arc::new(AtomicUsize::new(0));
-    let seen = Arc::clone(&progress);
-    let err_reader = std::thread::spawn(move || {
-        std::io::BufReader::new(&mut stderr)
-            .lines()
-            .map_while(Result::ok)
-            .map(|l| {
-                (
-                    seen.load(Ordering::Relaxed),
-                    without_context(&l).to_string(),
-                )
-            })
-            .filter(|(_, l)| !l.is_empty() && !l.starts_with("Last message repeated"))
-            // Two frames with one timestamp (a doubled frame) trouble only the raw output's
-            // muxer; the clock leaves one of them out.
-            .filter(|(_, l)| !l.contains("non monotonically increasing dts to muxer"))
-            .collect::<Vec<_>>()
-    });
-    let frame_bytes = crop.w * crop.h;
-    let mut buf = vec![0u8; frame_bytes];
-    let piped = Crop { x: 0, y: 0, ..crop };
-    let mut resizer = FrameResizer::new(crop.w, piped, opts.size);
-    let mut frames = Vec::new();
-    let mut count = 0usize;
-    let mut partial = false;
-    loop {
-        match read_full(&mut stdout, &mut buf) {
-            Ok(n) if n == frame_bytes => {
-                frames.extend(resizer.resize(&buf));
-                count += 1;
-                progress.store(count, Ordering::Relaxed);
-            }
-            Ok(0) => break,
-            Ok(_) => {
-                partial = true;
-                break;
-            }
-            Err(e) => return Err(bad(input, format!("reading ffmpeg's output: {e}"))),
-        }
-    }
-    let status = child.wait().map_err(|e| bad(input, e.to_string()))?;
-    let log = err_reader.join().unwrap_or_default();
+    // The frames the look at the file's fields decoded beside it, where they serve (`kept`);
+    // else ffmpeg's.
+    let served = match folder {
+        true => None,
+        false => super::kept::served(input, &info, opts, crop),
+    };
+    let Pulled {
+        mut frames,
+        mut count,
+        partial,
+        success,
+        log,
+    } = match served {
+        Some((frames, count)) => Pulled {
+            frames,
+            count,
+            partial: false,
+            success: true,
+            log: Vec::new(),
+        },
+        None => pulled(cmd, input, crop, opts.size)?,
+    };
     drop(list_file);
     let last = log.last().map_or("decoding failed", |(_, l)| l.as_str());
-    if folder && (!log.is_empty() || !status.success() || count != folder_files.len()) {
+    if folder && (!log.is_empty() || !success || count != folder_files.len()) {
         return Err(damaged_folder(input, &folder_files, count, last));
     }
-    if count == 0 && (!status.success() || partial) {
+    if count == 0 && (!success || partial) {
         return Err(VideoError::NotAVideo {
             path: input.to_path_buf(),
             reason: last.to_string(),
@@ -170,7 +142,7 @@ pub fn decode(
             ),
         ));
     }
-    if !status.success() || partial {
+    if !success || partial {
         return Err(bad(
             input,
             format!("decoding stopped after {count} frames: {last} (a truncated file?)"),
@@ -266,4 +238,80 @@ fn without_context(line: &str) -> &str {
         Some((ctx, rest)) if ctx.starts_with('[') && ctx.contains(" @ ") => rest,
         _ => line,
     }
+}
+
+/// What ffmpeg gave: the frames resized, how many, whether the last was cut short, whether it
+/// finished well, and its complaints (each with the frames read when it came).
+struct Pulled {
+    frames: Vec<f32>,
+    count: usize,
+    partial: bool,
+    success: bool,
+    log: Vec<(usize, String)>,
+}
+
+/// Runs ffmpeg's `cmd` (input, filters and raw grey output given) on `input`, each frame of
+/// `crop`'s size resized to `size` as it arrives.
+fn pulled(
+    mut cmd: Command,
+    input: &Path,
+    crop: Crop,
+    size: (usize, usize),
+) -> Result<Pulled, VideoError> {
+    cmd.stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .stdin(Stdio::null());
+    let mut child = cmd.spawn().map_err(|e| not_started("ffmpeg", input, e))?;
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let mut stderr = child.stderr.take().expect("piped stderr");
+    // ffmpeg's complaints (at `-v error` a clean file has none), each with the frames read
+    // when it came: damage in the middle of a file is reported near where it is.
+    let progress = Arc::new(AtomicUsize::new(0));
+    let seen = Arc::clone(&progress);
+    let err_reader = std::thread::spawn(move || {
+        std::io::BufReader::new(&mut stderr)
+            .lines()
+            .map_while(Result::ok)
+            .map(|l| {
+                (
+                    seen.load(Ordering::Relaxed),
+                    without_context(&l).to_string(),
+                )
+            })
+            .filter(|(_, l)| !l.is_empty() && !l.starts_with("Last message repeated"))
+            // Two frames with one timestamp (a doubled frame) trouble only the raw output's
+            // muxer; the clock leaves one of them out.
+            .filter(|(_, l)| !l.contains("non monotonically increasing dts to muxer"))
+            .collect::<Vec<_>>()
+    });
+    let frame_bytes = crop.w * crop.h;
+    let mut buf = vec![0u8; frame_bytes];
+    let piped = Crop { x: 0, y: 0, ..crop };
+    let mut resizer = FrameResizer::new(crop.w, piped, size);
+    let mut frames = Vec::new();
+    let mut count = 0usize;
+    let mut partial = false;
+    loop {
+        match read_full(&mut stdout, &mut buf) {
+            Ok(n) if n == frame_bytes => {
+                frames.extend(resizer.resize(&buf));
+                count += 1;
+                progress.store(count, Ordering::Relaxed);
+            }
+            Ok(0) => break,
+            Ok(_) => {
+                partial = true;
+                break;
+            }
+            Err(e) => return Err(bad(input, format!("reading ffmpeg's output: {e}"))),
+        }
+    }
+    let status = child.wait().map_err(|e| bad(input, e.to_string()))?;
+    Ok(Pulled {
+        frames,
+        count,
+        partial,
+        success: status.success(),
+        log: err_reader.join().unwrap_or_default(),
+    })
 }

@@ -1,5 +1,6 @@
 //! `DecodedVideo`: a recording's kept frames, resized, on an even clock, and the clips cut from
-//! them (by index: the frames are held once).
+//! them (by index: the frames are held once); and `SmallFrames`, a recording's frames as bytes
+//! at one size, as the survey and the track read them.
 
 use super::{VideoInfo, VideoOptions};
 
@@ -85,4 +86,27 @@ pub(super) fn cut(count: usize, span: usize, opts: &VideoOptions) -> (Vec<usize>
         .hop
         .unwrap_or_else(|| possible.div_ceil(opts.max_clips.max(1)).max(1));
     ((0..possible).step_by(hop).collect(), hop)
+}
+
+/// Frames of one size (grey, or chroma: `small_chroma`), row-major, one after another.
+pub struct SmallFrames {
+    pub pixels: Vec<u8>,
+    pub size: (usize, usize),
+}
+
+impl SmallFrames {
+    /// How many frames were decoded.
+    pub fn len(&self) -> usize {
+        self.pixels.len() / (self.size.0 * self.size.1).max(1)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Frame `i`.
+    pub fn frame(&self, i: usize) -> &[u8] {
+        let n = self.size.0 * self.size.1;
+        &self.pixels[i * n..(i + 1) * n]
+    }
 }

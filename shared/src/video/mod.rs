@@ -10,6 +10,7 @@ mod decoded;
 pub mod fields;
 mod folder;
 pub mod free;
+mod kept;
 mod probe;
 pub mod region;
 mod resize;
@@ -21,10 +22,10 @@ mod tools;
 
 pub use colour::colour_frames;
 pub use decode::decode;
-pub use decoded::DecodedVideo;
+pub use decoded::{DecodedVideo, SmallFrames};
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::{shifted, FrameResizer};
-pub use small::{small_chroma, small_frames, SmallFrames, TRACK_SIDE};
+pub use small::{small_chroma, small_frames, TRACK_SIDE};
 pub use still::{still, still_ahead};
 pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
 

@@ -2,38 +2,16 @@
 //! a byte a pixel: its grey, or its colour's distance from grey), held in memory: what the
 //! survey and the object's track read.
 
+use super::decoded::SmallFrames;
 use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
-use super::{FileKey, VideoError, VideoInfo};
+use super::{VideoError, VideoInfo};
 use std::path::Path;
-use std::sync::Mutex;
+use std::process::Stdio;
 
 /// The long side (pixels) at which the object's track reads a recording whole. The look at a
 /// recording's fields (`fields::find`) decodes it at this size in the same pass, for the track
 /// (one decode of a 1080p spring fewer: 0.6 s of its 6).
 pub const TRACK_SIDE: usize = 320;
-
-/// Frames of one size (grey, or chroma: `small_chroma`), row-major, one after another.
-pub struct SmallFrames {
-    pub pixels: Vec<u8>,
-    pub size: (usize, usize),
-}
-
-impl SmallFrames {
-    /// How many frames were decoded.
-    pub fn len(&self) -> usize {
-        self.pixels.len() / (self.size.0 * self.size.1).max(1)
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Frame `i`.
-    pub fn frame(&self, i: usize) -> &[u8] {
-        let n = self.size.0 * self.size.1;
-        &self.pixels[i * n..(i + 1) * n]
-    }
-}
 
 /// `input` (trimmed to `start`..`end` seconds) decoded to grey with its long side at most
 /// `side` pixels (never enlarged), interlaced fields split as the probe found them. The whole
@@ -78,48 +56,6 @@ pub(super) fn small_filter((w, h): (usize, usize)) -> String {
 /// second of 320×180). Bounds memory and the temporary file only; no decision reads it.
 pub(super) const KEPT_AT_MOST: usize = 512 << 20;
 
-/// The whole of the last recording whose fields were looked at, progressive, at
-/// [`TRACK_SIDE`], decoded in the look's pass; and the file it is of.
-static KEPT: Mutex<Option<(FileKey, SmallFrames)>> = Mutex::new(None);
-
-/// Keeps `frames` (the whole of the progressive recording at `path` at [`TRACK_SIDE`]) for
-/// [`small_frames`], in place of any other file's.
-pub(super) fn keep(path: &Path, frames: SmallFrames) {
-    let Some(key) = FileKey::of(path) else {
-        return;
-    };
-    *KEPT.lock().unwrap_or_else(|e| e.into_inner()) = Some((key, frames));
-}
-
-/// The kept frames of `path`, taken: handed back where `whole` (the whole recording is asked
-/// for) at this `size`, else let go (the track asked for a part, `--start` or `--end`: they
-/// will not be asked for); none where another file's are kept, or the file changed since.
-fn kept(path: &Path, size: (usize, usize), whole: bool) -> Option<SmallFrames> {
-    let key = FileKey::of(path)?;
-    taken(
-        &mut KEPT.lock().unwrap_or_else(|e| e.into_inner()),
-        &key,
-        size,
-        whole,
-    )
-}
-
-/// [`kept`] from `slot`, for the file `key`.
-fn taken(
-    slot: &mut Option<(FileKey, SmallFrames)>,
-    key: &FileKey,
-    size: (usize, usize),
-    whole: bool,
-) -> Option<SmallFrames> {
-    match slot.as_ref() {
-        Some((k, _)) if k == key => slot
-            .take()
-            .map(|(_, f)| f)
-            .filter(|f| whole && f.size == size),
-        _ => None,
-    }
-}
-
 /// What a small frame's byte holds.
 #[derive(Clone, Copy, PartialEq)]
 enum Picture {
@@ -137,7 +73,7 @@ fn decode_small(
     let (w, h) = small_size((info.width, info.height), side);
     if side == TRACK_SIDE && picture == Picture::Grey {
         let whole = start.is_none() && end.is_none() && info.filter().is_none();
-        if let Some(kept) = kept(input, (w, h), whole) {
+        if let Some(kept) = super::kept::whole(input, (w, h), whole) {
             return Ok(kept);
         }
     }
@@ -156,7 +92,7 @@ fn decode_small(
         Picture::Grey => ("gray", 1),
         Picture::Chroma => ("yuv444p", 3),
     };
-    let (mut child, mut stdout) = raw_frames(cmd, input, format)?;
+    let (mut child, mut stdout) = raw_frames(cmd, input, format, Stdio::null())?;
     let mut pixels = Vec::new();
     let mut buf = vec![0u8; n * planes];
     while read_full(&mut stdout, &mut buf).is_ok_and(|k| k == buf.len()) {
@@ -174,39 +110,4 @@ fn decode_small(
         pixels,
         size: (w, h),
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kept_frames_go_to_the_whole_asked_once_and_are_let_go_for_a_part() {
-        let dir = tempfile::tempdir().unwrap();
-        let (a, b) = (dir.path().join("a.mp4"), dir.path().join("b.mp4"));
-        std::fs::write(&a, b"a").unwrap();
-        std::fs::write(&b, b"bb").unwrap();
-        let (ka, kb) = (FileKey::of(&a).unwrap(), FileKey::of(&b).unwrap());
-        let frames = || SmallFrames {
-            pixels: vec![7; 2 * 4 * 3],
-            size: (4, 3),
-        };
-        // The whole, at its size: handed back, once.
-        let mut slot = Some((ka.clone(), frames()));
-        assert!(
-            taken(&mut slot, &kb, (4, 3), true).is_none(),
-            "another file's"
-        );
-        assert_eq!(
-            taken(&mut slot, &ka, (4, 3), true).map(|f| f.len()),
-            Some(2)
-        );
-        assert!(slot.is_none() && taken(&mut slot, &ka, (4, 3), true).is_none());
-        // A part of it, or another size: not handed back, and not held any longer.
-        for (size, whole) in [((4, 3), false), ((8, 6), true)] {
-            let mut slot = Some((ka.clone(), frames()));
-            assert!(taken(&mut slot, &ka, size, whole).is_none());
-            assert!(slot.is_none());
-        }
-    }
 }

@@ -59,21 +59,18 @@ pub(crate) const EVERY_FRAME: [&str; 6] = [
     "-1",
 ];
 
-/// Runs ffmpeg's `cmd` (its input and filters given) with grey raw frames to a pipe, its
-/// complaints dropped: the child and its output, or the error naming `input`.
-pub(crate) fn gray_frames(cmd: Command, input: &Path) -> Result<(Child, ChildStdout), VideoError> {
-    raw_frames(cmd, input, "gray")
-}
-
-/// As [`gray_frames`], in ffmpeg's pixel format `pix_fmt`.
+/// Runs ffmpeg's `cmd` (its input and filters given) with raw frames in its pixel format
+/// `pix_fmt` to a pipe, its complaints to `complaints`: the child and its output, or the error
+/// naming `input`.
 pub(crate) fn raw_frames(
     mut cmd: Command,
     input: &Path,
     pix_fmt: &str,
+    complaints: Stdio,
 ) -> Result<(Child, ChildStdout), VideoError> {
     cmd.args(["-f", "rawvideo", "-pix_fmt", pix_fmt, "-"])
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(complaints)
         .stdin(Stdio::null());
     let mut child = cmd.spawn().map_err(|e| not_started("ffmpeg", input, e))?;
     let stdout = child.stdout.take().expect("piped stdout");

@@ -119,7 +119,7 @@ pub fn find(
     if let Some(f) = seen.lock().ok().and_then(|s| s.get(path).copied()) {
         return Ok(f);
     }
-    let (look, whole) = picture::look(path, size, frames)?;
+    let (look, (whole, large)) = picture::look(path, size, frames)?;
     let fields = match (look, tag) {
         (Look::Interlaced(order, share), _) => Some(Fields {
             order,
@@ -133,8 +133,8 @@ pub fn find(
         }),
         _ => None,
     };
-    if let (None, Some(whole)) = (fields, whole) {
-        super::small::keep(path, whole);
+    if fields.is_none() {
+        super::kept::keep(path, whole, large);
     }
     if let Ok(mut s) = seen.lock() {
         s.insert(path.to_path_buf(), fields);

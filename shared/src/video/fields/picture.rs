@@ -2,11 +2,13 @@
 //! voting for the order in which a frame's fields were taken where the weaves with the next
 //! frame tell (see the module above for the measurements).
 
+use super::super::kept::LARGE_AT_MOST;
 use super::super::small::{small_filter, small_size, KEPT_AT_MOST, TRACK_SIDE};
-use super::super::tools::{gray_frames, read_full, tool, EVERY_FRAME};
+use super::super::tools::{raw_frames, read_full, tool, EVERY_FRAME};
 use super::super::{SmallFrames, VideoError};
 use super::FieldOrder;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
 
 /// Frames looked at: pairs spread over the recording's first [`WITHIN`] frames (every frame of
 /// a short one), each narrowed to at most [`WIDTH`] columns (the rows, where fields differ,
@@ -24,41 +26,63 @@ const MIN_VOTES: usize = 8;
 const CLEARLY: f64 = 0.8;
 
 /// What the picture says: the moving pairs of frames looked at, and their votes; and the whole
-/// recording at [`TRACK_SIDE`] decoded in the same pass (none where its frames are not counted
-/// or would pass [`KEPT_AT_MOST`], or it could not be written to a temporary file: the look
-/// alone is its purpose).
+/// recording decoded in the same pass, at [`TRACK_SIDE`] and at its own size (`kept`): none
+/// where its frames are not counted or would pass [`KEPT_AT_MOST`] (or [`LARGE_AT_MOST`]), or
+/// they could not be written to a temporary file (the look alone is its purpose); none at its
+/// own size where ffmpeg complained of the file (it is decoded again, and its damage
+/// reported).
 pub(super) fn look(
     path: &Path,
     (w, h): (usize, usize),
     frames: Option<usize>,
-) -> Result<(Look, Option<SmallFrames>), VideoError> {
+) -> Result<(Look, Wholes), VideoError> {
     if h < 8 || w == 0 {
-        return Ok((Look::Unknown, None));
+        return Ok((Look::Unknown, (None, None)));
     }
     let every = frames.map_or(2, |n| (n.min(WITHIN) / (LOOKED_AT / 2)).max(2));
     let whole = small_size((w, h), TRACK_SIDE);
+    let at_most = |size: (usize, usize), most: usize| {
+        frames.is_some_and(|n| n.saturating_mul(size.0 * size.1) <= most)
+    };
+    // The whole read beside where its size is known and within bounds; at the larger size too
+    // where that differs.
+    let fits = at_most(whole, KEPT_AT_MOST);
+    let large = (w, h);
+    let large_apart = fits && large != whole && at_most(large, LARGE_AT_MOST);
     let w = w.min(WIDTH);
     let looked = format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area");
-    // The whole read beside where its size is known and within bounds.
-    let fits = frames.is_some_and(|n| n.saturating_mul(whole.0 * whole.1) <= KEPT_AT_MOST);
     let scratch = tempfile::tempdir().ok().filter(|_| fits);
-    let kept = scratch.as_ref().map(|d| d.path().join("whole.gray"));
+    let file = |name: &str| scratch.as_ref().map(|d| d.path().join(name));
+    let (kept, kept_large, log) = (file("whole.gray"), file("large.gray"), file("log"));
+    let large_apart = large_apart && kept_large.is_some();
     let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
         .arg(path);
     match &kept {
-        // One decode, split: the whole at the track's size to the file (every frame, as
-        // `small_frames` reads it), the pairs looked at to the pipe.
+        // One decode, split: the whole at the track's size (and at the larger) to the files
+        // (every frame, as `small_frames` reads it), the pairs looked at to the pipe.
         Some(file) => {
+            // At the file's own size, as `decode` converts it (no scaling).
+            let (parts, large_filter) = match large_apart {
+                true => (3, ";[c]null[large]"),
+                false => (2, ""),
+            };
+            let third = if parts == 3 { "[c]" } else { "" };
             let split = format!(
-                "[0:v:0]split=2[a][b];[a]{}[whole];[b]{looked}[looked]",
+                "[0:v:0]split={parts}[a][b]{third};[a]{}[whole];[b]{looked}[looked]{large_filter}",
                 small_filter(whole)
             );
             cmd.args(["-filter_complex", &split, "-map", "[whole]"])
                 .args(&EVERY_FRAME[2..])
                 .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
-                .arg(file)
-                .args(["-map", "[looked]"]);
+                .arg(file);
+            if let Some(large_file) = kept_large.as_ref().filter(|_| large_apart) {
+                cmd.args(["-map", "[large]"])
+                    .args(&EVERY_FRAME[2..])
+                    .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
+                    .arg(large_file);
+            }
+            cmd.args(["-map", "[looked]"]);
         }
         None => {
             cmd.args(["-map", "0:v:0", "-vf", &looked]);
@@ -70,7 +94,11 @@ pub(super) fn look(
         "-frames:v",
         &LOOKED_AT.to_string(),
     ]);
-    let (mut child, mut stdout) = gray_frames(cmd, path)?;
+    let complaints = log
+        .as_ref()
+        .and_then(|l| std::fs::File::create(l).ok())
+        .map_or(Stdio::null(), Stdio::from);
+    let (mut child, mut stdout) = raw_frames(cmd, path, "gray", complaints)?;
     let (mut moving, mut votes) = (0usize, [0usize; 2]);
     let mut prev: Option<Vec<u8>> = None;
     let mut buf = vec![0u8; w * h];
@@ -97,16 +125,32 @@ pub(super) fn look(
     }
     drop(stdout);
     let done = child.wait().is_ok_and(|s| s.success());
-    let whole = kept
-        .filter(|_| done)
-        .and_then(|file| std::fs::read(file).ok())
-        .filter(|p| !p.is_empty() && p.len() % (whole.0 * whole.1) == 0)
-        .map(|pixels| SmallFrames {
-            pixels,
-            size: whole,
-        });
-    Ok((judge(moving, votes), whole))
+    let read_back = |file: Option<PathBuf>, size: (usize, usize)| {
+        file.filter(|_| done)
+            .and_then(|file| std::fs::read(file).ok())
+            .filter(|p| !p.is_empty() && p.len() % (size.0 * size.1) == 0)
+            .map(|pixels| SmallFrames { pixels, size })
+    };
+    let clean = log
+        .and_then(|l| std::fs::metadata(l).ok())
+        .is_some_and(|m| m.len() == 0);
+    let whole_frames = read_back(kept, whole);
+    let large_frames = match (clean, large_apart) {
+        (false, _) => None,
+        (true, true) => read_back(kept_large, large),
+        (true, false) => whole_frames
+            .as_ref()
+            .filter(|_| large == whole && at_most(large, LARGE_AT_MOST))
+            .map(|f| SmallFrames {
+                pixels: f.pixels.clone(),
+                size: f.size,
+            }),
+    };
+    Ok((judge(moving, votes), (whole_frames, large_frames)))
 }
+
+/// The whole of a recording decoded in the look's pass: at [`TRACK_SIDE`], and at its own size.
+pub(super) type Wholes = (Option<SmallFrames>, Option<SmallFrames>);
 
 /// What the picture says of a recording.
 #[derive(Debug, PartialEq)]
@@ -262,7 +306,7 @@ mod tests {
             return; // no ffmpeg here
         }
         let info = crate::video::probe_as(&file, super::super::FieldsChoice::Frames).unwrap();
-        let (_, whole) = look(&file, (480, 270), Some(30)).unwrap();
+        let (_, (whole, _)) = look(&file, (480, 270), Some(30)).unwrap();
         let whole = whole.expect("the whole read beside the look");
         // Nothing kept for this file (`fields::find` keeps; `look` only reads): decoded afresh.
         let fresh = crate::video::small_frames(&file, &info, (None, None), TRACK_SIDE).unwrap();
