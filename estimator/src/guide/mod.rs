@@ -19,11 +19,13 @@ mod combine;
 mod descent;
 mod followed;
 mod reading;
+mod tank;
 use acceleration::combine_acceleration;
 pub use combine::combine;
 use descent::{direction, named_by_direction, on_path, path_words, tracked_motion};
 pub use descent::{sighted, LEVEL_DEG};
 pub use reading::second_route;
+use tank::combine_drain;
 
 /// Where the model and the span are the tool's to choose (`chooses`: no `--model`, or `auto`;
 /// no model files, no `--start`/`--end`, no `--init`) and the track oscillates or decays clearly
@@ -44,7 +46,23 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     let swings = span.law == TrackLaw::Swing;
     let name = route.guided_model()?;
     let model = ModelRef::by_name(name)?;
-    let (first, last) = route.file_span(span);
+    let (mut first, mut last) = route.file_span(span);
+    // Half a frame, the end's margin (the end is excluded).
+    let half_step = 0.5 * (last - first) / (span.samples.max(2) - 1) as f64;
+    // A level's readings (a tank's heights, typed with --reference) are where the user
+    // measured it: the span reaches them (a drain's law holds once the surface has settled,
+    // and the jar's first reading was taken while it still sloshed).
+    let (t0, t1) = (route.track.file_s.first(), route.track.file_s.last());
+    if let (true, Some(&t0), Some(&t1)) = (span.law.of_a_level(), t0, t1) {
+        for &(t, _) in req
+            .calibration
+            .times
+            .iter()
+            .filter(|(t, _)| (t0..=t1).contains(t))
+        {
+            (first, last) = (first.min(t), last.max(t));
+        }
+    }
     let mut g = req.clone();
     g.choose = false;
     g.load.model = Some(model);
@@ -78,7 +96,6 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     // ways to a rate the track here measures (a latent that learned a slow drift had fitted
     // better at a quarter of γ0, and its probe won). A value outside the model's bounds (an
     // undamped swing's damping measured a hair below zero) leaves the model's own start.
-    g.training.single_start = true;
     g.init = span
         .values
         .iter()
@@ -88,10 +105,10 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
         })
         .map(|v| (v.name.to_string(), v.value))
         .collect();
+    // A drain's values are in its level's units, none the tank's: its own starts.
+    g.training.single_start = !g.init.is_empty();
     g.load.recording.start = Some(first);
-    // The end is excluded: half a frame past the last sample.
-    let step = (last - first) / (span.samples.max(2) - 1) as f64;
-    g.load.recording.end = Some(last + 0.5 * step);
+    g.load.recording.end = Some(last + half_step);
     // The pendulum's angle scale from the track's angles, where none were typed.
     let c = &req.calibration;
     let angles = match swings && c.values.is_empty() && c.times.is_empty() {
@@ -108,13 +125,17 @@ pub fn guided(req: &Request, route: &TrackRoute, chooses: bool) -> Option<(Reque
     }
     let why = format!(
         "{} {} over {:.2}–{:.2} s of the file ({}): the latent route trained the {name} \
-         there{framed}, started from the track's answer alone{calibrated} (give --model or \
-         --start to choose yourself)",
+         there{framed}, started from {}{calibrated} (give --model or --start to choose \
+         yourself)",
         route.subject(),
         span.law.verb(),
         first,
         last,
-        span.extent_words()
+        span.extent_words(),
+        match g.training.single_start {
+            true => "the track's answer alone",
+            false => "its own starts",
+        }
     );
     Some((g, why))
 }
@@ -237,7 +258,9 @@ pub fn settle(report: &mut Report, route: Option<TrackRoute>, warnings: Vec<Stri
         let judged = verdict::judge(&report.run).with(close);
         let route = report.run.track.take();
         let combined = route.as_ref().is_some_and(|route| {
-            combine(&mut report.run, route) || combine_acceleration(&mut report.run, route)
+            combine(&mut report.run, route)
+                || combine_acceleration(&mut report.run, route)
+                || combine_drain(&mut report.run, route)
         });
         report.run.track = route;
         report.verdict = if combined {

@@ -45,7 +45,8 @@ fn read_track(req: &Request, warnings: &mut Vec<String>) -> Option<TrackRoute> {
                 (None, Some(s)) => r.with_stick(s),
                 (None, None) => r
                     .through_readings(&req.calibration.times)
-                    .with_readings(&req.calibration.times),
+                    .with_readings(&req.calibration.times)
+                    .drain_in_metres(&req.calibration.times),
             })
             .filter(|r| {
                 let holds = r.holds_readings(&req.calibration.times);

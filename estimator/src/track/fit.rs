@@ -13,7 +13,8 @@ fn least_window(law: TrackLaw, n: usize) -> usize {
         TrackLaw::Oscillation
         | TrackLaw::Swing
         | TrackLaw::AngularOscillation
-        | TrackLaw::Decay => (n / 8).max(12),
+        | TrackLaw::Decay
+        | TrackLaw::Drain => (n / 8).max(12),
         TrackLaw::ConstantAcceleration => 10,
     }
 }

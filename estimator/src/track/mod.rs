@@ -31,6 +31,7 @@ mod rod;
 mod route;
 pub mod segment;
 mod steady;
+mod tank;
 pub mod template;
 mod uniform;
 

@@ -123,7 +123,8 @@ impl TrackRoute {
             TrackLaw::Oscillation
             | TrackLaw::Swing
             | TrackLaw::AngularOscillation
-            | TrackLaw::Decay => spread(&t.along[span]),
+            | TrackLaw::Decay
+            | TrackLaw::Drain => spread(&t.along[span]),
         }
     }
 

@@ -69,7 +69,9 @@ impl Samples<'_> {
             v.map(|x| (x - m) * (x - m)).sum::<f64>() / n
         }
         match law {
-            TrackLaw::Oscillation | TrackLaw::Decay => var(self.u[a..b].iter().copied()),
+            TrackLaw::Oscillation | TrackLaw::Decay | TrackLaw::Drain => {
+                var(self.u[a..b].iter().copied())
+            }
             // The arc's: the path's whole spread (x's and y's).
             TrackLaw::Swing | TrackLaw::AngularOscillation => {
                 let xy = &self.xy[a..b];
@@ -218,7 +220,8 @@ fn explains(
         TrackLaw::Oscillation
         | TrackLaw::Swing
         | TrackLaw::AngularOscillation
-        | TrackLaw::Decay => 1,
+        | TrackLaw::Decay
+        | TrackLaw::Drain => 1,
         TrackLaw::ConstantAcceleration => 2,
     };
     (0..channels).all(|c| {

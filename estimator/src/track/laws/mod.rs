@@ -6,19 +6,22 @@
 //! a roll, the release's velocity free), and a swing about a pivot (`swing`): its angle as the
 //! pendulum at any amplitude, or as the damped oscillator (a restoring turn that grows with the
 //! angle); and for a quantity that is not a position (a brightness), an exponential decay
-//! (`decay`).
+//! (`decay`) and Torricelli's drain (`drain`).
 //! Standard errors from the Jacobian, widened for residuals that follow one another (their
 //! lag-one correlation).
 
 mod acceleration;
 mod bent;
 mod decay;
+mod drain;
 mod oscillation;
 mod released;
 pub mod swing;
 
 use acceleration::acceleration;
 use decay::decay;
+use drain::drain;
+pub use drain::drained;
 use oscillation::oscillation;
 use physvid_shared::linalg::solve;
 pub(crate) use released::released;
@@ -36,6 +39,8 @@ pub enum TrackLaw {
     /// A level that decays exponentially: fitted to an observable that is not a position (a
     /// light's brightness, `Reading::Brightness`), and only to one.
     Decay,
+    /// A level that drains as Torricelli's law has it (`drain`), on the same observables.
+    Drain,
 }
 
 impl TrackLaw {
@@ -47,7 +52,12 @@ impl TrackLaw {
     ];
 
     /// The laws of an observable that is not a position.
-    pub const OF_LEVELS: [TrackLaw; 1] = [TrackLaw::Decay];
+    pub const OF_LEVELS: [TrackLaw; 2] = [TrackLaw::Decay, TrackLaw::Drain];
+
+    /// Whether it is a law of an observable that is not a position ([`Self::OF_LEVELS`]).
+    pub fn of_a_level(self) -> bool {
+        Self::OF_LEVELS.contains(&self)
+    }
 
     pub fn name(self) -> &'static str {
         match self {
@@ -56,6 +66,7 @@ impl TrackLaw {
             TrackLaw::Swing => "swing",
             TrackLaw::AngularOscillation => "angular oscillation",
             TrackLaw::Decay => "exponential decay",
+            TrackLaw::Drain => "drain",
         }
     }
 
@@ -67,6 +78,7 @@ impl TrackLaw {
             TrackLaw::Swing => "swings",
             TrackLaw::AngularOscillation => "oscillates about a pivot",
             TrackLaw::Decay => "decays",
+            TrackLaw::Drain => "drains",
         }
     }
 
@@ -77,7 +89,7 @@ impl TrackLaw {
             TrackLaw::Oscillation => 5,
             TrackLaw::ConstantAcceleration => 6,
             TrackLaw::Swing | TrackLaw::AngularOscillation => 8,
-            TrackLaw::Decay => 3,
+            TrackLaw::Decay | TrackLaw::Drain => 3,
         }
     }
 
@@ -97,6 +109,7 @@ impl TrackLaw {
             TrackLaw::Swing => swing(t, u, xy, near.map(|f| f.shape)),
             TrackLaw::AngularOscillation => angular(t, u, xy, near.map(|f| f.shape)),
             TrackLaw::Decay => decay(t, u, near.map(|f| f.shape)),
+            TrackLaw::Drain => drain(t, u, near.map(|f| f.shape)),
         }
     }
 }

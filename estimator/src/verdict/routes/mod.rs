@@ -71,7 +71,8 @@ impl Check for Routes {
             approx(g.error),
             g.unit
         );
-        if span.law != TrackLaw::Decay && !r.config.model.oscillates(&r.final_values) {
+        let level = matches!(span.law, TrackLaw::Decay | TrackLaw::Drain);
+        if !level && !r.config.model.oscillates(&r.final_values) {
             return vec![Reason::new(
                 self.name(),
                 Grade::Doubtful,
