@@ -6,7 +6,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{encode_lossless, estimate_of, parameter, read_report, stderr, track_law, Estimate};
+use util::{estimate_of, gray_video, parameter, read_report, stderr, track_law, Estimate};
 
 const FPS: u32 = 30;
 const FRAMES: usize = 90;
@@ -35,34 +35,25 @@ fn hashed(k: u64) -> f64 {
 /// The frames: a wall of 4-px grey blocks, a rail, and a dark cart 16×8 px whose edges cover
 /// their columns in part, ±2 grey levels of noise.
 fn video(dir: &Path) -> PathBuf {
-    let frames = dir.join("frames");
-    std::fs::create_dir_all(&frames).unwrap();
-    for k in 0..FRAMES {
+    gray_video(dir, "cart.mkv", (FRAMES, FPS), (W, H), |k, x, y| {
         let x0 = left(k as f64 / FPS as f64);
-        let img = image::GrayImage::from_fn(W, H, |x, y| {
-            let block = (y / 4) as u64 * 1000 + (x / 4) as u64;
-            let mut v = if (48..66).contains(&y) {
-                200.0
-            } else {
-                170.0 + 60.0 * hashed(block)
-            };
-            if (62..64).contains(&y) {
-                v = 90.0;
-            }
-            if (54..62).contains(&y) {
-                let x = x as f64;
-                let cover = (x + 1.0 - x0).min(x0 + 16.0 - x).clamp(0.0, 1.0);
-                v = v * (1.0 - cover) + 40.0 * cover;
-            }
-            let noise = 4.0 * (hashed((k * 100_000 + (y * W + x) as usize) as u64) - 0.5);
-            image::Luma([(v + noise).round().clamp(0.0, 255.0) as u8])
-        });
-        img.save(frames.join(format!("frame{}.png", k + 1)))
-            .unwrap();
-    }
-    let video = dir.join("cart.mkv");
-    encode_lossless(&frames, &video, FPS);
-    video
+        let block = (y / 4) as u64 * 1000 + (x / 4) as u64;
+        let mut v = if (48..66).contains(&y) {
+            200.0
+        } else {
+            170.0 + 60.0 * hashed(block)
+        };
+        if (62..64).contains(&y) {
+            v = 90.0;
+        }
+        if (54..62).contains(&y) {
+            let x = x as f64;
+            let cover = (x + 1.0 - x0).min(x0 + 16.0 - x).clamp(0.0, 1.0);
+            v = v * (1.0 - cover) + 40.0 * cover;
+        }
+        let noise = 4.0 * (hashed((k * 100_000 + (y * W + x) as usize) as u64) - 0.5);
+        (v + noise).round().clamp(0.0, 255.0) as u8
+    })
 }
 
 #[test]

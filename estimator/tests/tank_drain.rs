@@ -6,7 +6,7 @@
 mod util;
 
 use std::path::{Path, PathBuf};
-use util::{encode_lossless, estimate_of, parameter, read_report, stderr, Estimate};
+use util::{estimate_of, gray_video, parameter, read_report, stderr, Estimate};
 
 const FPS: u32 = 5;
 const FRAMES: usize = 120;
@@ -27,25 +27,16 @@ fn level(t: f64) -> f64 {
 /// The frames: a grey wall, a light tank 24 px wide, dark water up to the level (its surface
 /// covering its row in part), ±2 grey levels of noise.
 fn video(dir: &Path) -> PathBuf {
-    let frames = dir.join("frames");
-    std::fs::create_dir_all(&frames).unwrap();
-    for k in 0..FRAMES {
+    gray_video(dir, "tank.mkv", (FRAMES, FPS), (W, H), |k, x, y| {
         let surface = BOTTOM - level(k as f64 / FPS as f64) * PER_METRE;
-        let img = image::GrayImage::from_fn(W, H, |x, y| {
-            let mut v = 150.0;
-            if (20..44).contains(&x) && (10..70).contains(&y) {
-                let wet = (y as f64 + 1.0 - surface).clamp(0.0, 1.0);
-                v = 210.0 * (1.0 - wet) + 60.0 * wet;
-            }
-            let n = ((k * 7919 + (y * W + x) as usize * 104_729) % 1000) as f64 / 1000.0;
-            image::Luma([(v + 4.0 * (n - 0.5)).round().clamp(0.0, 255.0) as u8])
-        });
-        img.save(frames.join(format!("frame{}.png", k + 1)))
-            .unwrap();
-    }
-    let video = dir.join("tank.mkv");
-    encode_lossless(&frames, &video, FPS);
-    video
+        let mut v = 150.0;
+        if (20..44).contains(&x) && (10..70).contains(&y) {
+            let wet = (y as f64 + 1.0 - surface).clamp(0.0, 1.0);
+            v = 210.0 * (1.0 - wet) + 60.0 * wet;
+        }
+        let n = ((k * 7919 + (y * W + x) as usize * 104_729) % 1000) as f64 / 1000.0;
+        (v + 4.0 * (n - 0.5)).round().clamp(0.0, 255.0) as u8
+    })
 }
 
 #[test]

@@ -3,6 +3,9 @@
 #![allow(dead_code)]
 
 pub mod browser;
+mod frames;
+#[allow(unused_imports)]
+pub use frames::gray_video;
 
 pub use physvid_testkit::TestCommand;
 #[allow(unused_imports)]
@@ -217,25 +220,17 @@ pub fn ball_video(
     fps: u32,
     centre: impl Fn(usize) -> (f64, f64),
 ) -> PathBuf {
-    let pngs = dir.join("frames");
-    std::fs::create_dir_all(&pngs).unwrap();
-    for k in 0..frames {
+    gray_video(dir, "ball.mkv", (frames, fps), size, |k, x, y| {
         let (cx, cy) = centre(k);
-        let img = image::GrayImage::from_fn(size.0, size.1, |x, y| {
-            let inside = (0..16)
-                .filter(|s| {
-                    let dx = x as f64 + (s % 4) as f64 / 4.0 + 0.125 - cx;
-                    let dy = y as f64 + (s / 4) as f64 / 4.0 + 0.125 - cy;
-                    dx * dx + dy * dy < 25.0
-                })
-                .count();
-            image::Luma([(25.0 + 200.0 * inside as f64 / 16.0).round() as u8])
-        });
-        img.save(pngs.join(format!("frame{}.png", k + 1))).unwrap();
-    }
-    let video = dir.join("ball.mkv");
-    encode_lossless(&pngs, &video, fps);
-    video
+        let inside = (0..16)
+            .filter(|s| {
+                let dx = x as f64 + (s % 4) as f64 / 4.0 + 0.125 - cx;
+                let dy = y as f64 + (s / 4) as f64 / 4.0 + 0.125 - cy;
+                dx * dx + dy * dy < 25.0
+            })
+            .count();
+        (25.0 + 200.0 * inside as f64 / 16.0).round() as u8
+    })
 }
 
 /// Encodes `frames/frame%d.png` into `video`, a lossless grey FFV1 file at `fps`.
