@@ -2,7 +2,7 @@
 //! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate and damping
 //! are measurements of the same γ0 and γ1 (or g/L and damping) the latent's answer gives, with
 //! no encoder between the picture and the law; a brightness's decay over several e-folds, of
-//! the LED's γ. An answer whose model does not oscillate, or
+//! the LED's γ; a tank's drain, of its k in metres where heights were read. An answer whose model does not oscillate, or
 //! one of whose values lies away from the track's by more than both errors allow (two
 //! measurements of one number that disagree: one of them is wrong), is doubtful, and the reason
 //! names both (the answer is the track's either way: `guide::combine`); a latent value without a
@@ -87,11 +87,19 @@ impl Check for Routes {
         }
         r.parameters
             .iter()
-            .filter_map(|p| {
-                let v = span.values.iter().find(|v| v.name == p.name)?;
-                differs(self.name(), p, &compared(span, v)?, &track)
-            })
+            .filter_map(|p| differs(self.name(), p, &of_track(span, &p.name)?, &track))
             .collect()
+    }
+}
+
+/// The track's value the latent's value `name` is compared with, and its error: the guiding
+/// `span`'s own by that name (`compared`), or, for a drain, its k in metres
+/// (`TrackRoute::drain_in_metres`: its error the readings' and the empty time's).
+fn of_track(span: &LawSpan, name: &str) -> Option<Value> {
+    match span.values.iter().find(|v| v.name == name) {
+        Some(v) => compared(span, v),
+        None if span.law == TrackLaw::Drain => span.si.iter().find(|v| v.name == name).cloned(),
+        None => None,
     }
 }
 
@@ -205,5 +213,28 @@ mod tests {
         assert!(!r.detail.contains("NaN"), "{}", r.detail);
         assert!(r.detail.contains("(no standard error)"), "{}", r.detail);
         assert!(r.detail.contains("over 2 %"), "{}", r.detail);
+    }
+
+    #[test]
+    fn a_drains_k_in_metres_is_what_the_tanks_k_is_compared_with() {
+        let (_, mut span) = crate::track::test_route();
+        let v = |name: &'static str, value: f64| Value {
+            name,
+            value,
+            error: 0.0001,
+            unit: "",
+        };
+        span.law = TrackLaw::Drain;
+        span.values = vec![v("drain_k", 0.65), v("empty", 54.0)];
+        span.si = vec![v("k", 0.00945)];
+        assert_eq!(of_track(&span, "k"), Some(v("k", 0.00945)));
+        assert_eq!(of_track(&span, "k_latent"), None);
+        // The latent's k away from it by more than three joint errors: named.
+        let p = ParameterResult::si("k", 0.0110, "m^0.5/s", Some(0.0002));
+        let reason = differs("routes", &p, &of_track(&span, "k").unwrap(), "the track");
+        assert!(reason.is_some());
+        // A law other than a drain compares its own values only.
+        span.law = TrackLaw::Decay;
+        assert_eq!(of_track(&span, "k"), None);
     }
 }
