@@ -10,7 +10,7 @@
 //! 2.6–100 times smaller than the latent's, which was 3–28 % low (four of six graded ok
 //! before).
 
-use super::combine::{carry, combined};
+use super::combine::{carry, combined, more_precise};
 use crate::analysis::Run;
 use crate::track::TrackRoute;
 use crate::verdict::routes::{si_acceleration, ACCELERATION_NAMES};
@@ -30,9 +30,7 @@ pub fn combine_acceleration(run: &mut Run, route: &TrackRoute) -> bool {
         return false;
     };
     let p = &run.parameters[k];
-    let latent_error = p.standard_error.filter(|e| e.is_finite() && *e > 0.0);
-    let more_precise = latent_error.is_some_and(|e| v.error < e);
-    if names.len() != 1 || !more_precise || p.estimate == 0.0 {
+    if names.len() != 1 || !more_precise(p, &v) || p.estimate == 0.0 {
         return false;
     }
     let Some(c) = combined(p, &v, v.error) else {

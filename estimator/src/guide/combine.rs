@@ -27,6 +27,15 @@ use crate::track::laws::Value;
 use crate::track::TrackRoute;
 use crate::verdict::routes::{compared, separation};
 
+/// Whether the track's `v` measures the latent's `p` more precisely: `p` has a finite, positive
+/// standard error, larger than `v`'s (where the track's answer replaces the latent's only then:
+/// `guide::acceleration`, `guide::tank`).
+pub(super) fn more_precise(p: &ParameterResult, v: &Value) -> bool {
+    p.standard_error
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .is_some_and(|e| v.error < e)
+}
+
 /// The answer to `p` from the track's value `v` (standard error `e`): the track's, the
 /// latent's kept beside it with whether the two agree as the routes check judges them, by
 /// `v`'s own error (`routes::compared`); `None` where the track's is not a measurement (no

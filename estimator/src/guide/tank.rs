@@ -5,7 +5,7 @@
 //! answer stands. `gen`'s tanks filmed as videos, with three heights read from their
 //! calibration: the track's k within 0.7 % on all three, the latent's 2–13 % low.
 
-use super::combine::combined;
+use super::combine::{combined, more_precise};
 use crate::analysis::Run;
 use crate::track::laws::TrackLaw;
 use crate::track::TrackRoute;
@@ -24,11 +24,7 @@ pub fn combine_drain(run: &mut Run, route: &TrackRoute) -> bool {
         return false;
     };
     let p = &run.parameters[i];
-    let latent_error = p.standard_error.filter(|e| e.is_finite() && *e > 0.0);
-    if !latent_error.is_some_and(|e| v.error < e) {
-        return false;
-    }
-    let Some(c) = combined(p, v, v.error) else {
+    let Some(c) = combined(p, v, v.error).filter(|_| more_precise(p, v)) else {
         return false;
     };
     run.parameters[i] = c;

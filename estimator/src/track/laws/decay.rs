@@ -3,7 +3,7 @@
 //! out) by variable projection: γ searched (a log grid, then Levenberg–Marquardt), c and a
 //! solved for at each.
 
-use super::{covariance, from_first, least_squares, linear, sum_sq, Fitted, Value};
+use super::{covariance, from_first, linear, searched, Fitted, Value};
 
 /// The decay's columns at rate `g`: the level and the decaying part.
 fn basis(t: &[f64], g: f64) -> Vec<Vec<f64>> {
@@ -13,9 +13,6 @@ fn basis(t: &[f64], g: f64) -> Vec<Vec<f64>> {
     ]
 }
 
-/// Rates on the grid the search starts from.
-const GRID: usize = 200;
-
 /// The decay fitted to `u` at times `t`, from the rate `start[0]` or else from the best rate
 /// of a log grid between a tenth of an e-fold over the span and one a sample step. `None` where
 /// nothing decays (a rate at the grid's ends, a level that rises or stays).
@@ -23,18 +20,11 @@ pub(super) fn decay(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fit
     let (t, span, step) = from_first(t, 6)?;
     let (lo, hi) = (0.1 / span, 1.0 / step);
     let residual = |g: f64| linear(&basis(&t, g), u).map(|(_, r)| r);
-    let g0 = match start {
-        Some([g, _]) if g > 0.0 => g,
-        _ => {
-            (0..GRID)
-                .map(|i| lo * (hi / lo).powf(i as f64 / (GRID - 1) as f64))
-                .filter_map(|g| Some((sum_sq(&residual(g)?), g)))
-                .min_by(|a, b| a.0.total_cmp(&b.0))?
-                .1
-        }
-    };
-    let (p, _) = least_squares(&[g0], &|p: &[f64]| residual(p[0]))?;
-    let g = p[0];
+    let g = searched(
+        (lo, hi),
+        start.map(|s| s[0]).filter(|g| *g > 0.0),
+        &residual,
+    )?;
     if !(g > lo && g < hi) {
         return None;
     }

@@ -7,7 +7,7 @@
 //! k/2 a second), named apart from the model's k in metres (`drain_k`): like a frequency, the
 //! same on any part of the span.
 
-use super::{covariance, from_first, least_squares, linear, sum_sq, Fitted, Value};
+use super::{covariance, from_first, linear, searched, Fitted, Value};
 
 /// The drain's columns for an empty time `te` (from the span's first sample): the level
 /// reached, and the square of the time left.
@@ -17,9 +17,6 @@ fn basis(t: &[f64], te: f64) -> Vec<Vec<f64>> {
         t.iter().map(|&s| (te - s).max(0.0).powi(2)).collect(),
     ]
 }
-
-/// Empty times on the grid the search starts from.
-const GRID: usize = 200;
 
 /// The drain fitted to `u` at times `t`, from the empty time `start[0]` (s, on `t`'s clock) or
 /// else from the best of a grid from two sample steps after the span's first sample to twenty
@@ -33,18 +30,11 @@ pub(super) fn drain(t: &[f64], u: &[f64], start: Option<[f64; 2]>) -> Option<Fit
     let (lo, hi) = (2.0 * step, 20.0 * span);
     let start = start.map(|[te, other]| [te - t0, other]);
     let residual = |te: f64| linear(&basis(&t, te), u).map(|(_, r)| r);
-    let te0 = match start {
-        Some([te, _]) if te > lo => te,
-        _ => {
-            (0..GRID)
-                .map(|i| lo * (hi / lo).powf(i as f64 / (GRID - 1) as f64))
-                .filter_map(|te| Some((sum_sq(&residual(te)?), te)))
-                .min_by(|a, b| a.0.total_cmp(&b.0))?
-                .1
-        }
-    };
-    let (p, _) = least_squares(&[te0], &|p: &[f64]| residual(p[0]))?;
-    let te = p[0];
+    let te = searched(
+        (lo, hi),
+        start.map(|s| s[0]).filter(|te| *te > lo),
+        &residual,
+    )?;
     if !(te > lo && te < 0.9 * hi) {
         return None;
     }

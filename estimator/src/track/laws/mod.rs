@@ -267,6 +267,30 @@ pub(super) fn jacobian(
         .collect()
 }
 
+/// Values on the log grid a one-parameter search starts from (`searched`).
+const GRID: usize = 200;
+
+/// The one nonlinear parameter of a law fitted by variable projection (`residual`: the
+/// residuals at a value, the rest solved for): Levenberg–Marquardt from `start` where given,
+/// else from the best of a log grid of [`GRID`] values over `lo..hi`.
+pub(super) fn searched(
+    (lo, hi): (f64, f64),
+    start: Option<f64>,
+    residual: &dyn Fn(f64) -> Option<Vec<f64>>,
+) -> Option<f64> {
+    let p0 = match start {
+        Some(p) => p,
+        None => {
+            (0..GRID)
+                .map(|i| lo * (hi / lo).powf(i as f64 / (GRID - 1) as f64))
+                .filter_map(|p| Some((sum_sq(&residual(p)?), p)))
+                .min_by(|a, b| a.0.total_cmp(&b.0))?
+                .1
+        }
+    };
+    least_squares(&[p0], &|p: &[f64]| residual(p[0])).map(|(p, _)| p[0])
+}
+
 /// Levenberg–Marquardt from `p0` on the residuals (data less model) that `residual` gives:
 /// the parameters and residuals of the least sum of squares reached. `None` where the start
 /// has no residual.
