@@ -8,10 +8,14 @@
 //! the level they already carry: reading the frames' fixed noise through a weight then costs
 //! four times the variance it could explain (noise injection acts as a ridge penalty of σ² on
 //! the weights). On the free fall at ×1 g came out −5.6 %, at ×2 −2.6 %, at ×3 −2.3 %.
+//! The noise is drawn once per training, a pool of [`POOL`] batches' worth, and each batch
+//! takes a slice of it at a random offset: every batch's noise is independent Gaussian noise
+//! of the level, as fresh draws are, without drawing the encoder's inputs' size of normals
+//! each step (half of a 1080p spring's training time went to drawing them).
 
 use crate::config::RunConfig;
 use crate::data::ClipData;
-use tch::{Kind, Tensor};
+use tch::{Device, Kind, Tensor};
 
 /// Frames sampled for the noise estimate.
 const SAMPLE: i64 = 256;
@@ -24,6 +28,10 @@ const FACTOR: f64 = 2.0;
 /// gen's lowest sensor noise (σ 0.02 on the free fall) reads 0.073, and σ 0.004 (0.016)
 /// already cost −2.5 % without it.
 const NEGLIGIBLE: f64 = 0.01;
+/// The pool of noise drawn for a training, in batches: a batch's slice starts at any of a
+/// batch's worth of offsets (millions), so that a frame's noise at a pixel recurs only where
+/// two offsets differ by a whole number of frames.
+const POOL: i64 = 2;
 
 /// The pixel noise of standardised frames `x` [N, T, C·H·W] of `frame` = (C, H, W): the
 /// median absolute discrete Laplacian over the frames' interiors, scaled to a Gaussian's σ
@@ -53,28 +61,63 @@ pub fn pixel_noise(x: &Tensor, frame: (i64, i64, i64)) -> f64 {
     })
 }
 
-/// The noise to add to each batch of the training inputs `train` (what the encoder reads):
-/// twice the frames' own where the encoder is dense, `None` for other encoders and for frames
-/// without noise.
-pub fn level(cfg: &RunConfig, data: &ClipData, train: &Tensor) -> Option<f64> {
-    if !cfg.encoder.is_dense() {
-        return None;
+/// The noise added to each batch of the training inputs: its level and the pool its slices
+/// are taken from.
+pub struct Jitter {
+    /// The standard deviation of the noise added.
+    pub sigma: f64,
+    pool: Tensor,
+    /// The most inputs a batch holds (a pool of [`POOL`] of them).
+    largest: i64,
+}
+
+impl Jitter {
+    /// The noise for the training inputs `train` (what the encoder reads): twice the frames'
+    /// own where the encoder is dense, `None` for other encoders and for frames without noise;
+    /// a batch holds at most `largest` of the inputs' numbers.
+    pub fn of(cfg: &RunConfig, data: &ClipData, train: &Tensor, largest: i64) -> Option<Jitter> {
+        if !cfg.encoder.is_dense() {
+            return None;
+        }
+        let [_, _, c, h, w] = data.shape.map(|s| s as i64);
+        let sigma = added(pixel_noise(train, (c, h, w)))?;
+        Some(Jitter::drawn(sigma, largest, train.device()))
     }
-    let [_, _, c, h, w] = data.shape.map(|s| s as i64);
-    added(pixel_noise(train, (c, h, w)))
+
+    /// A pool of [`POOL`] batches of `largest` numbers of noise `sigma` on `device`.
+    fn drawn(sigma: f64, largest: i64, device: Device) -> Jitter {
+        let largest = largest.max(1);
+        let pool = Tensor::randn([POOL * largest], (Kind::Float, device)) * sigma;
+        Jitter {
+            sigma,
+            pool,
+            largest,
+        }
+    }
+
+    /// Where each of an epoch's `batches` takes its slice of the pool (drawn on the host from
+    /// the seeded generator, as the epoch's order is).
+    pub fn offsets(&self, batches: usize) -> Vec<i64> {
+        let span = (POOL - 1) * self.largest + 1;
+        let at = Tensor::randint(span, [batches as i64], (Kind::Int64, Device::Cpu));
+        Vec::<i64>::try_from(&at).expect("an index tensor")
+    }
+
+    /// `x` with the pool's slice at `offset` added.
+    pub fn add(&self, x: &Tensor, offset: i64) -> Tensor {
+        let n = x.numel() as i64;
+        assert!(
+            n <= self.largest,
+            "a batch of {n} inputs against {}",
+            self.largest
+        );
+        x + self.pool.narrow(0, offset, n).view(x.size().as_slice())
+    }
 }
 
 /// Twice `noise`, or `None` where it is negligible.
 fn added(noise: f64) -> Option<f64> {
     (noise > NEGLIGIBLE).then_some(FACTOR * noise)
-}
-
-/// `x` with fresh Gaussian noise of standard deviation `sigma`, when there is one.
-pub fn jittered(x: Tensor, sigma: Option<f64>) -> Tensor {
-    match sigma {
-        Some(s) => &x + x.randn_like() * s,
-        None => x,
-    }
 }
 
 #[cfg(test)]
@@ -107,5 +150,27 @@ mod tests {
         assert_eq!(added(s), Some(2.0 * s));
         assert_eq!(added(0.0), None);
         assert_eq!(added(NEGLIGIBLE), None);
+    }
+
+    #[test]
+    fn each_batch_gets_independent_noise_of_the_level_from_the_pool() {
+        tch::manual_seed(5);
+        let jitter = Jitter::drawn(0.3, 6000, Device::Cpu);
+        let x = Tensor::zeros([2, 3, 1000], (Kind::Float, Device::Cpu));
+        let offsets = jitter.offsets(50);
+        assert!(
+            offsets.iter().all(|&o| (0..=6000).contains(&o)),
+            "{offsets:?}"
+        );
+        assert!(offsets.windows(2).any(|w| w[0] != w[1]));
+        let a = jitter.add(&x, offsets[0]);
+        let b = jitter.add(&x, offsets[1]);
+        assert_eq!(a.size(), x.size());
+        let sd = f64::try_from(a.std(false)).unwrap();
+        assert!((sd / 0.3 - 1.0).abs() < 0.05, "{sd}");
+        // Two slices at different offsets: the same pixel's noise is uncorrelated (6000
+        // pairs: a correlation's sampling error is 0.013).
+        let r = f64::try_from((&a * &b).mean(Kind::Float)).unwrap() / (0.3 * 0.3);
+        assert!(r.abs() < 0.06, "{r}");
     }
 }

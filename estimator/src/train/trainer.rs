@@ -3,8 +3,9 @@
 //! to the latent's variance, learning-rate halving, early stop, NaN stop) and the outcome of
 //! the kept checkpoint.
 
+use super::jitter::Jitter;
 use super::outcome::{EpochRecord, StopReason, TrainOutcome};
-use super::{jitter, readings, refine, settled};
+use super::{readings, refine, settled};
 use crate::config::RunConfig;
 use crate::data::ClipData;
 use crate::error::EstimateError;
@@ -46,8 +47,8 @@ pub struct Trainer<'a> {
     horizon: i64,
     /// The first epoch at the current horizon.
     stage_start: usize,
-    /// The standard deviation of the fresh noise added to every training batch (`jitter`).
-    jitter: Option<f64>,
+    /// The fresh noise added to every training batch (`jitter`).
+    jitter: Option<Jitter>,
 }
 
 /// A curriculum stage whose validation error falls below this has fitted its horizon.
@@ -70,7 +71,11 @@ impl<'a> Trainer<'a> {
             network.encoder.input(&data.train),
             network.encoder.input(&data.val),
         );
-        let jitter = jitter::level(cfg, data, &inputs.0);
+        // A batch's inputs: its clips' share of the training inputs (all their frames).
+        let n_train = data.n_train().max(1);
+        let per_clip = inputs.0.numel() as i64 / n_train;
+        let batch = (cfg.batch_size as i64).min(n_train);
+        let jitter = Jitter::of(cfg, data, &inputs.0, batch * per_clip);
         let (enc_vs, phys_vs) = network.stores();
         let opt_enc = nn::Adam::default().build(enc_vs, cfg.lr)?;
         let opt_phys = nn::Adam::default().build(phys_vs, cfg.lr_phys)?;
@@ -132,11 +137,18 @@ impl<'a> Trainer<'a> {
         // and the epoch's check then restores the last good checkpoint).
         let mut total = Tensor::zeros([], (Kind::Double, self.device));
         let mut batches = 0usize;
+        let offsets = self
+            .jitter
+            .as_ref()
+            .map(|j| j.offsets((n_train as usize).div_ceil(batch as usize)));
         for s in (0..n_train).step_by(batch as usize) {
             let len = batch.min(n_train - s);
             let idx = perm.narrow(0, s, len);
             let x = first(self.inputs.0.index_select(0, &idx));
-            let x = jitter::jittered(x, self.jitter);
+            let x = match (&self.jitter, &offsets) {
+                (Some(j), Some(at)) => j.add(&x, at[batches]),
+                _ => x,
+            };
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
             let ids = &order[s as usize..(s + len) as usize];
             let clips = Clips {
@@ -309,7 +321,7 @@ impl<'a> Trainer<'a> {
             stop: self.stop.unwrap_or(StopReason::MaxEpochs),
             earlier,
             latent_std,
-            training_noise: self.jitter,
+            training_noise: self.jitter.as_ref().map(|j| j.sigma),
             history: self.history,
             example_latents: examples,
             example_rollouts: rollouts,

@@ -12,9 +12,13 @@
 //! Where the object's track guides the run and corroborates the rate (its own halves agree by
 //! this same rule and its whole rate is the latent's: `corroborates`), the latent's
 //! halves that disagree are its encoder's gain over the motion's range, not the law's, and are
-//! not held against the answer.
+//! not held against the answer. So are its halves of a value the track measures beside that
+//! rate (the oscillator's γ1, the pendulum's damping): the answer is then the track's
+//! (`guide::combine`), with an error at least half the difference of the track's own halves, so
+//! that a damping that changes over the span (dry friction: a larger γ1 as the swing dies
+//! down) is in the answer's error bar, and what the latent's halves add is its encoder's gain.
 
-use super::routes::corroborates;
+use super::routes::{answered_by_track, corroborates};
 use super::{Check, Grade, Reason};
 use crate::agreement::apart;
 use crate::analysis::Run;
@@ -46,8 +50,9 @@ impl Check for Halves {
             let Some((z, limit, s)) = worst else {
                 continue;
             };
-            // The track's halves agree and its rate is the latent's: the law holds alike.
-            if corroborates(r, p) {
+            // The track's halves agree and its rate is the latent's: the law holds alike; a value
+            // the track measures beside it is reported as the track's, its halves in its error.
+            if corroborates(r, p) || answered_by_track(r, &p.name) {
                 continue;
             }
             let [first, second] = s.by.halves();

@@ -41,6 +41,30 @@ fn corroborated_by(route: &TrackRoute, p: &ParameterResult) -> Option<Value> {
         .then_some(g)
 }
 
+/// Whether the answer to `r`'s value `name` is the track's own, its halves in its error: the
+/// track corroborates the run's rate (`corroborates`) and measures `name` beside it with a
+/// finite error (`LawSpan::error_of`: the larger of its fit's and half its halves'
+/// difference), as `guide::combine` reports it.
+pub(in crate::verdict) fn answered_by_track(r: &Run, name: &str) -> bool {
+    let rate = r
+        .parameters
+        .iter()
+        .find(|p| RATE_NAMES.contains(&p.name.as_str()));
+    r.track
+        .as_ref()
+        .zip(rate)
+        .is_some_and(|(route, rate)| measured_beside(route, rate, name))
+}
+
+/// [`answered_by_track`] on the track `route` and the latent's rate `rate`.
+fn measured_beside(route: &TrackRoute, rate: &ParameterResult, name: &str) -> bool {
+    corroborated_by(route, rate).is_some()
+        && route
+            .guiding()
+            .and_then(|s| s.error_of(name))
+            .is_some_and(f64::is_finite)
+}
+
 /// Where the track corroborates `r`'s rate (`corroborates`), the words a check's note adds to
 /// what it found in the latent: why that is not held against the answer.
 pub(in crate::verdict) fn note(r: &Run) -> Option<String> {
@@ -90,9 +114,30 @@ mod tests {
         assert_eq!((g.value, g.error), (4.0014, 0.00017));
         // More than three joint errors away: two measurements that disagree.
         assert!(corroborated_by(&route, &latent(4.0014 + 3.1 * 0.023)).is_none());
-        // Not the rate: the damping is weighed by the routes check, not corroborated.
+        // Not the rate: the damping is weighed by the routes check, not corroborated; its answer
+        // is the track's where the track measures it beside the corroborated rate, its halves
+        // (0.04 and 0.12: a damping that grows as the swing dies down) in its error.
         let damping = ParameterResult::si("gamma1", 0.08, "1/s", Some(0.01));
         assert!(corroborated_by(&route, &damping).is_none());
+        assert!(!measured_beside(&route, &latent(4.0037), "gamma1"));
+        let gamma1 = |value, error| Value {
+            name: "gamma1",
+            value,
+            error,
+            unit: "1/s",
+        };
+        route.laws[0].values.push(gamma1(0.08, 0.004));
+        route.laws[0].halves[0].push(gamma1(0.04, 0.005));
+        route.laws[0].halves[1].push(gamma1(0.12, 0.01));
+        let e = route.laws[0].error_of("gamma1").expect("measured");
+        assert!((e - 0.04).abs() < 1e-12, "{e}");
+        assert!(measured_beside(&route, &latent(4.0037), "gamma1"));
+        // A latent at another rate: the track corroborates nothing, and answers for no damping.
+        assert!(!measured_beside(
+            &route,
+            &latent(4.0014 + 3.1 * 0.023),
+            "gamma1"
+        ));
         // The track's halves 5 % apart at 10 errors: the law does not hold alike on it.
         route.laws[0].halves = vec![vec![gamma0(3.9, 0.01)], vec![gamma0(4.1, 0.01)]];
         assert!(corroborated_by(&route, &latent(4.0037)).is_none());

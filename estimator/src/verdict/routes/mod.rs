@@ -23,7 +23,7 @@ mod acceleration;
 mod corroborated;
 use acceleration::accelerations;
 pub use acceleration::{si_acceleration, ACCELERATION_NAMES};
-pub(super) use corroborated::{corroborates, note as corroborated};
+pub(super) use corroborated::{answered_by_track, corroborates, note as corroborated};
 
 pub struct Routes;
 
