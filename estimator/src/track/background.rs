@@ -7,6 +7,7 @@
 //! pixels for much of the recording, where a median would keep its ghost).
 
 use physvid_shared::video::SmallFrames;
+use rayon::prelude::*;
 
 /// At most this many frames, evenly spread, make the median background.
 const BACKGROUND_FRAMES: usize = 255;
@@ -49,6 +50,7 @@ pub(super) fn evenly(n: usize, most: usize) -> Vec<usize> {
 /// Each frame's level (the median of its differences from `median`, whole grey levels).
 fn levels(frames: &SmallFrames, median: &[u8]) -> Vec<i16> {
     (0..frames.len())
+        .into_par_iter()
         .map(|i| {
             let mut histogram = [0u64; 511];
             for (a, b) in frames.frame(i).iter().zip(median) {
@@ -84,26 +86,33 @@ pub fn background(frames: &SmallFrames) -> Background {
     let n = frames.len();
     let pixels = frames.size.0 * frames.size.1;
     let picked = evenly(n, BACKGROUND_FRAMES);
-    let mut values = Vec::with_capacity(picked.len());
+    // Each pixel's column on the pool's threads (each thread its own buffer), in order.
+    let buffer = || Vec::with_capacity(picked.len());
     let flat = vec![0i16; n];
     let raw: Vec<u8> = (0..pixels)
-        .map(|p| {
-            column(frames, &picked, &flat, p, &mut values);
+        .into_par_iter()
+        .map_init(buffer, |values, p| {
+            column(frames, &picked, &flat, p, values);
             values[values.len() / 2].clamp(0, 255) as u8
         })
         .collect();
     let level = levels(frames, &raw);
-    let mut median = vec![0i16; pixels];
-    let mut low = vec![0u8; pixels];
-    let mut high = vec![0u8; pixels];
     let at = |share: f64, len: usize| ((share * (len - 1) as f64).round() as usize).min(len - 1);
     let grey = |v: i16| v.clamp(0, 255) as u8;
-    for p in 0..pixels {
-        column(frames, &picked, &level, p, &mut values);
-        median[p] = values[values.len() / 2];
-        low[p] = grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]);
-        high[p] = grey(values[at(BACKGROUND_SHARE, values.len())]);
-    }
+    let spread: Vec<(i16, u8, u8)> = (0..pixels)
+        .into_par_iter()
+        .map_init(buffer, |values, p| {
+            column(frames, &picked, &level, p, values);
+            (
+                values[values.len() / 2],
+                grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]),
+                grey(values[at(BACKGROUND_SHARE, values.len())]),
+            )
+        })
+        .collect();
+    let median: Vec<i16> = spread.iter().map(|s| s.0).collect();
+    let low: Vec<u8> = spread.iter().map(|s| s.1).collect();
+    let high: Vec<u8> = spread.iter().map(|s| s.2).collect();
     let difference = |i: usize, p: usize, a: u8| (a as i16 - level[i] - median[p]) as f64;
     let mut histogram = [0u64; 256];
     for &i in &picked {

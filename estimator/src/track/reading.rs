@@ -26,7 +26,11 @@ pub(super) fn readings(
     clock: &Clock,
 ) -> Vec<TrackRoute> {
     let n = frames.len();
-    let found: Vec<Vec<blobs::Blob>> = (0..n).map(|i| blobs::blobs(frames, i, bg)).collect();
+    // Each frame's blobs on the pool's threads, in the frames' order.
+    let found: Vec<Vec<blobs::Blob>> = (0..n)
+        .into_par_iter()
+        .map(|i| blobs::blobs(frames, i, bg))
+        .collect();
     let tracklets = link::tracklets(&found, clock.reach, LEAST_FRAMES, LEAST_EXTENT);
     // The thing that moves the most, its pieces hidden from each other joined, tried too.
     let joined = link::rejoined(&tracklets, 0);

@@ -10,9 +10,63 @@ fn decay(t: &[f64], z: f64) -> Vec<f64> {
     t.iter().map(|&s| (-z * s).exp()).collect()
 }
 
-/// (cos wt, sin wt) at times `t`.
+/// (cos wt, sin wt) at times `t` ([`Rotation`]).
 fn turns(t: &[f64], w: f64) -> (Vec<f64>, Vec<f64>) {
-    t.iter().map(|&s| ((w * s).cos(), (w * s).sin())).unzip()
+    let mut rotation = Rotation::new(w);
+    t.iter()
+        .enumerate()
+        .map(|(k, &tk)| rotation.at(t, k, tk))
+        .unzip()
+}
+
+/// cos ωt and sin ωt carried from sample to sample by the rotation through ω times the step
+/// between them (one sine and cosine per distinct step), anew from the time itself every
+/// [`ROTATION_RUN`] samples so that rounding cannot build up: the grid's thousands of fits and
+/// Levenberg–Marquardt's, without a sine and a cosine a sample.
+struct Rotation {
+    w: f64,
+    /// (cos, sin) at the last sample.
+    at: (f64, f64),
+    /// The rotations of the last few distinct steps (a container's clock rounds a frame's step
+    /// two ways, a gap is a multiple of it).
+    rotations: [(f64, (f64, f64)); 4],
+    next: usize,
+}
+
+impl Rotation {
+    fn new(w: f64) -> Rotation {
+        Rotation {
+            w,
+            at: (1.0, 0.0),
+            rotations: [(f64::NAN, (0.0, 1.0)); 4],
+            next: 0,
+        }
+    }
+
+    /// (cos ωt, sin ωt) at `t[k]` = `tk`, the samples taken in order.
+    fn at(&mut self, t: &[f64], k: usize, tk: f64) -> (f64, f64) {
+        let w = self.w;
+        let (c, s) = self.at;
+        self.at = if k % ROTATION_RUN == 0 {
+            let (s, c) = (w * tk).sin_cos();
+            (c, s)
+        } else {
+            // Steps that rounding alone tells apart share a rotation.
+            let d = tk - t[k - 1];
+            let same = |r: &&(f64, (f64, f64))| (r.0 - d).abs() <= 1e-12 * d.abs();
+            let rot = match self.rotations.iter().find(same) {
+                Some(r) => r.1,
+                None => {
+                    let r = (w * d).sin_cos();
+                    self.rotations[self.next] = (d, r);
+                    self.next = (self.next + 1) % self.rotations.len();
+                    r
+                }
+            };
+            (c * rot.1 - s * rot.0, s * rot.1 + c * rot.0)
+        };
+        self.at
+    }
 }
 
 /// The columns 1, e^(−zt) cos wt and e^(−zt) sin wt from their `decay` and `turns`: a step
@@ -44,38 +98,15 @@ fn grid_frequency(t: &[f64], u: &[f64], span: f64, step: f64) -> f64 {
 }
 
 /// The residual sum of squares of `u` (at times `t`) on c + a cos ωt + b sin ωt, from the
-/// normal equations' sums with no column kept: the grid's thousands of fits. cos ωt and sin ωt
-/// are carried from sample to sample by the rotation through ω times the step between them
-/// (one sine and cosine per distinct step), anew from the time itself every
-/// [`ROTATION_RUN`] samples so that rounding cannot build up.
+/// normal equations' sums with no column kept: the grid's thousands of fits ([`Rotation`]).
 fn undamped_residual(t: &[f64], u: &[f64], w: f64) -> Option<f64> {
     let n = t.len() as f64;
     let mean = u.iter().sum::<f64>() / n;
     let (mut sc, mut ss, mut scc, mut scs, mut sss) = (0.0, 0.0, 0.0, 0.0, 0.0);
     let (mut suc, mut sus, mut suu) = (0.0, 0.0, 0.0);
-    let (mut c, mut s) = (1.0, 0.0);
-    // The rotations of the last few distinct steps (a container's clock rounds a frame's step
-    // two ways, a gap is a multiple of it).
-    let mut rotations = [(f64::NAN, (0.0, 1.0)); 4];
-    let mut next = 0;
+    let mut rotation = Rotation::new(w);
     for (k, (&tk, &uk)) in t.iter().zip(u).enumerate() {
-        if k % ROTATION_RUN == 0 {
-            (s, c) = (w * tk).sin_cos();
-        } else {
-            // Steps that rounding alone tells apart share a rotation.
-            let d = tk - t[k - 1];
-            let same = |r: &&(f64, (f64, f64))| (r.0 - d).abs() <= 1e-12 * d.abs();
-            let rot = match rotations.iter().find(same) {
-                Some(r) => r.1,
-                None => {
-                    let r = (w * d).sin_cos();
-                    rotations[next] = (d, r);
-                    next = (next + 1) % rotations.len();
-                    r
-                }
-            };
-            (s, c) = (s * rot.1 + c * rot.0, c * rot.1 - s * rot.0);
-        }
+        let (c, s) = rotation.at(t, k, tk);
         let v = uk - mean;
         sc += c;
         ss += s;
@@ -232,8 +263,9 @@ fn amplitude(a: f64, b: f64, [va, vb, vab]: [f64; 3]) -> Value {
 mod tests {
     use super::*;
 
-    /// The grid's residual from sums and carried rotations is the one the kept columns give,
-    /// on times with gaps and a jittered step (a variable frame rate).
+    /// The grid's residual from sums is the one the kept columns give, and the carried
+    /// rotations are the sines and cosines of the times, on times with gaps and a jittered
+    /// step (a variable frame rate).
     #[test]
     fn the_grids_residual_is_the_columns_residual() {
         let t: Vec<f64> = (0..300)
@@ -245,6 +277,11 @@ mod tests {
             .map(|&s| 240.0 + 35.0 * (5.3 * s + 0.4).cos() + 0.2 * (71.3 * s).sin())
             .collect();
         for w in [0.4, 2.0, 5.3, 9.9, 60.0] {
+            let (cos, sin) = turns(&t, w);
+            for (k, &s) in t.iter().enumerate() {
+                let off = (cos[k] - (w * s).cos()).abs() + (sin[k] - (w * s).sin()).abs();
+                assert!(off < 1e-12, "{w} at {s}: {off}");
+            }
             let fast = undamped_residual(&t, &u, w).unwrap();
             let (_, r) = linear(&columns(&decay(&t, 0.0), &turns(&t, w)), &u).unwrap();
             let slow = sum_sq(&r);
