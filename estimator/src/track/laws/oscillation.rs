@@ -47,7 +47,7 @@ impl Rotation {
     fn at(&mut self, t: &[f64], k: usize, tk: f64) -> (f64, f64) {
         let w = self.w;
         let (c, s) = self.at;
-        self.at = if k % ROTATION_RUN == 0 {
+        self.at = if k.is_multiple_of(ROTATION_RUN) {
             let (s, c) = (w * tk).sin_cos();
             (c, s)
         } else {
