@@ -99,20 +99,19 @@ pub fn background(frames: &SmallFrames) -> Background {
     let level = levels(frames, &raw);
     let at = |share: f64, len: usize| ((share * (len - 1) as f64).round() as usize).min(len - 1);
     let grey = |v: i16| v.clamp(0, 255) as u8;
-    let spread: Vec<(i16, u8, u8)> = (0..pixels)
+    let (median, (low, high)): (Vec<i16>, (Vec<u8>, Vec<u8>)) = (0..pixels)
         .into_par_iter()
         .map_init(buffer, |values, p| {
             column(frames, &picked, &level, p, values);
             (
                 values[values.len() / 2],
-                grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]),
-                grey(values[at(BACKGROUND_SHARE, values.len())]),
+                (
+                    grey(values[at(1.0 - BACKGROUND_SHARE, values.len())]),
+                    grey(values[at(BACKGROUND_SHARE, values.len())]),
+                ),
             )
         })
-        .collect();
-    let median: Vec<i16> = spread.iter().map(|s| s.0).collect();
-    let low: Vec<u8> = spread.iter().map(|s| s.1).collect();
-    let high: Vec<u8> = spread.iter().map(|s| s.2).collect();
+        .unzip();
     let difference = |i: usize, p: usize, a: u8| (a as i16 - level[i] - median[p]) as f64;
     let mut histogram = [0u64; 256];
     for &i in &picked {

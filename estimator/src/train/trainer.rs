@@ -137,17 +137,18 @@ impl<'a> Trainer<'a> {
         // and the epoch's check then restores the last good checkpoint).
         let mut total = Tensor::zeros([], (Kind::Double, self.device));
         let mut batches = 0usize;
-        let offsets = self
-            .jitter
-            .as_ref()
-            .map(|j| j.offsets((n_train as usize).div_ceil(batch as usize)));
+        // The training noise and where each batch takes its slice of it.
+        let noise = self.jitter.as_ref().map(|j| {
+            let at = j.offsets((n_train as usize).div_ceil(batch as usize));
+            (j, at)
+        });
         for s in (0..n_train).step_by(batch as usize) {
             let len = batch.min(n_train - s);
             let idx = perm.narrow(0, s, len);
             let x = first(self.inputs.0.index_select(0, &idx));
-            let x = match (&self.jitter, &offsets) {
-                (Some(j), Some(at)) => j.add(&x, at[batches]),
-                _ => x,
+            let x = match &noise {
+                Some((j, at)) => j.add(&x, at[batches]),
+                None => x,
             };
             let start = data.train_start.as_ref().map(|t| t.index_select(0, &idx));
             let ids = &order[s as usize..(s + len) as usize];

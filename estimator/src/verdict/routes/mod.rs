@@ -2,11 +2,12 @@
 //! (`TrackRoute::guiding`: several periods, a rate known to a percent), its rate and damping
 //! are measurements of the same γ0 and γ1 (or g/L and damping) the latent's answer gives, with
 //! no encoder between the picture and the law; a brightness's decay over several e-folds, of
-//! the LED's γ; a tank's drain, of its k in metres where heights were read. An answer whose model does not oscillate, or
-//! one of whose values lies away from the track's by more than both errors allow (two
-//! measurements of one number that disagree: one of them is wrong), is doubtful, and the reason
-//! names both (the answer is the track's either way: `guide::combine`); a latent value without a
-//! standard error is held to the 2 % that separates a right answer from a wrong one. A constant
+//! the LED's γ; a tank's drain, of its k in metres where heights were read. An answer whose
+//! model does not oscillate, or one of whose values lies away from the track's by more than
+//! both errors allow (two measurements of one number that disagree: one of them is wrong), is
+//! doubtful, and the reason names both (the answer is the track's either way:
+//! `guide::combine`); a latent value without a standard error is held to the 2 % that
+//! separates a right answer from a wrong one. A constant
 //! acceleration in metres (by a stick or on a plane) is compared alike; by one stick, a track
 //! whose own halves disagree names perspective and `--plane`. Where they agree and the track's
 //! own halves do too, the track corroborates the rate (`corroborated`): what the latent's own
