@@ -1,7 +1,7 @@
 //! What the look at a recording's fields (`fields::picture::look`) decoded beside it, kept for
 //! the later reads of the same file, so that a run decodes a short recording once: the whole at
-//! the track's size for the object's track (`small_frames`), and the whole at its own size
-//! for the latent's frames (`decode`, served by [`served`]: the very bytes ffmpeg gives). Each
+//! the track's size for the object's track (`small_frames`), at the survey's for the survey,
+//! and the whole at its own size for the latent's frames (`decode`, served by [`served`]: the very bytes ffmpeg gives). Each
 //! is handed out once and then let go.
 //!
 //! Measured on the shared recordings: each start of ffmpeg costs 0.05 s (its libraries'
@@ -12,6 +12,7 @@
 //! recording's frames are kept, and at their own size.
 
 use super::decoded::SmallFrames;
+use super::fields::Wholes;
 use super::{Crop, FileKey, FrameResizer, VideoInfo, VideoOptions};
 use std::path::Path;
 use std::sync::Mutex;
@@ -28,16 +29,19 @@ type Slot = Mutex<Option<(FileKey, SmallFrames)>>;
 
 /// The whole at the track's size of the last progressive recording looked at.
 static WHOLE: Slot = Mutex::new(None);
+/// The whole at the survey's size of the last progressive recording looked at.
+static SURVEY: Slot = Mutex::new(None);
 /// The whole at its own size of the last progressive recording looked at, where its look's
 /// pass reported no error (a damaged file is decoded again, and its damage reported).
 static LARGE: Slot = Mutex::new(None);
 
-/// Keeps `whole` (at the track's size) and `large` (at its own) of the progressive recording at
-/// `path`, in place of any other file's.
-pub(super) fn keep(path: &Path, whole: Option<SmallFrames>, large: Option<SmallFrames>) {
+/// Keeps the `wholes` (at the track's size, the survey's and its own) of the progressive
+/// recording at `path`, in place of any other file's.
+pub(super) fn keep(path: &Path, wholes: Wholes) {
     let key = FileKey::of(path);
-    put(&WHOLE, key.clone(), whole);
-    put(&LARGE, key, large);
+    put(&WHOLE, key.clone(), wholes.whole);
+    put(&SURVEY, key.clone(), wholes.survey);
+    put(&LARGE, key, wholes.large);
 }
 
 /// `frames` of the file `key` into `slot`, in place of any other's (emptied where none).
@@ -51,6 +55,11 @@ fn put(slot: &Slot, key: Option<FileKey>, frames: Option<SmallFrames>) {
 /// changed since.
 pub(super) fn whole(path: &Path, size: (usize, usize), whole: bool) -> Option<SmallFrames> {
     whole_from(&WHOLE, path, size, whole)
+}
+
+/// The kept whole of `path` at the survey's size, as [`whole`] hands out the track's.
+pub(super) fn surveyed(path: &Path, size: (usize, usize), whole: bool) -> Option<SmallFrames> {
+    whole_from(&SURVEY, path, size, whole)
 }
 
 /// [`whole`] from `slot`.

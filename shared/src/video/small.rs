@@ -3,6 +3,7 @@
 //! survey and the object's track read.
 
 use super::decoded::SmallFrames;
+use super::survey::SURVEY_SIDE;
 use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{VideoError, VideoInfo};
 use std::path::Path;
@@ -15,8 +16,9 @@ pub const TRACK_SIDE: usize = 320;
 
 /// `input` (trimmed to `start`..`end` seconds) decoded to grey with its long side at most
 /// `side` pixels (never enlarged), interlaced fields split as the probe found them. The whole
-/// of a progressive recording at [`TRACK_SIDE`] is the one its fields' look decoded, where
-/// that was this process's last (and is not served twice: the track holds it).
+/// of a progressive recording at [`TRACK_SIDE`] or [`SURVEY_SIDE`] is the one its fields' look
+/// decoded, where that was this process's last (and is not served twice: the track, or the
+/// survey, holds it).
 pub fn small_frames(
     input: &Path,
     info: &VideoInfo,
@@ -71,9 +73,14 @@ fn decode_small(
     picture: Picture,
 ) -> Result<SmallFrames, VideoError> {
     let (w, h) = small_size((info.width, info.height), side);
-    if side == TRACK_SIDE && picture == Picture::Grey {
+    if picture == Picture::Grey {
         let whole = start.is_none() && end.is_none() && info.filter().is_none();
-        if let Some(kept) = super::kept::whole(input, (w, h), whole) {
+        let kept = match side {
+            TRACK_SIDE => super::kept::whole(input, (w, h), whole),
+            SURVEY_SIDE => super::kept::surveyed(input, (w, h), whole),
+            _ => None,
+        };
+        if let Some(kept) = kept {
             return Ok(kept);
         }
     }

@@ -17,6 +17,7 @@ mod picture;
 
 use super::VideoError;
 use picture::Look;
+pub(crate) use picture::Wholes;
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -119,7 +120,7 @@ pub fn find(
     if let Some(f) = seen.lock().ok().and_then(|s| s.get(path).copied()) {
         return Ok(f);
     }
-    let (look, (whole, large)) = picture::look(path, size, frames)?;
+    let (look, wholes) = picture::look(path, size, frames)?;
     let fields = match (look, tag) {
         (Look::Interlaced(order, share), _) => Some(Fields {
             order,
@@ -134,7 +135,7 @@ pub fn find(
         _ => None,
     };
     if fields.is_none() {
-        super::kept::keep(path, whole, large);
+        super::kept::keep(path, wholes);
     }
     if let Ok(mut s) = seen.lock() {
         s.insert(path.to_path_buf(), fields);

@@ -4,6 +4,7 @@
 
 use super::super::kept::LARGE_AT_MOST;
 use super::super::small::{small_filter, small_size, KEPT_AT_MOST, TRACK_SIDE};
+use super::super::survey::SURVEY_SIDE;
 use super::super::tools::{raw_frames, read_full, tool, EVERY_FRAME};
 use super::super::{SmallFrames, VideoError};
 use super::FieldOrder;
@@ -26,26 +27,27 @@ const MIN_VOTES: usize = 8;
 const CLEARLY: f64 = 0.8;
 
 /// What the picture says: the moving pairs of frames looked at, and their votes; and the whole
-/// recording decoded in the same pass, at [`TRACK_SIDE`] and at its own size (`kept`): none
-/// where its frames are not counted or would pass [`KEPT_AT_MOST`] (or [`LARGE_AT_MOST`]), or
-/// they could not be written to a temporary file (the look alone is its purpose); none at its
-/// own size where ffmpeg complained of the file (it is decoded again, and its damage
-/// reported).
+/// recording decoded in the same pass, at [`TRACK_SIDE`], at [`SURVEY_SIDE`] and at its own
+/// size (`kept`): none where its frames are not counted or would pass [`KEPT_AT_MOST`] (or
+/// [`LARGE_AT_MOST`]), or they could not be written to a temporary file (the look alone is its
+/// purpose); none at its own size where ffmpeg complained of the file (it is decoded again, and
+/// its damage reported).
 pub(super) fn look(
     path: &Path,
     (w, h): (usize, usize),
     frames: Option<usize>,
 ) -> Result<(Look, Wholes), VideoError> {
     if h < 8 || w == 0 {
-        return Ok((Look::Unknown, (None, None)));
+        return Ok((Look::Unknown, Wholes::default()));
     }
     let every = frames.map_or(2, |n| (n.min(WITHIN) / (LOOKED_AT / 2)).max(2));
     let whole = small_size((w, h), TRACK_SIDE);
+    let survey = small_size((w, h), SURVEY_SIDE);
     let at_most = |size: (usize, usize), most: usize| {
         frames.is_some_and(|n| n.saturating_mul(size.0 * size.1) <= most)
     };
-    // The whole read beside where its size is known and within bounds; at the larger size too
-    // where that differs.
+    // The whole read beside where its size is known and within bounds; at the survey's and the
+    // larger size too where they differ.
     let fits = at_most(whole, KEPT_AT_MOST);
     let large = (w, h);
     let large_apart = fits && large != whole && at_most(large, LARGE_AT_MOST);
@@ -53,40 +55,48 @@ pub(super) fn look(
     let looked = format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area");
     let scratch = tempfile::tempdir().ok().filter(|_| fits);
     let file = |name: &str| scratch.as_ref().map(|d| d.path().join(name));
-    let (kept, kept_large, log) = (file("whole.gray"), file("large.gray"), file("log"));
-    let large_apart = large_apart && kept_large.is_some();
+    let log = file("log");
+    // Each picture read beside the look: its label, its filter, its size and its file (every
+    // frame, as `small_frames` reads it; the larger at the file's own size, as `decode`
+    // converts it, no scaling).
+    let beside: Vec<(&str, String, (usize, usize), PathBuf)> = [
+        ("whole", small_filter(whole), whole, true),
+        ("survey", small_filter(survey), survey, survey != whole),
+        ("large", "null".to_string(), large, large_apart),
+    ]
+    .into_iter()
+    .filter_map(|(label, filter, size, wanted)| {
+        Some((
+            label,
+            filter,
+            size,
+            file(&format!("{label}.gray")).filter(|_| wanted)?,
+        ))
+    })
+    .collect();
     let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
         .arg(path);
-    match &kept {
-        // One decode, split: the whole at the track's size (and at the larger) to the files
-        // (every frame, as `small_frames` reads it), the pairs looked at to the pipe.
-        Some(file) => {
-            // At the file's own size, as `decode` converts it (no scaling).
-            let (parts, large_filter) = match large_apart {
-                true => (3, ";[c]null[large]"),
-                false => (2, ""),
-            };
-            let third = if parts == 3 { "[c]" } else { "" };
-            let split = format!(
-                "[0:v:0]split={parts}[a][b]{third};[a]{}[whole];[b]{looked}[looked]{large_filter}",
-                small_filter(whole)
-            );
-            cmd.args(["-filter_complex", &split, "-map", "[whole]"])
+    if beside.is_empty() {
+        cmd.args(["-map", "0:v:0", "-vf", &looked]);
+    } else {
+        // One decode, split: the pictures beside to their files, the pairs looked at to the
+        // pipe.
+        let n = beside.len();
+        let mut graph = format!("[0:v:0]split={}", n + 1);
+        (0..=n).for_each(|i| graph.push_str(&format!("[s{i}]")));
+        for (i, (label, filter, _, _)) in beside.iter().enumerate() {
+            graph.push_str(&format!(";[s{i}]{filter}[{label}]"));
+        }
+        graph.push_str(&format!(";[s{n}]{looked}[looked]"));
+        cmd.args(["-filter_complex", &graph]);
+        for (label, _, _, out) in &beside {
+            cmd.args(["-map", &format!("[{label}]")])
                 .args(&EVERY_FRAME[2..])
                 .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
-                .arg(file);
-            if let Some(large_file) = kept_large.as_ref().filter(|_| large_apart) {
-                cmd.args(["-map", "[large]"])
-                    .args(&EVERY_FRAME[2..])
-                    .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
-                    .arg(large_file);
-            }
-            cmd.args(["-map", "[looked]"]);
+                .arg(out);
         }
-        None => {
-            cmd.args(["-map", "0:v:0", "-vf", &looked]);
-        }
+        cmd.args(["-map", "[looked]"]);
     }
     cmd.args([
         "-fps_mode",
@@ -125,32 +135,50 @@ pub(super) fn look(
     }
     drop(stdout);
     let done = child.wait().is_ok_and(|s| s.success());
-    let read_back = |file: Option<PathBuf>, size: (usize, usize)| {
-        file.filter(|_| done)
-            .and_then(|file| std::fs::read(file).ok())
-            .filter(|p| !p.is_empty() && p.len() % (size.0 * size.1) == 0)
-            .map(|pixels| SmallFrames { pixels, size })
-    };
     let clean = log
         .and_then(|l| std::fs::metadata(l).ok())
         .is_some_and(|m| m.len() == 0);
-    let whole_frames = read_back(kept, whole);
+    let mut read: Vec<Option<SmallFrames>> = ["whole", "survey", "large"]
+        .iter()
+        .map(|name| {
+            let (_, _, size, file) = beside.iter().find(|b| b.0 == *name)?;
+            let pixels = std::fs::read(file).ok().filter(|_| done)?;
+            (!pixels.is_empty() && pixels.len() % (size.0 * size.1) == 0).then_some(SmallFrames {
+                pixels,
+                size: *size,
+            })
+        })
+        .collect();
+    let (whole_frames, large_frames) = (read[0].take(), read[2].take());
+    // A picture no smaller than another's is that one's frames.
+    let same = |f: &Option<SmallFrames>, size: (usize, usize)| {
+        f.as_ref().filter(|f| f.size == size).map(|f| SmallFrames {
+            pixels: f.pixels.clone(),
+            size,
+        })
+    };
     let large_frames = match (clean, large_apart) {
         (false, _) => None,
-        (true, true) => read_back(kept_large, large),
-        (true, false) => whole_frames
-            .as_ref()
-            .filter(|_| large == whole && at_most(large, LARGE_AT_MOST))
-            .map(|f| SmallFrames {
-                pixels: f.pixels.clone(),
-                size: f.size,
-            }),
+        (true, true) => large_frames,
+        (true, false) => same(&whole_frames, large).filter(|_| at_most(large, LARGE_AT_MOST)),
     };
-    Ok((judge(moving, votes), (whole_frames, large_frames)))
+    let survey_frames = read[1].take().or_else(|| same(&whole_frames, survey));
+    let wholes = Wholes {
+        whole: whole_frames,
+        survey: survey_frames,
+        large: large_frames,
+    };
+    Ok((judge(moving, votes), wholes))
 }
 
-/// The whole of a recording decoded in the look's pass: at [`TRACK_SIDE`], and at its own size.
-pub(super) type Wholes = (Option<SmallFrames>, Option<SmallFrames>);
+/// The whole of a recording decoded in the look's pass: at [`TRACK_SIDE`], at [`SURVEY_SIDE`]
+/// and at its own size.
+#[derive(Default)]
+pub(crate) struct Wholes {
+    pub whole: Option<SmallFrames>,
+    pub survey: Option<SmallFrames>,
+    pub large: Option<SmallFrames>,
+}
 
 /// What the picture says of a recording.
 #[derive(Debug, PartialEq)]
@@ -285,7 +313,7 @@ mod tests {
     }
 
     #[test]
-    fn the_whole_decoded_beside_the_look_is_the_tracks_own_decode() {
+    fn the_wholes_decoded_beside_the_look_are_the_tracks_and_the_surveys_own_decodes() {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("moving.mp4");
         let rendered = tool("ffmpeg")
@@ -306,15 +334,17 @@ mod tests {
             return; // no ffmpeg here
         }
         let info = crate::video::probe_as(&file, super::super::FieldsChoice::Frames).unwrap();
-        let (_, (whole, _)) = look(&file, (480, 270), Some(30)).unwrap();
-        let whole = whole.expect("the whole read beside the look");
+        let (_, wholes) = look(&file, (480, 270), Some(30)).unwrap();
         // Nothing kept for this file (`fields::find` keeps; `look` only reads): decoded afresh.
-        let fresh = crate::video::small_frames(&file, &info, (None, None), TRACK_SIDE).unwrap();
-        assert_eq!(whole.size, fresh.size);
-        assert_eq!((whole.len(), whole.size), (30, (320, 180)));
-        assert!(
-            whole.pixels == fresh.pixels,
-            "byte for byte the same frames"
-        );
+        let fresh = |side| crate::video::small_frames(&file, &info, (None, None), side).unwrap();
+        for (side, kept, size) in [
+            (TRACK_SIDE, wholes.whole, (320, 180)),
+            (SURVEY_SIDE, wholes.survey, (160, 90)),
+        ] {
+            let kept = kept.expect("the whole read beside the look");
+            let fresh = fresh(side);
+            assert_eq!((kept.len(), kept.size), (30, size));
+            assert!(kept.pixels == fresh.pixels, "byte for byte the same frames");
+        }
     }
 }
