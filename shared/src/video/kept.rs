@@ -12,7 +12,6 @@
 //! recording's frames are kept, and at their own size.
 
 use super::decoded::SmallFrames;
-use super::fields::Wholes;
 use super::{Crop, FileKey, FrameResizer, VideoInfo, VideoOptions};
 use std::path::Path;
 use std::sync::Mutex;
@@ -23,6 +22,15 @@ use std::sync::Mutex;
 /// spring's 300 MB, 0.1–0.8 s and 0.3 s slower and 100–200 MB more memory (writing and reading
 /// back the frames costs more than decoding them again). No decision reads it.
 pub(super) const LARGE_AT_MOST: usize = 96 << 20;
+
+/// The whole of a recording decoded in the look's pass: at the track's size (`TRACK_SIDE`),
+/// at the survey's (`SURVEY_SIDE`) and at its own.
+#[derive(Default)]
+pub(crate) struct Wholes {
+    pub whole: Option<SmallFrames>,
+    pub survey: Option<SmallFrames>,
+    pub large: Option<SmallFrames>,
+}
 
 /// One kept recording: the file it is of, and its frames.
 type Slot = Mutex<Option<(FileKey, SmallFrames)>>;

@@ -25,9 +25,9 @@ pub use decode::decode;
 pub use decoded::{DecodedVideo, SmallFrames};
 pub use probe::{probe, probe_as, VideoInfo};
 pub use resize::{shifted, FrameResizer};
-pub use small::{small_chroma, small_frames, TRACK_SIDE};
+pub use small::{small_chroma, small_frames, SURVEY_SIDE, TRACK_SIDE};
 pub use still::{still, still_ahead};
-pub use survey::{survey, MotionStats, Survey, SURVEY_SIDE};
+pub use survey::{survey, MotionStats, Survey};
 
 use std::path::{Path, PathBuf};
 

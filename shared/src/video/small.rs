@@ -3,7 +3,6 @@
 //! survey and the object's track read.
 
 use super::decoded::SmallFrames;
-use super::survey::SURVEY_SIDE;
 use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{VideoError, VideoInfo};
 use std::path::Path;
@@ -13,6 +12,9 @@ use std::process::Stdio;
 /// recording's fields (`fields::find`) decodes it at this size in the same pass, for the track
 /// (one decode of a 1080p spring fewer: 0.6 s of its 6).
 pub const TRACK_SIDE: usize = 320;
+
+/// The long side of the survey's frames (`survey`).
+pub const SURVEY_SIDE: usize = 160;
 
 /// `input` (trimmed to `start`..`end` seconds) decoded to grey with its long side at most
 /// `side` pixels (never enlarged), interlaced fields split as the probe found them. The whole

@@ -9,13 +9,10 @@
 
 use super::free::{departures, free_in, Departures, FreeSpan};
 use super::region::{blur, components, Bounds};
-use super::small::small_frames;
+use super::small::{small_frames, SURVEY_SIDE};
 use super::timescale::Thumbnails;
 use super::{Crop, VideoError, VideoInfo};
 use std::path::Path;
-
-/// The long side of the survey's frames.
-pub const SURVEY_SIDE: usize = 160;
 
 /// A pixel of the map is moving when its motion is at least this fraction of the map's
 /// strongest (after smoothing).

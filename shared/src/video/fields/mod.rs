@@ -17,7 +17,6 @@ mod picture;
 
 use super::VideoError;
 use picture::Look;
-pub(crate) use picture::Wholes;
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -2,9 +2,8 @@
 //! voting for the order in which a frame's fields were taken where the weaves with the next
 //! frame tell (see the module above for the measurements).
 
-use super::super::kept::LARGE_AT_MOST;
-use super::super::small::{small_filter, small_size, KEPT_AT_MOST, TRACK_SIDE};
-use super::super::survey::SURVEY_SIDE;
+use super::super::kept::{Wholes, LARGE_AT_MOST};
+use super::super::small::{small_filter, small_size, KEPT_AT_MOST, SURVEY_SIDE, TRACK_SIDE};
 use super::super::tools::{raw_frames, read_full, tool, EVERY_FRAME};
 use super::super::{SmallFrames, VideoError};
 use super::FieldOrder;
@@ -169,15 +168,6 @@ pub(super) fn look(
         large: large_frames,
     };
     Ok((judge(moving, votes), wholes))
-}
-
-/// The whole of a recording decoded in the look's pass: at [`TRACK_SIDE`], at [`SURVEY_SIDE`]
-/// and at its own size.
-#[derive(Default)]
-pub(crate) struct Wholes {
-    pub whole: Option<SmallFrames>,
-    pub survey: Option<SmallFrames>,
-    pub large: Option<SmallFrames>,
 }
 
 /// What the picture says of a recording.
