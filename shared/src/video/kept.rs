@@ -30,6 +30,8 @@ pub(crate) struct Wholes {
     pub whole: Option<SmallFrames>,
     pub survey: Option<SmallFrames>,
     pub large: Option<SmallFrames>,
+    /// The whole at the track's size in colour: each frame's YUV 4:4:4 planes in turn.
+    pub colour: Option<Vec<u8>>,
 }
 
 /// One kept recording: the file it is of, and its frames.
@@ -39,6 +41,9 @@ type Slot = Mutex<Option<(FileKey, SmallFrames)>>;
 static WHOLE: Slot = Mutex::new(None);
 /// The whole at the survey's size of the last progressive recording looked at.
 static SURVEY: Slot = Mutex::new(None);
+/// The whole at the track's size in colour (its YUV planes, three bytes a pixel) of the last
+/// progressive recording looked at.
+static COLOUR: Slot = Mutex::new(None);
 /// The whole at its own size of the last progressive recording looked at, where its look's
 /// pass reported no error (a damaged file is decoded again, and its damage reported).
 static LARGE: Slot = Mutex::new(None);
@@ -47,6 +52,13 @@ static LARGE: Slot = Mutex::new(None);
 /// recording at `path`, in place of any other file's.
 pub(super) fn keep(path: &Path, wholes: Wholes) {
     let key = FileKey::of(path);
+    let size = wholes.whole.as_ref().map(|w| w.size);
+    let colour = wholes.colour.zip(size);
+    put(
+        &COLOUR,
+        key.clone(),
+        colour.map(|(pixels, size)| SmallFrames { pixels, size }),
+    );
     put(&WHOLE, key.clone(), wholes.whole);
     put(&SURVEY, key.clone(), wholes.survey);
     put(&LARGE, key, wholes.large);
@@ -68,6 +80,12 @@ pub(super) fn whole(path: &Path, size: (usize, usize), whole: bool) -> Option<Sm
 /// The kept whole of `path` at the survey's size, as [`whole`] hands out the track's.
 pub(super) fn surveyed(path: &Path, size: (usize, usize), whole: bool) -> Option<SmallFrames> {
     whole_from(&SURVEY, path, size, whole)
+}
+
+/// The kept whole of `path` at the track's size in colour, each frame's YUV 4:4:4 planes in
+/// turn, as [`whole`] hands out the grey.
+pub(super) fn colour(path: &Path, size: (usize, usize), whole: bool) -> Option<Vec<u8>> {
+    whole_from(&COLOUR, path, size, whole).map(|f| f.pixels)
 }
 
 /// [`whole`] from `slot`.

@@ -7,6 +7,7 @@ use super::tools::{raw_frames, read_full, tool, trimmed_input, EVERY_FRAME};
 use super::{VideoError, VideoInfo};
 use std::path::Path;
 use std::process::Stdio;
+use std::sync::OnceLock;
 
 /// The long side (pixels) at which the object's track reads a recording whole. The look at a
 /// recording's fields (`fields::find`) decodes it at this size in the same pass, for the track
@@ -86,6 +87,20 @@ fn decode_small(
             return Ok(kept);
         }
     }
+    let n = w * h;
+    if picture == Picture::Chroma && side == TRACK_SIDE {
+        let whole = start.is_none() && end.is_none() && info.filter().is_none();
+        if let Some(planes) = super::kept::colour(input, (w, h), whole) {
+            let mut pixels = Vec::with_capacity(planes.len() / 3);
+            planes
+                .chunks_exact(3 * n)
+                .for_each(|f| chroma(f, n, &mut pixels));
+            return Ok(SmallFrames {
+                pixels,
+                size: (w, h),
+            });
+        }
+    }
     let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin"]);
     trimmed_input(&mut cmd, input, start, end);
@@ -96,7 +111,6 @@ fn decode_small(
             None => small_filter((w, h)),
         },
     ]);
-    let n = w * h;
     let (format, planes) = match picture {
         Picture::Grey => ("gray", 1),
         Picture::Chroma => ("yuv444p", 3),
@@ -107,11 +121,7 @@ fn decode_small(
     while read_full(&mut stdout, &mut buf).is_ok_and(|k| k == buf.len()) {
         match picture {
             Picture::Grey => pixels.extend_from_slice(&buf),
-            Picture::Chroma => pixels.extend((0..n).map(|p| {
-                let u = buf[n + p] as f64 - 128.0;
-                let v = buf[2 * n + p] as f64 - 128.0;
-                u.hypot(v).round().min(255.0) as u8
-            })),
+            Picture::Chroma => chroma(&buf, n, &mut pixels),
         }
     }
     let _ = child.wait();
@@ -119,4 +129,25 @@ fn decode_small(
         pixels,
         size: (w, h),
     })
+}
+
+/// Each of the `n` pixels' chroma of a frame's YUV 4:4:4 `planes`, onto `out`: its colour's
+/// distance from grey, √((U − 128)² + (V − 128)²) rounded, from a table of every (U, V).
+pub(super) fn chroma(planes: &[u8], n: usize, out: &mut Vec<u8>) {
+    static TABLE: OnceLock<Vec<u8>> = OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..1usize << 16)
+            .map(|uv| {
+                let u = (uv >> 8) as f64 - 128.0;
+                let v = (uv & 0xff) as f64 - 128.0;
+                u.hypot(v).round().min(255.0) as u8
+            })
+            .collect()
+    });
+    let (u, v) = (&planes[n..2 * n], &planes[2 * n..3 * n]);
+    out.extend(
+        u.iter()
+            .zip(v)
+            .map(|(&u, &v)| table[(usize::from(u) << 8) | usize::from(v)]),
+    );
 }

@@ -13,6 +13,7 @@
 //! order and none for the other (a disc swinging 3 pixels: 35 %); the shared recordings and the
 //! same drawings progressive 0–6 %, split evenly.
 
+mod beside;
 mod picture;
 
 use super::VideoError;

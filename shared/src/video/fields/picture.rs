@@ -2,12 +2,12 @@
 //! voting for the order in which a frame's fields were taken where the weaves with the next
 //! frame tell (see the module above for the measurements).
 
-use super::super::kept::{Wholes, LARGE_AT_MOST};
-use super::super::small::{small_filter, small_size, KEPT_AT_MOST, SURVEY_SIDE, TRACK_SIDE};
-use super::super::tools::{raw_frames, read_full, tool, EVERY_FRAME};
-use super::super::{SmallFrames, VideoError};
+use super::super::kept::Wholes;
+use super::super::tools::{raw_frames, read_full, tool};
+use super::super::VideoError;
+use super::beside::Beside;
 use super::FieldOrder;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Stdio;
 
 /// Frames looked at: pairs spread over the recording's first [`WITHIN`] frames (every frame of
@@ -26,11 +26,8 @@ const MIN_VOTES: usize = 8;
 const CLEARLY: f64 = 0.8;
 
 /// What the picture says: the moving pairs of frames looked at, and their votes; and the whole
-/// recording decoded in the same pass, at [`TRACK_SIDE`], at [`SURVEY_SIDE`] and at its own
-/// size (`kept`): none where its frames are not counted or would pass [`KEPT_AT_MOST`] (or
-/// [`LARGE_AT_MOST`]), or they could not be written to a temporary file (the look alone is its
-/// purpose); none at its own size where ffmpeg complained of the file (it is decoded again, and
-/// its damage reported).
+/// recording decoded in the same pass (`Beside`: at the track's size, the survey's, its own,
+/// and in colour), for `kept`.
 pub(super) fn look(
     path: &Path,
     (w, h): (usize, usize),
@@ -40,71 +37,20 @@ pub(super) fn look(
         return Ok((Look::Unknown, Wholes::default()));
     }
     let every = frames.map_or(2, |n| (n.min(WITHIN) / (LOOKED_AT / 2)).max(2));
-    let whole = small_size((w, h), TRACK_SIDE);
-    let survey = small_size((w, h), SURVEY_SIDE);
-    let at_most = |size: (usize, usize), most: usize| {
-        frames.is_some_and(|n| n.saturating_mul(size.0 * size.1) <= most)
-    };
-    // The whole read beside where its size is known and within bounds; at the survey's and the
-    // larger size too where they differ.
-    let fits = at_most(whole, KEPT_AT_MOST);
-    let large = (w, h);
-    let large_apart = fits && large != whole && at_most(large, LARGE_AT_MOST);
+    let beside = Beside::plan((w, h), frames);
     let w = w.min(WIDTH);
     let looked = format!("select='lt(mod(n\\,{every})\\,2)',scale={w}:{h}:flags=area");
-    let scratch = tempfile::tempdir().ok().filter(|_| fits);
-    let file = |name: &str| scratch.as_ref().map(|d| d.path().join(name));
-    let log = file("log");
-    // Each picture read beside the look: its label, its filter, its size and its file (every
-    // frame, as `small_frames` reads it; the larger at the file's own size, as `decode`
-    // converts it, no scaling).
-    let beside: Vec<(&str, String, (usize, usize), PathBuf)> = [
-        ("whole", small_filter(whole), whole, true),
-        ("survey", small_filter(survey), survey, survey != whole),
-        ("large", "null".to_string(), large, large_apart),
-    ]
-    .into_iter()
-    .filter_map(|(label, filter, size, wanted)| {
-        Some((
-            label,
-            filter,
-            size,
-            file(&format!("{label}.gray")).filter(|_| wanted)?,
-        ))
-    })
-    .collect();
     let mut cmd = tool("ffmpeg");
     cmd.args(["-v", "error", "-nostdin", "-noautorotate", "-i"])
         .arg(path);
-    if beside.is_empty() {
-        cmd.args(["-map", "0:v:0", "-vf", &looked]);
-    } else {
-        // One decode, split: the pictures beside to their files, the pairs looked at to the
-        // pipe.
-        let n = beside.len();
-        let mut graph = format!("[0:v:0]split={}", n + 1);
-        (0..=n).for_each(|i| graph.push_str(&format!("[s{i}]")));
-        for (i, (label, filter, _, _)) in beside.iter().enumerate() {
-            graph.push_str(&format!(";[s{i}]{filter}[{label}]"));
-        }
-        graph.push_str(&format!(";[s{n}]{looked}[looked]"));
-        cmd.args(["-filter_complex", &graph]);
-        for (label, _, _, out) in &beside {
-            cmd.args(["-map", &format!("[{label}]")])
-                .args(&EVERY_FRAME[2..])
-                .args(["-f", "rawvideo", "-pix_fmt", "gray", "-y"])
-                .arg(out);
-        }
-        cmd.args(["-map", "[looked]"]);
-    }
+    beside.args(&mut cmd, &looked);
     cmd.args([
         "-fps_mode",
         "passthrough",
         "-frames:v",
         &LOOKED_AT.to_string(),
     ]);
-    let complaints = log
-        .as_ref()
+    let complaints = (beside.log.as_ref())
         .and_then(|l| std::fs::File::create(l).ok())
         .map_or(Stdio::null(), Stdio::from);
     let (mut child, mut stdout) = raw_frames(cmd, path, "gray", complaints)?;
@@ -134,39 +80,10 @@ pub(super) fn look(
     }
     drop(stdout);
     let done = child.wait().is_ok_and(|s| s.success());
-    let clean = log
+    let clean = (beside.log.as_ref())
         .and_then(|l| std::fs::metadata(l).ok())
         .is_some_and(|m| m.len() == 0);
-    let mut read: Vec<Option<SmallFrames>> = ["whole", "survey", "large"]
-        .iter()
-        .map(|name| {
-            let (_, _, size, file) = beside.iter().find(|b| b.0 == *name)?;
-            let pixels = std::fs::read(file).ok().filter(|_| done)?;
-            (!pixels.is_empty() && pixels.len() % (size.0 * size.1) == 0).then_some(SmallFrames {
-                pixels,
-                size: *size,
-            })
-        })
-        .collect();
-    let (whole_frames, large_frames) = (read[0].take(), read[2].take());
-    // A picture no smaller than another's is that one's frames.
-    let same = |f: &Option<SmallFrames>, size: (usize, usize)| {
-        f.as_ref().filter(|f| f.size == size).map(|f| SmallFrames {
-            pixels: f.pixels.clone(),
-            size,
-        })
-    };
-    let large_frames = match (clean, large_apart) {
-        (false, _) => None,
-        (true, true) => large_frames,
-        (true, false) => same(&whole_frames, large).filter(|_| at_most(large, LARGE_AT_MOST)),
-    };
-    let survey_frames = read[1].take().or_else(|| same(&whole_frames, survey));
-    let wholes = Wholes {
-        whole: whole_frames,
-        survey: survey_frames,
-        large: large_frames,
-    };
+    let wholes = beside.read(done, clean);
     Ok((judge(moving, votes), wholes))
 }
 
@@ -249,6 +166,7 @@ fn comb((top, bottom): (&[u8], &[u8]), moved: &[bool], (w, h): (usize, usize)) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::video::{SURVEY_SIDE, TRACK_SIDE};
 
     const SIZE: (usize, usize) = (32, 32);
 
@@ -336,5 +254,12 @@ mod tests {
             assert_eq!((kept.len(), kept.size), (30, size));
             assert!(kept.pixels == fresh.pixels, "byte for byte the same frames");
         }
+        // In colour too (a short recording): the chroma the track reads of it, byte for byte.
+        let (planes, n) = (wholes.colour.expect("the colour read beside"), 320 * 180);
+        let mut chroma = Vec::new();
+        let each = |f: &[u8]| crate::video::small::chroma(f, n, &mut chroma);
+        planes.chunks_exact(3 * n).for_each(each);
+        let fresh = crate::video::small_chroma(&file, &info, (None, None), TRACK_SIDE).unwrap();
+        assert!(chroma == fresh.pixels, "byte for byte the same chroma");
     }
 }
